@@ -173,7 +173,8 @@ impl ElementKind {
     /// Whether this kind has an attribute named `class` (and so gets an explicit default
     /// class when written).
     pub(crate) fn class_attr(self) -> Option<usize> {
-        self.attr_index("class")
+        let i = self.attr_index("class")?;
+        matches!(self.attr(i).ty, AttrType::Reference(_)).then_some(i)
     }
 
     /// The identifier attribute's index.

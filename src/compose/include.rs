@@ -1,0 +1,234 @@
+//! `include_copy`: the copying merge of one model into another (reference §4).
+//!
+//! Root attributes and singletons merge by the schema's rules (values that must agree,
+//! min, max, bytes-max, replace); repeated children are copied with fresh ids after the
+//! receiving model's own; references between copied elements point at the copies.
+//! With `override_attributes`, a named source element merges into the receiving
+//! model's element of the same name, whose attributes it overwrites.
+//!
+//! The merge is atomic: on any error the receiving model is unchanged.
+
+use std::collections::{HashMap, HashSet};
+
+use imbl::Vector;
+
+use crate::error::{EditError, ErrorKind};
+use crate::model::{Index, Model};
+use crate::schema::{ElementKind, Merge, Multiplicity};
+use crate::tree::{Attr, ElementId, Node};
+use crate::value::{Reference, Value, number};
+
+/// Deepest nesting of merged (not copied) elements followed.
+const MAX_MERGE_DEPTH: usize = 10_000;
+
+struct Copier<'a> {
+    dest: &'a Model,
+    override_attributes: bool,
+    /// Source id → id in the result.
+    ids: HashMap<ElementId, ElementId>,
+    /// Roots of the copied subtrees (their new ids).
+    copied: HashSet<ElementId>,
+}
+
+impl Model {
+    /// Copies `other`'s content into this model (dm_control's `include_copy`).
+    ///
+    /// Global settings merge by the schema's rules and a conflicting value is an error;
+    /// every repeated element of `other` is copied (fresh ids) after this model's own;
+    /// references between copied elements point at the copies. With
+    /// `override_attributes`, root attributes and settings are overwritten instead of
+    /// checked, and named elements merge into same-named elements of this model.
+    ///
+    /// Fails, leaving `self` unchanged, on a conflicting setting, a name clash, or (with
+    /// `override_attributes`) a same-named element under another parent.
+    ///
+    /// Time: O(size of `other` + size of `self`), as the identifier index is rebuilt.
+    pub fn include_copy(&self, other: &Model, override_attributes: bool) -> Result<Model, EditError> {
+        let mut c = Copier { dest: self, override_attributes, ids: HashMap::new(), copied: HashSet::new() };
+        let mut path = String::new();
+        let root = c.merge(&self.root, &other.root, 0, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
+        let root = remap_refs(&root, &c.ids, &c.copied);
+        let mut index = Index::default();
+        if let Err(d) = index.insert_subtree(None, &root) {
+            let where_ = Model { root: root.clone(), index: index.clone(), files: self.files.clone() };
+            let path = where_.path_of(d.id).map(|p| where_.describe(&p)).unwrap_or_default();
+            return Err(EditError::new(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, path));
+        }
+        Ok(Model { root, index, files: self.files.clone() })
+    }
+}
+
+impl Copier<'_> {
+    /// Merges `src` into `dest` (same kind).
+    fn merge(&mut self, dest: &Node, src: &Node, depth: usize, path: &mut String) -> Result<Node, ErrorKind> {
+        if depth > MAX_MERGE_DEPTH {
+            return Err(ErrorKind::TooDeep(MAX_MERGE_DEPTH));
+        }
+        self.ids.insert(src.id(), dest.id());
+        let attrs = merge_attrs(dest, src, self.override_attributes)?;
+        let mut children = dest.children().clone();
+        for s in src.children() {
+            let kind = s.kind();
+            let existing = match kind.multiplicity() {
+                Multiplicity::Singleton | Multiplicity::OnDemand => children.iter().position(|c| c.kind() == kind),
+                Multiplicity::Repeated => self.override_target(dest, &children, s)?,
+            };
+            match existing {
+                Some(p) => {
+                    let len = path.len();
+                    crate::model::push_path(path, kind.tag(), s.identifier());
+                    let merged = self.merge(&children[p], s, depth + 1, path)?;
+                    path.truncate(len);
+                    children.set(p, merged);
+                }
+                None => children.push_back(self.copy(s)),
+            }
+        }
+        Ok(Node::new(dest.id(), dest.kind(), attrs, children))
+    }
+
+    /// With `override_attributes`, the position of the same-named child of `dest`.
+    fn override_target(&self, dest: &Node, children: &Vector<Node>, s: &Node) -> Result<Option<usize>, ErrorKind> {
+        if !self.override_attributes {
+            return Ok(None);
+        }
+        let (Some(ns), Some(name)) = (s.kind().namespace(), s.identifier()) else { return Ok(None) };
+        let Some(loc) = self.dest.find(ns, name) else { return Ok(None) };
+        match children.iter().position(|c| c.id() == loc.id()) {
+            Some(p) => Ok(Some(p)),
+            None if dest.children().iter().any(|c| c.id() == loc.id()) => Ok(None),
+            None => Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() }),
+        }
+    }
+
+    /// Copies a subtree with fresh ids (iteratively).
+    fn copy(&mut self, src: &Node) -> Node {
+        // Post-order rebuild with an explicit stack.
+        let mut stack: Vec<(&Node, bool)> = vec![(src, false)];
+        let mut built: Vec<Node> = Vec::new();
+        while let Some((n, done)) = stack.pop() {
+            if !done {
+                stack.push((n, true));
+                for c in n.children().iter().rev() {
+                    stack.push((c, false));
+                }
+                continue;
+            }
+            let k = n.children().len();
+            let children: Vector<Node> = built.split_off(built.len() - k).into_iter().collect();
+            let id = ElementId::fresh();
+            self.ids.insert(n.id(), id);
+            built.push(Node::new(id, n.kind(), n.attrs().to_vec(), children));
+        }
+        let copy = built.pop().unwrap_or_else(|| src.clone());
+        self.copied.insert(copy.id());
+        copy
+    }
+}
+
+/// Merges the attributes of two elements of the same kind.
+fn merge_attrs(dest: &Node, src: &Node, override_attributes: bool) -> Result<Vec<Attr>, ErrorKind> {
+    let kind = dest.kind();
+    let mut out: Vec<Attr> = dest.attrs().to_vec();
+    for (i, v) in src.attrs() {
+        let spec = kind.attr(*i as usize);
+        let pos = out.binary_search_by_key(i, |(k, _)| *k);
+        let new = match (&pos, override_attributes) {
+            (Err(_), _) | (Ok(_), true) => v.clone(),
+            (Ok(p), false) => combine(kind, *i as usize, &out[*p].1, v, spec.merge)?,
+        };
+        match pos {
+            Ok(p) => out[p].1 = new,
+            Err(p) => out.insert(p, (*i, new)),
+        }
+    }
+    Ok(out)
+}
+
+/// Combines two set values of one attribute by its merge rule (the copying variant:
+/// `Replace` takes the incoming value).
+pub(crate) fn combine(kind: ElementKind, i: usize, ours: &Value, theirs: &Value, merge: Merge) -> Result<Value, ErrorKind> {
+    let spec = kind.attr(i);
+    let conflict = || ErrorKind::AttributeConflict {
+        tag: kind.tag(),
+        attribute: spec.name,
+        ours: ours.to_string(),
+        theirs: theirs.to_string(),
+    };
+    match merge {
+        Merge::Replace => Ok(theirs.clone()),
+        Merge::MustAgree => {
+            if values_agree(ours, theirs) {
+                Ok(ours.clone())
+            } else {
+                Err(conflict())
+            }
+        }
+        Merge::Min | Merge::Max => {
+            let pick_theirs = match (ours, theirs) {
+                (Value::Float(a), Value::Float(b)) => (merge == Merge::Min) == (b < a),
+                (Value::Int(a), Value::Int(b)) => (merge == Merge::Min) == (b < a),
+                _ => return Err(conflict()),
+            };
+            Ok(if pick_theirs { theirs.clone() } else { ours.clone() })
+        }
+        Merge::MaxBytes => {
+            let (Some(a), Some(b)) = (ours.as_str(), theirs.as_str()) else { return Err(conflict()) };
+            let (Some(x), Some(y)) = (number::parse_bytes(a), number::parse_bytes(b)) else {
+                return Err(conflict());
+            };
+            Ok(Value::String(x.max(y).to_string().into()))
+        }
+    }
+}
+
+/// Equality as the reference checks it: exact, with a one-entry array agreeing with
+/// any array made only of that entry.
+fn values_agree(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Floats(x), Value::Floats(y)) => {
+            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+        }
+        (Value::Ints(x), Value::Ints(y)) => {
+            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+        }
+        _ => a == b,
+    }
+}
+
+/// Rewrites element references through `ids` inside the subtrees rooted at `under`
+/// (iteratively), sharing every subtree that does not change.
+pub(crate) fn remap_refs(root: &Node, ids: &HashMap<ElementId, ElementId>, under: &HashSet<ElementId>) -> Node {
+    // (node, children done, inside a remapped subtree)
+    let mut stack: Vec<(&Node, bool, bool)> = vec![(root, false, under.contains(&root.id()))];
+    let mut built: Vec<Node> = Vec::new();
+    while let Some((n, done, inside)) = stack.pop() {
+        if !done {
+            stack.push((n, true, inside));
+            for c in n.children().iter().rev() {
+                stack.push((c, false, inside || under.contains(&c.id())));
+            }
+            continue;
+        }
+        let k = n.children().len();
+        let new_children = built.split_off(built.len() - k);
+        let children_same = new_children.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b));
+        let needs = inside && n.attrs().iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Element(t)) if ids.get(t).is_some_and(|x| x != t)));
+        if children_same && !needs {
+            built.push(n.clone());
+            continue;
+        }
+        let attrs: Vec<Attr> = n
+            .attrs()
+            .iter()
+            .map(|(i, v)| match v {
+                Value::Reference(Reference::Element(t)) if inside => {
+                    (*i, Value::Reference(Reference::Element(ids.get(t).copied().unwrap_or(*t))))
+                }
+                _ => (*i, v.clone()),
+            })
+            .collect();
+        built.push(Node::new(n.id(), n.kind(), attrs, new_children.into_iter().collect()));
+    }
+    built.pop().unwrap_or_else(|| root.clone())
+}

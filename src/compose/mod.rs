@@ -1,0 +1,3 @@
+//! Composition of models: attachments, merges and copies.
+
+mod include;

@@ -1,0 +1,342 @@
+//! Error types: what went wrong, and where.
+//!
+//! - [`ValueError`]: a value that does not fit its attribute (no position).
+//! - [`ReadError`]: reading MJCF text or files; carries the file and a 1-based
+//!   line:column.
+//! - [`EditError`]: an edit of a model value; carries the path of the element the edit
+//!   was aimed at (`worldbody/body[name=torso]/geom[2]`).
+//! - [`WriteError`]: a model that cannot be written (a required reference whose target
+//!   was removed).
+//!
+//! Reading and editing fail for the same reasons, so both carry an [`ErrorKind`].
+//! Every failing operation leaves every model value unchanged.
+
+use std::fmt;
+use std::path::PathBuf;
+
+use smol_str::SmolStr;
+
+use crate::schema::Namespace;
+
+/// What is wrong with a value, independent of where it was found.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ValueError {
+    /// Not a number.
+    #[error("expected a float")]
+    NotFloat,
+    /// Not an integral number.
+    #[error("expected an integer")]
+    NotInt,
+    /// Not one of the keywords.
+    #[error("expected one of: {}", .valid.join(", "))]
+    NotKeyword {
+        /// The accepted keywords.
+        valid: &'static [&'static str],
+    },
+    /// An array entry is not a number.
+    #[error("expected whitespace-separated floats")]
+    NotFloatArray,
+    /// An array entry is not an integral number.
+    #[error("expected whitespace-separated integers")]
+    NotIntArray,
+    /// More entries than the attribute allows.
+    #[error("expected at most {max} entries, got {len}")]
+    TooLong {
+        /// Most entries allowed.
+        max: u32,
+        /// Entries given.
+        len: usize,
+    },
+    /// An identifier with `/`, which is reserved for scopes.
+    #[error("an identifier cannot contain '/', which is reserved for scopes")]
+    SlashInIdentifier,
+    /// A body named `world`.
+    #[error("a body cannot be named 'world'")]
+    WorldBody,
+    /// A value of a type the attribute cannot hold.
+    #[error("a value of the wrong type for this attribute")]
+    WrongType,
+    /// A file attribute given as text where no file can be loaded.
+    #[error("a file attribute needs a file to load")]
+    FileNeedsLoading,
+    /// A mesh file whose extension MuJoCo does not read.
+    #[error("mesh files must end in .stl, .msh or .obj")]
+    MeshExtension,
+}
+
+/// Why reading or editing failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// The text is not well-formed XML.
+    #[error("malformed XML: {0}")]
+    Syntax(String),
+    /// The bytes are not UTF-8.
+    #[error("the text is not valid UTF-8")]
+    InvalidUtf8,
+    /// The root element is not `<mujoco>`.
+    #[error("the root element should be <mujoco>, got <{0}>")]
+    WrongRoot(SmolStr),
+    /// An element the schema does not allow here.
+    #[error("<{tag}> is not a valid child of <{parent}>")]
+    InvalidChild {
+        /// The parent's tag.
+        parent: &'static str,
+        /// The child's tag.
+        tag: SmolStr,
+    },
+    /// A second singleton or on-demand child.
+    #[error("a <{0}> child already exists")]
+    DuplicateChild(&'static str),
+    /// An attribute the schema does not define for this element.
+    #[error("'{attribute}' is not a valid attribute for <{tag}>")]
+    UnknownAttribute {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: SmolStr,
+    },
+    /// A value that does not fit its attribute.
+    #[error("invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}")]
+    InvalidValue {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+        /// The value as given (cut to 200 characters).
+        value: String,
+        /// What is wrong with it.
+        error: ValueError,
+    },
+    /// An identifier already taken in its namespace.
+    #[error("duplicate identifier '{name}' in namespace {namespace}")]
+    DuplicateIdentifier {
+        /// The namespace.
+        namespace: Namespace,
+        /// The identifier.
+        name: SmolStr,
+    },
+    /// A required attribute that is missing or would be cleared.
+    #[error("attribute '{attribute}' of <{tag}> is required")]
+    MissingRequired {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+    },
+    /// A file that does not exist (or cannot be read).
+    #[error("cannot read file {path:?}: {reason}")]
+    FileNotFound {
+        /// The path as resolved.
+        path: PathBuf,
+        /// The operating system's reason.
+        reason: String,
+    },
+    /// A file outside the folder that file access is confined to.
+    #[error("file {0:?} is outside the model's folder")]
+    FileOutsideRoot(PathBuf),
+    /// An `<include>` that includes itself, directly or not.
+    #[error("include cycle through {0:?}")]
+    IncludeCycle(PathBuf),
+    /// An element nested deeper than the reader allows.
+    #[error("elements nested deeper than {0} levels")]
+    TooDeep(usize),
+    /// A locator that names no element of this model.
+    #[error("no such element")]
+    NotFound,
+    /// A global setting that differs between two models being merged.
+    #[error("conflicting values for attribute '{attribute}' of <{tag}>: {ours} vs {theirs}")]
+    AttributeConflict {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+        /// The receiving model's value.
+        ours: String,
+        /// The other model's value.
+        theirs: String,
+    },
+}
+
+/// A 1-based position in XML text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TextPos {
+    /// Line, from 1.
+    pub line: u32,
+    /// Column in characters, from 1.
+    pub column: u32,
+}
+
+impl TextPos {
+    /// The position of byte offset `offset` in `text`.
+    pub(crate) fn of_offset(text: &str, offset: usize) -> TextPos {
+        let mut offset = offset.min(text.len());
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let before = &text[..offset];
+        let line = before.bytes().filter(|b| *b == b'\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        TextPos { line: line.min(u32::MAX as usize) as u32, column: column.min(u32::MAX as usize) as u32 }
+    }
+}
+
+impl fmt::Display for TextPos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.line, self.column)
+    }
+}
+
+/// Reading MJCF failed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReadError {
+    kind: ErrorKind,
+    file: Option<PathBuf>,
+    pos: Option<TextPos>,
+}
+
+impl ReadError {
+    pub(crate) fn new(kind: ErrorKind, file: Option<PathBuf>, pos: Option<TextPos>) -> ReadError {
+        ReadError { kind, file, pos }
+    }
+
+    /// What went wrong.
+    pub fn kind(&self) -> &ErrorKind {
+        &self.kind
+    }
+
+    /// The file being read, when reading from a file (for an error inside an
+    /// included file, the included file).
+    pub fn file(&self) -> Option<&std::path::Path> {
+        self.file.as_deref()
+    }
+
+    /// Where in the text, when the error is tied to a place in it.
+    pub fn pos(&self) -> Option<TextPos> {
+        self.pos
+    }
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.kind)?;
+        match (&self.file, self.pos) {
+            (Some(file), Some(pos)) => write!(f, " at {}:{pos}", file.display()),
+            (Some(file), None) => write!(f, " in {}", file.display()),
+            (None, Some(pos)) => write!(f, " at {pos}"),
+            (None, None) => Ok(()),
+        }
+    }
+}
+
+impl std::error::Error for ReadError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.kind)
+    }
+}
+
+/// An edit of a model failed; the model is unchanged.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EditError {
+    kind: ErrorKind,
+    path: String,
+}
+
+impl EditError {
+    pub(crate) fn new(kind: ErrorKind, path: String) -> EditError {
+        EditError { kind, path }
+    }
+
+    /// What went wrong.
+    pub fn kind(&self) -> &ErrorKind {
+        &self.kind
+    }
+
+    /// The path of the element the edit was aimed at, such as
+    /// `worldbody/body[name=torso]/geom[2]` (empty for the model's root).
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+}
+
+impl fmt::Display for EditError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.path.is_empty() {
+            write!(f, "{} at <mujoco>", self.kind)
+        } else {
+            write!(f, "{} at {}", self.kind, self.path)
+        }
+    }
+}
+
+impl std::error::Error for EditError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.kind)
+    }
+}
+
+/// A model cannot be written.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum WriteError {
+    /// A required reference whose target was removed.
+    #[error("attribute '{attribute}' of <{tag}> at {path} is required, but the element it named was removed")]
+    MissingRequired {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+        /// The element's path.
+        path: String,
+    },
+}
+
+/// Any error of this crate, for callers that just want `?`.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Reading failed.
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// An edit failed.
+    #[error(transparent)]
+    Edit(#[from] EditError),
+    /// Writing failed.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn positions_count_lines_and_characters() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(TextPos::of_offset(t, 0), TextPos { line: 1, column: 1 });
+        assert_eq!(TextPos::of_offset(t, 3), TextPos { line: 2, column: 1 });
+        assert_eq!(TextPos::of_offset(t, 7), TextPos { line: 2, column: 4 });
+        assert_eq!(TextPos::of_offset(t, 100), TextPos { line: 3, column: 2 });
+    }
+
+    #[test]
+    fn errors_stay_small() {
+        assert!(std::mem::size_of::<ErrorKind>() <= 88, "{}", std::mem::size_of::<ErrorKind>());
+        assert!(std::mem::size_of::<ReadError>() <= 136);
+        assert!(std::mem::size_of::<EditError>() <= 120);
+    }
+
+    #[test]
+    fn messages_say_what_then_where() {
+        let e = ReadError::new(
+            ErrorKind::UnknownAttribute { tag: "geom", attribute: "foo".into() },
+            Some("m.xml".into()),
+            Some(TextPos { line: 3, column: 5 }),
+        );
+        assert_eq!(e.to_string(), "'foo' is not a valid attribute for <geom> at m.xml:3:5");
+        let e = EditError::new(ErrorKind::NotFound, "worldbody/body[name=torso]".into());
+        assert_eq!(e.to_string(), "no such element at worldbody/body[name=torso]");
+    }
+}

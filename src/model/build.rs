@@ -1,0 +1,367 @@
+//! Element builders and the checks that turn them into nodes.
+//!
+//! An [`Element`] is a plain description (tag, attributes, children) that collects
+//! whatever the caller gives it; nothing is checked until the element is added to a
+//! model, where every problem becomes one [`EditError`](crate::EditError) naming the
+//! element's path. So builder calls chain without a `?` after each setter.
+
+use imbl::Vector;
+use smol_str::SmolStr;
+
+use crate::error::{ErrorKind, ValueError};
+use crate::files::FileContext;
+use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
+use crate::tree::{Attr, ElementId, Node};
+use crate::value::{self, AttrInput, FileAsset, Value};
+
+/// A set of attribute assignments: values to set and attributes to clear, in order.
+///
+/// # Examples
+/// ```
+/// use mjcf::Attrs;
+/// let a = Attrs::new().set("rgba", [1.0, 0.0, 0.0, 1.0]).clear("material");
+/// assert_eq!(a.len(), 2);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Attrs {
+    items: Vec<(SmolStr, Option<AttrInput>)>,
+}
+
+impl Attrs {
+    /// No assignments.
+    pub fn new() -> Attrs {
+        Attrs::default()
+    }
+
+    /// Adds an assignment of `value` to the attribute `name` (`"class"` for the
+    /// default class).
+    #[must_use]
+    pub fn set(mut self, name: &str, value: impl Into<AttrInput>) -> Attrs {
+        self.items.push((name.into(), Some(value.into())));
+        self
+    }
+
+    /// Adds the clearing of the attribute `name`.
+    #[must_use]
+    pub fn clear(mut self, name: &str) -> Attrs {
+        self.items.push((name.into(), None));
+        self
+    }
+
+    /// The number of assignments.
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// Whether there are no assignments.
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    pub(crate) fn items(&self) -> &[(SmolStr, Option<AttrInput>)] {
+        &self.items
+    }
+}
+
+/// A new element to add to a model: its tag, attributes and children.
+///
+/// # Examples
+/// ```
+/// use mjcf::{Element, Model};
+/// let m = Model::new("m");
+/// let body = Element::new("body")
+///     .attr("name", "torso")
+///     .attr("pos", [0.0, 0.0, 1.0])
+///     .child(Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]));
+/// let (m, torso) = m.add(&m.worldbody(), body).unwrap();
+/// assert_eq!(m.find(mjcf::Namespace::Body, "torso"), Some(torso));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Element {
+    tag: SmolStr,
+    attrs: Attrs,
+    children: Vec<Element>,
+}
+
+impl Element {
+    /// An element with this tag and nothing else.
+    pub fn new(tag: &str) -> Element {
+        Element { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }
+    }
+
+    /// Sets an attribute (checked when the element is added).
+    #[must_use]
+    pub fn attr(mut self, name: &str, value: impl Into<AttrInput>) -> Element {
+        self.attrs = self.attrs.set(name, value);
+        self
+    }
+
+    /// Sets several attributes.
+    #[must_use]
+    pub fn attrs(mut self, attrs: Attrs) -> Element {
+        self.attrs.items.extend(attrs.items);
+        self
+    }
+
+    /// Appends a child element.
+    #[must_use]
+    pub fn child(mut self, child: Element) -> Element {
+        self.children.push(child);
+        self
+    }
+
+    /// The tag.
+    pub fn tag(&self) -> &str {
+        &self.tag
+    }
+}
+
+/// Creates an empty element of `kind` with a fresh id and every singleton child it
+/// always has (an `option` gets its `flag`, a default class its `geom`, ...).
+pub(crate) fn empty_node(kind: ElementKind) -> Node {
+    let children: Vector<Node> = kind
+        .spec()
+        .children
+        .iter()
+        .filter(|c| c.multiplicity() == Multiplicity::Singleton)
+        .map(|c| empty_node(*c))
+        .collect();
+    Node::new(ElementId::fresh(), kind, Vec::new(), children)
+}
+
+/// The folder settings of a model's compiler, which decide where files are read from.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Basepaths {
+    pub(crate) mesh: Option<SmolStr>,
+    pub(crate) texture: Option<SmolStr>,
+    pub(crate) asset: Option<SmolStr>,
+}
+
+impl Basepaths {
+    pub(crate) fn for_namespace(&self, ns: Option<PathNamespace>) -> Option<&str> {
+        let own = match ns {
+            Some(PathNamespace::Mesh) => self.mesh.as_deref(),
+            Some(PathNamespace::Texture) => self.texture.as_deref(),
+            Some(PathNamespace::Asset) => self.asset.as_deref(),
+            None => return None,
+        };
+        match ns {
+            Some(PathNamespace::Mesh | PathNamespace::Texture) => own.or(self.asset.as_deref()),
+            _ => own,
+        }
+    }
+
+    /// Records a `compiler` folder setting.
+    pub(crate) fn set(&mut self, ns: Option<PathNamespace>, value: Option<SmolStr>) {
+        match ns {
+            Some(PathNamespace::Mesh) => self.mesh = value,
+            Some(PathNamespace::Texture) => self.texture = value,
+            Some(PathNamespace::Asset) => self.asset = value,
+            None => {}
+        }
+    }
+}
+
+/// Everything needed to turn inputs into checked values.
+pub(crate) struct ValueCtx<'a> {
+    pub(crate) files: &'a FileContext,
+    pub(crate) basepaths: &'a Basepaths,
+}
+
+impl ValueCtx<'_> {
+    /// Checks one assignment: `Ok(None)` clears the attribute.
+    pub(crate) fn attr(
+        &self,
+        kind: ElementKind,
+        name: &str,
+        input: Option<&AttrInput>,
+    ) -> Result<(usize, Option<Value>), ErrorKind> {
+        let name = if name == "dclass" { "class" } else { name };
+        let index = kind
+            .attr_index(name)
+            .ok_or_else(|| ErrorKind::UnknownAttribute { tag: kind.tag(), attribute: name.into() })?;
+        let spec = kind.attr(index);
+        let Some(input) = input else { return Ok((index, None)) };
+        let invalid = |error: ValueError| ErrorKind::InvalidValue {
+            tag: kind.tag(),
+            attribute: spec.name,
+            value: input_text(input),
+            error,
+        };
+        let value = match (spec.ty, input) {
+            (AttrType::File { path_namespace }, AttrInput::Text(path)) => {
+                if path.is_empty() {
+                    None
+                } else {
+                    let base = self.basepaths.for_namespace(path_namespace);
+                    let (_, contents) = self.files.read(base, path)?;
+                    Some(Value::File(FileAsset::from_path_and_contents(path, contents)))
+                }
+            }
+            _ => value::from_input(spec, kind.namespace(), input).map_err(invalid)?,
+        };
+        if let (Some(Value::File(f)), "mesh") = (&value, kind.tag()) {
+            let ext = f.extension().to_ascii_lowercase();
+            if !matches!(ext.as_str(), ".stl" | ".msh" | ".obj") {
+                return Err(invalid(ValueError::MeshExtension));
+            }
+        }
+        Ok((index, value))
+    }
+}
+
+/// The text of an input, for error messages (cut to 200 characters).
+pub(crate) fn input_text(input: &AttrInput) -> String {
+    let s = match input {
+        AttrInput::Text(t) => t.to_string(),
+        AttrInput::Number(x) => x.to_string(),
+        AttrInput::Numbers(xs) => xs.iter().map(f64::to_string).collect::<Vec<_>>().join(" "),
+        AttrInput::Bool(b) => b.to_string(),
+        AttrInput::Value(v) => v.to_string(),
+    };
+    cut(&s)
+}
+
+pub(crate) fn cut(s: &str) -> String {
+    match s.char_indices().nth(200) {
+        Some((i, _)) => format!("{}...", &s[..i]),
+        None => s.to_string(),
+    }
+}
+
+/// Applies assignments to an attribute list, keeping schema order. Returns the
+/// identifier change, if any (`Some(None)` clears it).
+pub(crate) fn apply_attrs(
+    kind: ElementKind,
+    attrs: &mut Vec<Attr>,
+    changes: Vec<(usize, Option<Value>)>,
+) -> Result<(), ErrorKind> {
+    for (index, value) in changes {
+        let i = index as u16;
+        let pos = attrs.binary_search_by_key(&i, |(k, _)| *k);
+        match (pos, value) {
+            (Ok(p), Some(v)) => attrs[p].1 = v,
+            (Err(p), Some(v)) => attrs.insert(p, (i, v)),
+            (Ok(p), None) => {
+                if kind.attr(index).required {
+                    return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: kind.attr(index).name });
+                }
+                attrs.remove(p);
+            }
+            (Err(_), None) => {
+                if kind.attr(index).required {
+                    return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: kind.attr(index).name });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that every required attribute is set.
+pub(crate) fn check_required(kind: ElementKind, attrs: &[Attr]) -> Result<(), ErrorKind> {
+    for (i, spec) in kind.spec().attrs.iter().enumerate() {
+        if spec.required && attrs.binary_search_by_key(&(i as u16), |(k, _)| *k).is_err() {
+            return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: spec.name });
+        }
+    }
+    Ok(())
+}
+
+/// Gives a nameless `mesh`, `hfield` or `texture` with a file the file's stem as name,
+/// as the reference does.
+pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
+    if !matches!(kind.tag(), "mesh" | "hfield" | "texture") {
+        return;
+    }
+    let (Some(ident), Some(file)) = (kind.identifier(), kind.attr_index("file")) else { return };
+    let has_name = attrs.iter().any(|(i, _)| *i as usize == ident);
+    let stem = attrs.iter().find_map(|(i, v)| match v {
+        Value::File(f) if *i as usize == file => Some(SmolStr::from(f.stem())),
+        _ => None,
+    });
+    if let (false, Some(stem)) = (has_name, stem) {
+        if let Ok(v) = value::identifier(&stem, kind.namespace()) {
+            let i = ident as u16;
+            let p = attrs.binary_search_by_key(&i, |(k, _)| *k).unwrap_or_else(|p| p);
+            attrs.insert(p, (i, v));
+        }
+    }
+}
+
+/// Builds the node for `el` under a parent of kind `parent`. `path` names the new
+/// element in errors; on error it holds the path of the failing element.
+pub(crate) fn build(
+    ctx: &ValueCtx<'_>,
+    parent: ElementKind,
+    el: &Element,
+    path: &mut String,
+) -> Result<Node, ErrorKind> {
+    let kind = parent.child(&el.tag).ok_or_else(|| ErrorKind::InvalidChild {
+        parent: parent.tag(),
+        tag: el.tag.clone(),
+    })?;
+    if kind.multiplicity() == Multiplicity::Singleton {
+        return Err(ErrorKind::DuplicateChild(kind.tag()));
+    }
+    push_segment(path, kind.tag(), None);
+    let node = fill(ctx, empty_node(kind), el, path)?;
+    Ok(node)
+}
+
+/// Applies `el`'s attributes and children to `node` (of the same kind).
+fn fill(ctx: &ValueCtx<'_>, node: Node, el: &Element, path: &mut String) -> Result<Node, ErrorKind> {
+    let kind = node.kind();
+    let mut changes = Vec::with_capacity(el.attrs.items.len());
+    for (name, input) in &el.attrs.items {
+        changes.push(ctx.attr(kind, name, input.as_ref())?);
+    }
+    let mut attrs = node.attrs().to_vec();
+    apply_attrs(kind, &mut attrs, changes)?;
+    name_from_file(kind, &mut attrs);
+    check_required(kind, &attrs)?;
+    let mut children = node.children().clone();
+    for child in &el.children {
+        let Some(child_kind) = kind.child(&child.tag) else {
+            return Err(ErrorKind::InvalidChild { parent: kind.tag(), tag: child.tag.clone() });
+        };
+        let depth = path.len();
+        match child_kind.multiplicity() {
+            Multiplicity::Singleton => {
+                push_segment(path, child_kind.tag(), None);
+                let pos = children.iter().position(|c| c.kind() == child_kind);
+                let existing = pos.map(|p| children[p].clone()).unwrap_or_else(|| empty_node(child_kind));
+                let filled = fill(ctx, existing, child, path)?;
+                match pos {
+                    Some(p) => {
+                        children.set(p, filled);
+                    }
+                    None => children.push_back(filled),
+                }
+            }
+            Multiplicity::OnDemand if children.iter().any(|c| c.kind() == child_kind) => {
+                return Err(ErrorKind::DuplicateChild(child_kind.tag()));
+            }
+            _ => {
+                push_segment(path, child_kind.tag(), None);
+                let built = fill(ctx, empty_node(child_kind), child, path)?;
+                children.push_back(built);
+            }
+        }
+        path.truncate(depth);
+    }
+    Ok(Node::new(node.id(), kind, attrs, children))
+}
+
+/// Appends `/tag` or `/tag[name=x]` to an element path.
+pub(crate) fn push_segment(path: &mut String, tag: &str, name: Option<&str>) {
+    if !path.is_empty() {
+        path.push('/');
+    }
+    path.push_str(tag);
+    if let Some(n) = name {
+        path.push_str("[name=");
+        path.push_str(n);
+        path.push(']');
+    }
+}

@@ -1,0 +1,230 @@
+//! Immutable, shared element nodes and path-copying edits.
+//!
+//! A [`Node`] is an `Arc`: cloning it is a pointer bump. Nodes hold no parent pointer
+//! and nothing that depends on where they sit (no prefix, no path, no auto name), so one
+//! node can sit in many trees at once. An edit rebuilds only the nodes on the path from
+//! the edited node to the root; every other subtree stays shared (`ptr_eq`).
+//!
+// Implementation notes:
+// - Attributes are kept sorted by their schema index, which is also the order they are
+//   written in.
+// - Invariants: `attrs` holds no duplicate index; every child's kind is a child kind
+//   of this node's kind; an element id occurs at most once in a model's own tree.
+
+use std::fmt;
+use std::num::NonZeroU64;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use imbl::Vector;
+
+use crate::schema::ElementKind;
+use crate::value::Value;
+
+/// A stable identity of an element, unique within a model.
+///
+/// It survives every edit of other elements and of the element's own attributes, so an
+/// editor can hold it across versions. Ids are never reused: a removed element's id
+/// names nothing in later versions.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ElementId(NonZeroU64);
+
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+impl ElementId {
+    /// A new id, never handed out before in this process.
+    pub(crate) fn fresh() -> ElementId {
+        let n = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        // The counter would need 2^64 allocations to wrap.
+        ElementId(NonZeroU64::new(n).unwrap_or(NonZeroU64::MIN))
+    }
+}
+
+impl fmt::Debug for ElementId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}
+
+/// One attribute slot: the schema index of the attribute and its value.
+pub(crate) type Attr = (u16, Value);
+
+/// An immutable element node.
+#[derive(Clone)]
+pub(crate) struct Node(Arc<NodeData>);
+
+#[derive(Clone)]
+pub(crate) struct NodeData {
+    pub(crate) id: ElementId,
+    pub(crate) kind: ElementKind,
+    pub(crate) attrs: Arc<[Attr]>,
+    pub(crate) children: Vector<Node>,
+}
+
+impl Node {
+    pub(crate) fn new(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, children: Vector<Node>) -> Node {
+        let mut attrs = attrs;
+        attrs.sort_by_key(|(i, _)| *i);
+        Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children }))
+    }
+
+    pub(crate) fn id(&self) -> ElementId {
+        self.0.id
+    }
+
+    pub(crate) fn kind(&self) -> ElementKind {
+        self.0.kind
+    }
+
+    pub(crate) fn attrs(&self) -> &[Attr] {
+        &self.0.attrs
+    }
+
+    pub(crate) fn children(&self) -> &Vector<Node> {
+        &self.0.children
+    }
+
+    /// The value of the attribute at schema index `index`.
+    pub(crate) fn attr(&self, index: usize) -> Option<&Value> {
+        let i = u16::try_from(index).ok()?;
+        self.0.attrs.binary_search_by_key(&i, |(k, _)| *k).ok().map(|p| &self.0.attrs[p].1)
+    }
+
+    /// The element's identifier, if set.
+    pub(crate) fn identifier(&self) -> Option<&str> {
+        let idx = self.kind().identifier()?;
+        match self.attr(idx)? {
+            Value::Identifier(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// Whether both are the same shared node.
+    pub(crate) fn ptr_eq(&self, other: &Node) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+
+    /// The index of the child with this id.
+    pub(crate) fn child_position(&self, id: ElementId) -> Option<usize> {
+        self.0.children.iter().position(|c| c.id() == id)
+    }
+
+    /// The first child of this kind.
+    pub(crate) fn child_of_kind(&self, kind: ElementKind) -> Option<&Node> {
+        self.0.children.iter().find(|c| c.kind() == kind)
+    }
+
+    /// A copy with different attributes.
+    pub(crate) fn with_attrs(&self, attrs: Vec<Attr>) -> Node {
+        let mut data = NodeData::clone(&self.0);
+        let mut attrs = attrs;
+        attrs.sort_by_key(|(i, _)| *i);
+        data.attrs = attrs.into();
+        Node(Arc::new(data))
+    }
+
+    /// A copy with different children.
+    pub(crate) fn with_children(&self, children: Vector<Node>) -> Node {
+        let mut data = NodeData::clone(&self.0);
+        data.children = children;
+        Node(Arc::new(data))
+    }
+
+    /// A copy with the child at `index` replaced.
+    pub(crate) fn with_child_at(&self, index: usize, child: Node) -> Node {
+        self.with_children(self.0.children.update(index, child))
+    }
+
+    /// Rebuilds the path `path` (child indices from this node) with `f` applied to the
+    /// node at its end. Time: O(depth · log width).
+    pub(crate) fn update_path<E>(
+        &self,
+        path: &[usize],
+        f: impl FnOnce(&Node) -> Result<Node, E>,
+    ) -> Result<Node, E> {
+        // Iterative, so deep trees cannot overflow the stack.
+        let mut chain: Vec<&Node> = Vec::with_capacity(path.len() + 1);
+        chain.push(self);
+        for &i in path {
+            let last = chain[chain.len() - 1];
+            match last.0.children.get(i) {
+                Some(c) => chain.push(c),
+                None => break,
+            }
+        }
+        let target = chain[chain.len() - 1];
+        let mut node = f(target)?;
+        for (depth, parent) in chain.iter().enumerate().rev().skip(1) {
+            node = parent.with_child_at(path[depth], node);
+        }
+        Ok(node)
+    }
+
+    /// Every node of the subtree in document order (pre-order), iteratively.
+    pub(crate) fn descendants(&self) -> Descendants<'_> {
+        Descendants { stack: vec![self] }
+    }
+}
+
+/// Pre-order iterator over a subtree.
+pub(crate) struct Descendants<'a> {
+    stack: Vec<&'a Node>,
+}
+
+impl<'a> Iterator for Descendants<'a> {
+    type Item = &'a Node;
+    fn next(&mut self) -> Option<&'a Node> {
+        let n = self.stack.pop()?;
+        let before = self.stack.len();
+        self.stack.extend(n.children().iter());
+        self.stack[before..].reverse();
+        Some(n)
+    }
+}
+
+impl fmt::Debug for Node {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "<{} {:?}", self.kind().tag(), self.id())?;
+        for (i, v) in self.attrs() {
+            write!(f, " {}={:?}", self.kind().attr(*i as usize).name, v.to_string())?;
+        }
+        write!(f, "> ({} children)", self.children().len())
+    }
+}
+
+impl PartialEq for Node {
+    /// Structural equality (same ids, kinds, attributes and children), with a
+    /// shortcut for shared nodes. Iterative.
+    fn eq(&self, other: &Node) -> bool {
+        let mut stack = vec![(self, other)];
+        while let Some((a, b)) = stack.pop() {
+            if a.ptr_eq(b) {
+                continue;
+            }
+            if a.id() != b.id()
+                || a.kind() != b.kind()
+                || a.attrs() != b.attrs()
+                || a.children().len() != b.children().len()
+            {
+                return false;
+            }
+            stack.extend(a.children().iter().zip(b.children().iter()));
+        }
+        true
+    }
+}
+
+impl Drop for NodeData {
+    /// Drops the subtree iteratively, so that a very deep tree cannot overflow the stack.
+    fn drop(&mut self) {
+        if self.children.is_empty() {
+            return;
+        }
+        let mut stack: Vec<Node> = std::mem::take(&mut self.children).into_iter().collect();
+        while let Some(node) = stack.pop() {
+            if let Ok(mut data) = Arc::try_unwrap(node.0) {
+                stack.extend(std::mem::take(&mut data.children));
+            }
+        }
+    }
+}

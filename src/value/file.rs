@@ -1,0 +1,113 @@
+//! File assets: the contents of a mesh, texture, height field or skin file, named by
+//! their hash when written.
+
+use std::fmt;
+use std::sync::Arc;
+
+use smol_str::SmolStr;
+
+/// The contents of a file attribute (`mesh/@file`, `texture/@file`, ...).
+///
+/// The bytes are read when the attribute is set (or the model is read), so a model
+/// value never depends on the file system afterwards. Cloning is O(1). Two assets are
+/// equal when their names and contents are equal.
+#[derive(Clone)]
+pub struct FileAsset(Arc<FileData>);
+
+struct FileData {
+    stem: SmolStr,
+    extension: SmolStr,
+    contents: Arc<[u8]>,
+    sha1: String,
+}
+
+impl FileAsset {
+    /// Creates an asset from a file stem (`"cube"`), an extension with its dot
+    /// (`".stl"`) and the contents.
+    pub fn new(stem: &str, extension: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
+        let contents = contents.into();
+        let sha1 = sha1_smol::Sha1::from(&contents[..]).digest().to_string();
+        FileAsset(Arc::new(FileData { stem: stem.into(), extension: extension.into(), contents, sha1 }))
+    }
+
+    /// Creates an asset from a path as written in MJCF and the file's contents: the
+    /// stem and extension come from the path's last component.
+    pub fn from_path_and_contents(path: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
+        let file = path.rsplit(['/', '\\']).next().unwrap_or(path);
+        let (stem, ext) = match file.rfind('.') {
+            Some(i) if i > 0 => (&file[..i], &file[i..]),
+            _ => (file, ""),
+        };
+        FileAsset::new(stem, ext, contents)
+    }
+
+    /// The file stem (`"cube"`).
+    pub fn stem(&self) -> &str {
+        &self.0.stem
+    }
+
+    /// The extension with its dot (`".stl"`), or empty.
+    pub fn extension(&self) -> &str {
+        &self.0.extension
+    }
+
+    /// The file's bytes.
+    pub fn contents(&self) -> &[u8] {
+        &self.0.contents
+    }
+
+    /// The SHA-1 of the contents, as 40 lower-case hex digits.
+    pub fn sha1_hex(&self) -> &str {
+        &self.0.sha1
+    }
+
+    /// The name the file gets in written MJCF: `stem-<sha1>.ext` with the hash, or
+    /// `stem.ext` without (a file without a stem is named by its hash either way).
+    pub fn vfs_name(&self, with_hash: bool) -> String {
+        let d = &self.0;
+        match (d.stem.is_empty(), with_hash) {
+            (true, _) => format!("{}{}", d.sha1, d.extension),
+            (false, true) => {
+                // The reference keeps names within MuJoCo's 998-byte VFS limit by
+                // cutting the stem.
+                let room = 998usize.saturating_sub(d.sha1.len() + d.extension.len() + 1);
+                let mut end = d.stem.len().min(room);
+                while !d.stem.is_char_boundary(end) {
+                    end -= 1;
+                }
+                format!("{}-{}{}", &d.stem[..end], d.sha1, d.extension)
+            }
+            (false, false) => format!("{}{}", d.stem, d.extension),
+        }
+    }
+}
+
+impl PartialEq for FileAsset {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+            || (self.0.sha1 == other.0.sha1
+                && self.0.stem == other.0.stem
+                && self.0.extension == other.0.extension)
+    }
+}
+
+impl fmt::Debug for FileAsset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "FileAsset({} bytes, {})", self.0.contents.len(), self.vfs_name(true))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_carry_the_sha1_of_the_contents() {
+        let a = FileAsset::from_path_and_contents("meshes/cube.stl", b"abc".to_vec());
+        assert_eq!(a.sha1_hex(), "a9993e364706816aba3e25717850c26c9cd0d89d");
+        assert_eq!(a.vfs_name(true), "cube-a9993e364706816aba3e25717850c26c9cd0d89d.stl");
+        assert_eq!(a.vfs_name(false), "cube.stl");
+        let b = FileAsset::new("", ".png", b"abc".to_vec());
+        assert_eq!(b.vfs_name(false), "a9993e364706816aba3e25717850c26c9cd0d89d.png");
+    }
+}

@@ -1,0 +1,447 @@
+//! Typed attribute values: parsed from XML text or from Rust values, formatted back.
+//!
+//! A [`Value`] is what an element stores for one attribute. Identifiers and references
+//! are stored without any scope prefix; the writer adds prefixes while it walks.
+
+mod file;
+pub(crate) mod number;
+
+use std::fmt;
+use std::sync::Arc;
+
+use smol_str::SmolStr;
+
+use crate::error::ValueError;
+use crate::schema::{ArrayType, AttrSpec, AttrType, Namespace};
+use crate::tree::ElementId;
+
+pub use file::FileAsset;
+pub(crate) use number::FloatStyle;
+
+/// The value of one attribute.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A float attribute.
+    Float(f64),
+    /// An int attribute.
+    Int(i64),
+    /// A string attribute, verbatim.
+    String(SmolStr),
+    /// A keyword, in the schema's spelling.
+    Keyword(&'static str),
+    /// A float array.
+    Floats(Arc<[f64]>),
+    /// An int array.
+    Ints(Arc<[i64]>),
+    /// The element's own name (never contains `/`).
+    Identifier(SmolStr),
+    /// A reference to another element.
+    Reference(Reference),
+    /// A file, with its contents.
+    File(FileAsset),
+    /// A folder setting (`meshdir`); never written.
+    Basepath(SmolStr),
+}
+
+/// A reference attribute's value.
+///
+/// `Name` is text, interpreted in the scope of the model that holds it, and written
+/// with that model's prefix (a dangling name is kept as it is, as MuJoCo reports those
+/// when it compiles). `Element` points at an element of the same model by its stable
+/// id: renaming the target renames the reference, and removing the target clears it.
+/// Reading a model resolves every reference that names an existing element.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Reference {
+    /// A name.
+    Name(SmolStr),
+    /// An element of the same model.
+    Element(ElementId),
+}
+
+/// A value as given by a caller before it is checked against the schema.
+///
+/// Anything that converts into it can be passed to [`crate::Element::attr`] and
+/// [`crate::Attrs::set`]: text (`"0 0 1"`), numbers, arrays and slices of numbers,
+/// `bool` (for `true`/`false` keywords) and [`Value`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum AttrInput {
+    /// XML text, parsed by the attribute's type.
+    Text(SmolStr),
+    /// One number.
+    Number(f64),
+    /// Several numbers.
+    Numbers(Vec<f64>),
+    /// A boolean keyword.
+    Bool(bool),
+    /// A typed value, used as is when its type fits.
+    Value(Value),
+}
+
+impl From<&str> for AttrInput {
+    fn from(v: &str) -> Self {
+        AttrInput::Text(v.into())
+    }
+}
+impl From<String> for AttrInput {
+    fn from(v: String) -> Self {
+        AttrInput::Text(v.into())
+    }
+}
+impl From<&String> for AttrInput {
+    fn from(v: &String) -> Self {
+        AttrInput::Text(v.into())
+    }
+}
+impl From<SmolStr> for AttrInput {
+    fn from(v: SmolStr) -> Self {
+        AttrInput::Text(v)
+    }
+}
+impl From<f64> for AttrInput {
+    fn from(v: f64) -> Self {
+        AttrInput::Number(v)
+    }
+}
+impl From<f32> for AttrInput {
+    fn from(v: f32) -> Self {
+        AttrInput::Number(v.into())
+    }
+}
+impl From<i32> for AttrInput {
+    fn from(v: i32) -> Self {
+        AttrInput::Number(v.into())
+    }
+}
+impl From<u32> for AttrInput {
+    fn from(v: u32) -> Self {
+        AttrInput::Number(v.into())
+    }
+}
+impl From<bool> for AttrInput {
+    fn from(v: bool) -> Self {
+        AttrInput::Bool(v)
+    }
+}
+impl<const N: usize> From<[f64; N]> for AttrInput {
+    fn from(v: [f64; N]) -> Self {
+        AttrInput::Numbers(v.to_vec())
+    }
+}
+impl From<&[f64]> for AttrInput {
+    fn from(v: &[f64]) -> Self {
+        AttrInput::Numbers(v.to_vec())
+    }
+}
+impl From<Vec<f64>> for AttrInput {
+    fn from(v: Vec<f64>) -> Self {
+        AttrInput::Numbers(v)
+    }
+}
+impl From<Value> for AttrInput {
+    fn from(v: Value) -> Self {
+        AttrInput::Value(v)
+    }
+}
+
+/// What the reader needs beyond the text to build a value: the element's namespace (a
+/// body may not be named `world`).
+pub(crate) fn parse_text(
+    spec: &AttrSpec,
+    namespace: Option<Namespace>,
+    text: &str,
+) -> Result<Value, ValueError> {
+    match spec.ty {
+        AttrType::Float => number::parse_float(text).map(Value::Float).ok_or(ValueError::NotFloat),
+        AttrType::Int => number::parse_int(text).map(Value::Int).ok_or(ValueError::NotInt),
+        AttrType::String => Ok(Value::String(text.into())),
+        AttrType::Keyword(valid) => valid
+            .iter()
+            .find(|v| v.eq_ignore_ascii_case(text.trim()))
+            .map(|v| Value::Keyword(v))
+            .ok_or(ValueError::NotKeyword { valid }),
+        AttrType::Array { elem, max_len } => {
+            let parts = text.split_ascii_whitespace();
+            let value = match elem {
+                ArrayType::Float => {
+                    let v: Option<Vec<f64>> = parts.map(number::parse_float).collect();
+                    Value::Floats(v.ok_or(ValueError::NotFloatArray)?.into())
+                }
+                ArrayType::Int => {
+                    let v: Option<Vec<i64>> = parts.map(number::parse_int).collect();
+                    Value::Ints(v.ok_or(ValueError::NotIntArray)?.into())
+                }
+            };
+            check_len(&value, max_len)?;
+            Ok(value)
+        }
+        AttrType::Identifier => identifier(text, namespace),
+        AttrType::Reference(_) => Ok(Value::Reference(Reference::Name(text.into()))),
+        AttrType::Basepath { .. } => Ok(Value::Basepath(text.into())),
+        AttrType::File { .. } => Err(ValueError::FileNeedsLoading),
+    }
+}
+
+fn check_len(value: &Value, max_len: Option<u32>) -> Result<(), ValueError> {
+    let len = match value {
+        Value::Floats(v) => v.len(),
+        Value::Ints(v) => v.len(),
+        _ => return Ok(()),
+    };
+    match max_len {
+        Some(max) if len > max as usize => Err(ValueError::TooLong { max, len }),
+        _ => Ok(()),
+    }
+}
+
+/// Checks an identifier: no `/`, and a body is not named `world`.
+pub(crate) fn identifier(text: &str, namespace: Option<Namespace>) -> Result<Value, ValueError> {
+    if text.contains('/') {
+        return Err(ValueError::SlashInIdentifier);
+    }
+    if namespace == Some(Namespace::Body) && text == "world" {
+        return Err(ValueError::WorldBody);
+    }
+    Ok(Value::Identifier(text.into()))
+}
+
+/// Converts a caller's input to a value of the attribute's type. `Ok(None)` means the
+/// input clears the attribute (an empty identifier, reference or string, as in the
+/// reference implementation).
+pub(crate) fn from_input(
+    spec: &AttrSpec,
+    namespace: Option<Namespace>,
+    input: &AttrInput,
+) -> Result<Option<Value>, ValueError> {
+    let clears_when_empty = matches!(
+        spec.ty,
+        AttrType::Identifier | AttrType::Reference(_) | AttrType::String | AttrType::Basepath { .. }
+    );
+    match input {
+        AttrInput::Text(t) => {
+            if t.is_empty() && clears_when_empty {
+                return Ok(None);
+            }
+            parse_text(spec, namespace, t).map(Some)
+        }
+        AttrInput::Bool(b) => match spec.ty {
+            AttrType::Keyword(_) => parse_text(spec, namespace, if *b { "true" } else { "false" }).map(Some),
+            _ => Err(ValueError::WrongType),
+        },
+        AttrInput::Number(x) => match spec.ty {
+            AttrType::Float => Ok(Some(Value::Float(*x))),
+            AttrType::Int => number::float_to_int(*x).map(|v| Some(Value::Int(v))).ok_or(ValueError::NotInt),
+            AttrType::Array { .. } => from_input(spec, namespace, &AttrInput::Numbers(vec![*x])),
+            _ => Err(ValueError::WrongType),
+        },
+        AttrInput::Numbers(xs) => match spec.ty {
+            AttrType::Array { elem, max_len } => {
+                let value = match elem {
+                    ArrayType::Float => Value::Floats(xs.as_slice().into()),
+                    ArrayType::Int => {
+                        let v: Option<Vec<i64>> = xs.iter().map(|x| number::float_to_int(*x)).collect();
+                        Value::Ints(v.ok_or(ValueError::NotIntArray)?.into())
+                    }
+                };
+                check_len(&value, max_len)?;
+                Ok(Some(value))
+            }
+            AttrType::Float | AttrType::Int if xs.len() == 1 => {
+                from_input(spec, namespace, &AttrInput::Number(xs[0]))
+            }
+            _ => Err(ValueError::WrongType),
+        },
+        AttrInput::Value(v) => check_value(spec, namespace, v).map(Some),
+    }
+}
+
+/// Checks that a typed value fits the attribute.
+fn check_value(spec: &AttrSpec, namespace: Option<Namespace>, v: &Value) -> Result<Value, ValueError> {
+    let fits = match (spec.ty, v) {
+        (AttrType::Float, Value::Float(_)) | (AttrType::Int, Value::Int(_)) => true,
+        (AttrType::String, Value::String(_)) | (AttrType::Basepath { .. }, Value::Basepath(_)) => true,
+        (AttrType::Keyword(valid), Value::Keyword(k)) => {
+            return valid
+                .iter()
+                .find(|x| x.eq_ignore_ascii_case(k))
+                .map(|x| Value::Keyword(x))
+                .ok_or(ValueError::NotKeyword { valid });
+        }
+        (AttrType::Array { elem: ArrayType::Float, max_len }, Value::Floats(_))
+        | (AttrType::Array { elem: ArrayType::Int, max_len }, Value::Ints(_)) => {
+            check_len(v, max_len)?;
+            true
+        }
+        (AttrType::Identifier, Value::Identifier(t)) => return identifier(t, namespace),
+        (AttrType::Reference(_), Value::Reference(_)) => true,
+        (AttrType::File { .. }, Value::File(_)) => true,
+        _ => false,
+    };
+    if fits { Ok(v.clone()) } else { Err(ValueError::WrongType) }
+}
+
+impl Value {
+    /// Appends the value's XML text for the simple types (everything but identifiers,
+    /// references and files, whose text depends on where the element sits).
+    pub(crate) fn write_plain(&self, out: &mut String, style: FloatStyle) {
+        use fmt::Write as _;
+        match self {
+            Value::Float(x) => number::write_float(out, *x, style),
+            Value::Int(i) => {
+                let _ = write!(out, "{i}");
+            }
+            Value::String(s) | Value::Identifier(s) | Value::Basepath(s) => out.push_str(s),
+            Value::Keyword(k) => out.push_str(k),
+            Value::Floats(v) => {
+                for (i, x) in v.iter().enumerate() {
+                    if i > 0 {
+                        out.push(' ');
+                    }
+                    number::write_float(out, *x, style);
+                }
+            }
+            Value::Ints(v) => {
+                for (i, x) in v.iter().enumerate() {
+                    if i > 0 {
+                        out.push(' ');
+                    }
+                    let _ = write!(out, "{x}");
+                }
+            }
+            Value::Reference(Reference::Name(s)) => out.push_str(s),
+            Value::Reference(Reference::Element(id)) => {
+                let _ = write!(out, "{id:?}");
+            }
+            Value::File(f) => out.push_str(&f.vfs_name(true)),
+        }
+    }
+
+    /// The value as a float, for float attributes.
+    pub fn as_float(&self) -> Option<f64> {
+        match self {
+            Value::Float(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The value as an integer, for int attributes.
+    pub fn as_int(&self) -> Option<i64> {
+        match self {
+            Value::Int(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The value as text for string-like attributes (strings, keywords, identifiers,
+    /// named references, folder settings).
+    pub fn as_str(&self) -> Option<&str> {
+        match self {
+            Value::String(s) | Value::Identifier(s) | Value::Basepath(s) => Some(s),
+            Value::Reference(Reference::Name(s)) => Some(s),
+            Value::Keyword(k) => Some(k),
+            _ => None,
+        }
+    }
+
+    /// The value as floats, for float arrays.
+    pub fn as_floats(&self) -> Option<&[f64]> {
+        match self {
+            Value::Floats(v) => Some(v),
+            _ => None,
+        }
+    }
+
+    /// The value as integers, for int arrays.
+    pub fn as_ints(&self) -> Option<&[i64]> {
+        match self {
+            Value::Ints(v) => Some(v),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Value {
+    /// Formats the value as XML text with shortest round-trip floats; references to
+    /// elements show their id, as the name depends on the model.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut s = String::new();
+        self.write_plain(&mut s, FloatStyle::default());
+        f.write_str(&s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schema::ElementKind;
+
+    fn spec(path: &[&str], attr: &str) -> (&'static AttrSpec, Option<Namespace>) {
+        let mut k = ElementKind::ROOT;
+        for p in path {
+            k = k.child(p).unwrap();
+        }
+        (k.attr(k.attr_index(attr).unwrap()), k.namespace())
+    }
+
+    fn parse(path: &[&str], attr: &str, text: &str) -> Result<Value, ValueError> {
+        let (s, ns) = spec(path, attr);
+        parse_text(s, ns, text)
+    }
+
+    fn text(v: &Value) -> String {
+        let mut s = String::new();
+        v.write_plain(&mut s, FloatStyle::default());
+        s
+    }
+
+    const GEOM: &[&str] = &["worldbody", "geom"];
+    const BODY: &[&str] = &["worldbody", "body"];
+
+    #[test]
+    fn floats_ints_and_arrays() {
+        assert_eq!(parse(GEOM, "mass", "1e-3"), Ok(Value::Float(1e-3)));
+        assert_eq!(parse(GEOM, "mass", "heavy"), Err(ValueError::NotFloat));
+        assert_eq!(parse(GEOM, "condim", "3.0"), Ok(Value::Int(3)));
+        assert_eq!(parse(GEOM, "condim", "1.5"), Err(ValueError::NotInt));
+        assert_eq!(text(&parse(GEOM, "size", "0.1  0.2\n0.3").unwrap()), "0.1 0.2 0.3");
+        assert_eq!(text(&parse(GEOM, "size", "0.1").unwrap()), "0.1");
+        assert_eq!(parse(GEOM, "size", "1 2 3 4"), Err(ValueError::TooLong { max: 3, len: 4 }));
+        assert_eq!(parse(GEOM, "size", "1,2"), Err(ValueError::NotFloatArray));
+        assert_eq!(text(&parse(GEOM, "size", "").unwrap()), "");
+        assert_eq!(text(&parse(GEOM, "user", "1 2 3 4 5 6 7").unwrap()), "1 2 3 4 5 6 7");
+    }
+
+    #[test]
+    fn keywords_match_case_insensitively_and_print_canonically() {
+        assert_eq!(parse(GEOM, "type", "BOX"), Ok(Value::Keyword("box")));
+        assert_eq!(parse(&["option"], "integrator", "rk4"), Ok(Value::Keyword("RK4")));
+        assert!(matches!(parse(GEOM, "type", "cube"), Err(ValueError::NotKeyword { .. })));
+        let (s, ns) = spec(&["compiler"], "autolimits");
+        assert_eq!(from_input(s, ns, &AttrInput::Bool(true)), Ok(Some(Value::Keyword("true"))));
+    }
+
+    #[test]
+    fn identifiers_reject_slash_and_world_bodies() {
+        assert_eq!(parse(BODY, "name", "a/b"), Err(ValueError::SlashInIdentifier));
+        assert_eq!(parse(BODY, "name", "world"), Err(ValueError::WorldBody));
+        assert_eq!(parse(GEOM, "name", "world"), Ok(Value::Identifier("world".into())));
+        let (s, ns) = spec(BODY, "name");
+        assert_eq!(from_input(s, ns, &"".into()), Ok(None));
+    }
+
+    #[test]
+    fn numbers_convert_to_the_attribute_type() {
+        let (s, ns) = spec(GEOM, "condim");
+        assert_eq!(from_input(s, ns, &4.into()), Ok(Some(Value::Int(4))));
+        assert_eq!(from_input(s, ns, &4.5.into()), Err(ValueError::NotInt));
+        let (s, ns) = spec(GEOM, "size");
+        assert_eq!(text(&from_input(s, ns, &0.1.into()).unwrap().unwrap()), "0.1");
+        assert_eq!(
+            from_input(s, ns, &[1.0, 2.0, 3.0, 4.0].into()),
+            Err(ValueError::TooLong { max: 3, len: 4 })
+        );
+        let (s, ns) = spec(GEOM, "name");
+        assert_eq!(from_input(s, ns, &1.0.into()), Err(ValueError::WrongType));
+        let (s, ns) = spec(&["compiler"], "inertiagrouprange");
+        assert_eq!(from_input(s, ns, &[0.0, 3.0].into()), Ok(Some(Value::Ints([0, 3].into()))));
+    }
+}

@@ -1,0 +1,304 @@
+//! Number text: parsing with the reference's rules and formatting in two styles.
+//!
+//! - Parsing follows Python as dm_control uses it: floats as `float()` (`nan`, `inf`,
+//!   `1e-3`), integers as `int(float(s))` with a check that the value is integral.
+//! - Formatting prints the shortest text that reads back to the same double by
+//!   default (`0.1`), laid out like C's `%g` with 17 digits of room (`1e-05`,
+//!   `10000000000000000`, `1e+17`); with a precision it prints C's `%.{p}g` exactly.
+
+use std::fmt::Write as _;
+
+/// How floats are written.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FloatStyle {
+    /// `None`: shortest round-trip. `Some(p)`: C `%.{p}g`.
+    pub precision: Option<u32>,
+    /// Values with a magnitude below this are written as `0`.
+    pub zero_threshold: f64,
+}
+
+impl Default for FloatStyle {
+    fn default() -> Self {
+        FloatStyle { precision: None, zero_threshold: 0.0 }
+    }
+}
+
+/// Parses a float the way Python's `float()` does for the inputs MJCF uses.
+pub(crate) fn parse_float(text: &str) -> Option<f64> {
+    let t = text.trim();
+    if t.is_empty() {
+        return None;
+    }
+    // Rust accepts what Python accepts here (`inf`, `-Infinity`, `nan`, `1e5`, `.5`,
+    // `5.`), except that Python also allows `_` between digits; MJCF files never use it.
+    t.parse::<f64>().ok()
+}
+
+/// Parses an integer as `int(float(text))`, rejecting non-integral values.
+pub(crate) fn parse_int(text: &str) -> Option<i64> {
+    let t = text.trim();
+    if let Ok(v) = t.parse::<i64>() {
+        return Some(v);
+    }
+    float_to_int(parse_float(t)?)
+}
+
+/// Converts an integral, in-range float to an integer.
+pub(crate) fn float_to_int(v: f64) -> Option<i64> {
+    // 2^63 is exactly representable; every double below it in magnitude fits.
+    if v.is_finite() && v.fract() == 0.0 && v >= -9.223_372_036_854_775_808e18 && v < 9.223_372_036_854_775_808e18 {
+        Some(v as i64)
+    } else {
+        None
+    }
+}
+
+/// Appends the text of `x` in the given style.
+pub(crate) fn write_float(out: &mut String, x: f64, style: FloatStyle) {
+    let x = if x.abs() < style.zero_threshold { 0.0 } else { x };
+    if x.is_nan() {
+        out.push_str("nan");
+        return;
+    }
+    if x.is_infinite() {
+        out.push_str(if x > 0.0 { "inf" } else { "-inf" });
+        return;
+    }
+    match style.precision {
+        None => write_shortest(out, x),
+        Some(p) => write_g(out, x, p.max(1)),
+    }
+}
+
+/// Splits Rust's `{:e}` text (`-1.2345e-5`) into sign, digits and decimal exponent.
+fn split_sci(s: &str) -> (bool, &str, &str, i32) {
+    let (neg, s) = match s.strip_prefix('-') {
+        Some(r) => (true, r),
+        None => (false, s),
+    };
+    let (mant, exp) = s.split_once('e').unwrap_or((s, "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let (int, frac) = mant.split_once('.').unwrap_or((mant, ""));
+    (neg, int, frac, exp)
+}
+
+fn push_exponent(out: &mut String, exp: i32) {
+    out.push('e');
+    out.push(if exp < 0 { '-' } else { '+' });
+    let a = exp.unsigned_abs();
+    if a < 10 {
+        out.push('0');
+    }
+    let _ = write!(out, "{a}");
+}
+
+/// Lays out significant digits `d0.d1d2...` × 10^exp in `%g` form with room for
+/// `room` digits before switching to exponent notation.
+fn layout(out: &mut String, neg: bool, digits: &str, exp: i32, room: i32) {
+    if neg {
+        out.push('-');
+    }
+    let digits = digits.trim_end_matches('0');
+    let digits = if digits.is_empty() { "0" } else { digits };
+    if exp < -4 || exp >= room {
+        out.push_str(&digits[..1]);
+        if digits.len() > 1 {
+            out.push('.');
+            out.push_str(&digits[1..]);
+        }
+        push_exponent(out, exp);
+    } else if exp < 0 {
+        out.push_str("0.");
+        for _ in 0..(-exp - 1) {
+            out.push('0');
+        }
+        out.push_str(digits);
+    } else {
+        let int_len = exp as usize + 1;
+        if digits.len() <= int_len {
+            out.push_str(digits);
+            for _ in digits.len()..int_len {
+                out.push('0');
+            }
+        } else {
+            out.push_str(&digits[..int_len]);
+            out.push('.');
+            out.push_str(&digits[int_len..]);
+        }
+    }
+}
+
+fn write_shortest(out: &mut String, x: f64) {
+    let s = format!("{x:e}");
+    let (neg, int, frac, exp) = split_sci(&s);
+    let digits = format!("{int}{frac}");
+    layout(out, neg, &digits, exp, 17);
+}
+
+fn write_g(out: &mut String, x: f64, p: u32) {
+    let p = p.min(400);
+    let s = format!("{:.*e}", (p - 1) as usize, x);
+    let (neg, int, frac, exp) = split_sci(&s);
+    let digits = format!("{int}{frac}");
+    layout(out, neg, &digits, exp, p as i32);
+}
+
+/// The text of `x` in the given style.
+#[cfg(test)]
+pub(crate) fn float_text(x: f64, style: FloatStyle) -> String {
+    let mut s = String::new();
+    write_float(&mut s, x, style);
+    s
+}
+
+/// Parses a `size/@memory` value into bytes: a decimal integer with an optional
+/// case-insensitive suffix K, M, G, T, P or E (powers of 1024).
+pub(crate) fn parse_bytes(text: &str) -> Option<u128> {
+    let t = text.trim();
+    let (num, shift) = match t.chars().last()?.to_ascii_uppercase() {
+        'K' => (&t[..t.len() - 1], 10),
+        'M' => (&t[..t.len() - 1], 20),
+        'G' => (&t[..t.len() - 1], 30),
+        'T' => (&t[..t.len() - 1], 40),
+        'P' => (&t[..t.len() - 1], 50),
+        'E' => (&t[..t.len() - 1], 60),
+        _ => (t, 0),
+    };
+    let n: u128 = num.trim().parse().ok()?;
+    n.checked_mul(1u128 << shift)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn g(x: f64, p: u32) -> String {
+        float_text(x, FloatStyle { precision: Some(p), zero_threshold: 0.0 })
+    }
+    fn short(x: f64) -> String {
+        float_text(x, FloatStyle::default())
+    }
+
+    /// The reference's table (dm_control_mjcf.md §6.5), precision 17 and 5.
+    #[test]
+    fn percent_g_matches_the_reference_table() {
+        let table: &[(f64, &str)] = &[
+            (0.1, "0.10000000000000001"),
+            (1e-20, "9.9999999999999995e-21"),
+            (1.0, "1"),
+            (-0.0, "-0"),
+            (3.0, "3"),
+            (1e16, "10000000000000000"),
+            (1e17, "1e+17"),
+            (1e-5, "1.0000000000000001e-05"),
+            (1e-4, "0.0001"),
+            (f64::NAN, "nan"),
+            (f64::INFINITY, "inf"),
+            (f64::NEG_INFINITY, "-inf"),
+        ];
+        for (x, want) in table {
+            assert_eq!(g(*x, 17), *want, "{x}");
+        }
+        assert_eq!(g(0.1, 5), "0.1");
+        assert_eq!(g(1e-20, 5), "1e-20");
+        assert_eq!(g(1.2345678e16, 5), "1.2346e+16");
+        assert_eq!(g(123456.0, 3), "1.23e+05");
+        assert_eq!(g(0.5, 1), "0.5");
+        assert_eq!(g(2.5, 1), "2");
+        assert_eq!(g(100.0, 3), "100");
+        assert_eq!(g(1000.0, 3), "1e+03");
+    }
+
+    /// Outputs of C's printf("%.{p}g") (via Python's `%` operator) for a spread of
+    /// values and precisions, including halfway cases.
+    #[test]
+    fn percent_g_matches_c_printf() {
+        let cases: &[(f64, u32, &str)] = &[
+            (0.25, 1, "0.2"),
+            (0.35, 1, "0.3"),
+            (0.125, 2, "0.12"),
+            (2.675, 3, "2.67"),
+            (-1.5e-7, 3, "-1.5e-07"),
+            (123.456, 2, "1.2e+02"),
+            (99999.5, 5, "1e+05"),
+            (0.00012345, 3, "0.000123"),
+            (1e100, 17, "1e+100"),
+            (6.02214076e23, 6, "6.02214e+23"),
+            (5e-324, 17, "4.9406564584124654e-324"),
+        ];
+        for (x, p, want) in cases {
+            assert_eq!(g(*x, *p), want, "{x} at {p}");
+        }
+    }
+
+    #[test]
+    fn shortest_round_trip_is_the_default() {
+        let table: &[(f64, &str)] = &[
+            (0.1, "0.1"),
+            (1e-20, "1e-20"),
+            (1.0, "1"),
+            (-0.0, "-0"),
+            (1e16, "10000000000000000"),
+            (1e17, "1e+17"),
+            (1e-5, "1e-05"),
+            (1e-4, "0.0001"),
+            (3e20, "3e+20"),
+            (1e-16, "1e-16"),
+            (100.0, "100"),
+            (-2.5, "-2.5"),
+            (0.30000000000000004, "0.30000000000000004"),
+            (123456789.125, "123456789.125"),
+        ];
+        for (x, want) in table {
+            assert_eq!(short(*x), *want, "{x}");
+        }
+    }
+
+    #[test]
+    fn zero_threshold_writes_zero() {
+        let style = FloatStyle { precision: None, zero_threshold: 1e-3 };
+        assert_eq!(float_text(1e-4, style), "0");
+        assert_eq!(float_text(-1e-4, style), "0");
+        assert_eq!(float_text(2e-3, style), "0.002");
+    }
+
+    #[test]
+    fn parsing_follows_python() {
+        assert_eq!(parse_float("1e-3"), Some(1e-3));
+        assert!(parse_float("nan").unwrap().is_nan());
+        assert_eq!(parse_float("-inf"), Some(f64::NEG_INFINITY));
+        assert_eq!(parse_float(" 2 "), Some(2.0));
+        assert_eq!(parse_float("abc"), None);
+        assert_eq!(parse_float(""), None);
+        assert_eq!(parse_int("3"), Some(3));
+        assert_eq!(parse_int("3.0"), Some(3));
+        assert_eq!(parse_int("1e3"), Some(1000));
+        assert_eq!(parse_int("1.5"), None);
+        assert_eq!(parse_int("1e400"), None);
+        assert_eq!(parse_int("-9223372036854775808"), Some(i64::MIN));
+    }
+
+    #[test]
+    fn bytes_with_suffixes() {
+        assert_eq!(parse_bytes("10000"), Some(10000));
+        assert_eq!(parse_bytes("1M"), Some(1 << 20));
+        assert_eq!(parse_bytes("2k"), Some(2048));
+        assert_eq!(parse_bytes("1X"), None);
+        assert_eq!(parse_bytes(""), None);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn shortest_reads_back_exactly(x in proptest::num::f64::ANY) {
+            let t = short(x);
+            let back = parse_float(&t).unwrap();
+            proptest::prop_assert!(back == x || (back.is_nan() && x.is_nan()), "{} -> {}", x, t);
+            proptest::prop_assert_eq!(back.is_sign_negative(), x.is_sign_negative());
+        }
+
+        #[test]
+        fn precision_17_reads_back_exactly(x in proptest::num::f64::NORMAL) {
+            proptest::prop_assert_eq!(parse_float(&g(x, 17)).unwrap(), x);
+        }
+    }
+}

@@ -1,0 +1,7 @@
+//! MJCF text: reading and writing.
+
+mod read;
+mod write;
+
+pub use read::ReadOptions;
+pub use write::WriteOptions;

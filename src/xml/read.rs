@@ -1,0 +1,529 @@
+//! MJCF text → [`Model`]. The only code that reads XML.
+//!
+//! What is kept and what is dropped (see also `docs/parsing.md`):
+//! - comments, processing instructions, the XML declaration, a DOCTYPE and text are
+//!   dropped; entities other than XML's five and character references are errors
+//!   (nothing is ever expanded);
+//! - on the root only `model` is read (the tag may be anything starting with
+//!   `mujoco`, as in the reference);
+//! - a singleton tag given twice merges (later values win per attribute);
+//! - root-level `<include file=…>` is read as its own model (relative to the including
+//!   file's folder) and merged with [`Model::include_copy`] after the main content;
+//! - file attributes are read at once, relative to the model's folder and the
+//!   `compiler` folder settings seen so far; a nameless mesh, texture or height field
+//!   is named after its file;
+//! - every reference that names an existing element is resolved to it, so renaming
+//!   the element later renames the reference.
+//!
+// Implementation notes: elements are collected in an arena while reading (iteratively,
+// no recursion) and turned into nodes bottom-up at the end; children always come after
+// their parent in the arena.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use imbl::Vector;
+use quick_xml::events::{BytesStart, Event};
+use smol_str::SmolStr;
+
+use crate::error::{ErrorKind, ReadError, TextPos, ValueError};
+use crate::files::{self, FileContext};
+use crate::model::{Basepaths, Index, Model, check_required, cut, empty_node, name_from_file};
+use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of_objtype};
+use crate::tree::{Attr, ElementId, Node};
+use crate::value::{self, FileAsset, Reference, Value};
+
+/// How to read MJCF.
+///
+/// # Examples
+/// ```
+/// let xml = r#"<mujoco><asset><mesh file="box.stl"/></asset></mujoco>"#;
+/// let m = mjcf::ReadOptions::new().asset("box.stl", b"solid box".to_vec()).read_str(xml).unwrap();
+/// assert!(m.find(mjcf::Namespace::Mesh, "box").is_some());
+/// ```
+#[derive(Clone, Debug)]
+pub struct ReadOptions {
+    assets: HashMap<String, Arc<[u8]>>,
+    base_dir: Option<PathBuf>,
+    confine: bool,
+    max_depth: usize,
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions { assets: HashMap::new(), base_dir: None, confine: false, max_depth: 1_000_000 }
+    }
+}
+
+impl ReadOptions {
+    /// Default options: files from disk relative to the model's folder, no limit on
+    /// where they are, nesting up to 1,000,000 levels.
+    pub fn new() -> ReadOptions {
+        ReadOptions::default()
+    }
+
+    /// Adds an in-memory file, found by the path as written in MJCF (or joined with
+    /// the compiler's folder setting) before the disk is tried.
+    #[must_use]
+    pub fn asset(mut self, path: &str, contents: impl Into<Arc<[u8]>>) -> ReadOptions {
+        self.assets.insert(path.to_string(), contents.into());
+        self
+    }
+
+    /// The folder relative paths resolve against when reading from a string (default:
+    /// the working directory). `read_path` uses the file's folder.
+    #[must_use]
+    pub fn base_dir(mut self, dir: impl Into<PathBuf>) -> ReadOptions {
+        self.base_dir = Some(dir.into());
+        self
+    }
+
+    /// Refuses files outside the model's folder (absolute paths or `..` leading out of
+    /// it), for models from untrusted sources. Off by default, as MJCF models commonly
+    /// share assets through `../`.
+    #[must_use]
+    pub fn confine_to_base_dir(mut self, confine: bool) -> ReadOptions {
+        self.confine = confine;
+        self
+    }
+
+    /// The deepest element nesting accepted (default 1,000,000); deeper input is a
+    /// [`ErrorKind::TooDeep`] error.
+    #[must_use]
+    pub fn max_depth(mut self, depth: usize) -> ReadOptions {
+        self.max_depth = depth;
+        self
+    }
+
+    fn context(&self, base_dir: Option<PathBuf>) -> FileContext {
+        FileContext {
+            base_dir,
+            assets: if self.assets.is_empty() { None } else { Some(Arc::new(self.assets.clone())) },
+            confine: self.confine,
+        }
+    }
+
+    /// Reads a model from MJCF text.
+    pub fn read_str(&self, text: &str) -> Result<Model, ReadError> {
+        let ctx = self.context(self.base_dir.clone());
+        read_document(text, None, ctx, self.max_depth, &mut Vec::new())
+    }
+
+    /// Reads a model from MJCF bytes (which must be UTF-8).
+    pub fn read_bytes(&self, bytes: &[u8]) -> Result<Model, ReadError> {
+        let text = utf8(bytes, None)?;
+        self.read_str(text)
+    }
+
+    /// Reads a model from a file; relative paths in it resolve against its folder.
+    pub fn read_path(&self, path: impl AsRef<Path>) -> Result<Model, ReadError> {
+        let path = path.as_ref();
+        let bytes = std::fs::read(path).map_err(|e| {
+            ReadError::new(ErrorKind::FileNotFound { path: path.to_path_buf(), reason: e.to_string() }, None, None)
+        })?;
+        let text = utf8(&bytes, Some(path))?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let ctx = self.context(Some(dir));
+        let mut stack = vec![canonical(path)];
+        read_document(text, Some(path.to_path_buf()), ctx, self.max_depth, &mut stack)
+    }
+}
+
+impl Model {
+    /// Reads a model from MJCF text with default [`ReadOptions`].
+    ///
+    /// # Errors
+    /// A [`ReadError`] with the line and column of the problem.
+    ///
+    /// # Examples
+    /// ```
+    /// let m = mjcf::Model::from_xml_str(r#"<mujoco model="m"><worldbody/></mujoco>"#).unwrap();
+    /// assert_eq!(m.name(), "m");
+    /// let e = mjcf::Model::from_xml_str("<mujoco>\n  <worldbody><bogus/></worldbody>\n</mujoco>").unwrap_err();
+    /// assert_eq!(e.pos().map(|p| (p.line, p.column)), Some((2, 14)));
+    /// ```
+    pub fn from_xml_str(text: &str) -> Result<Model, ReadError> {
+        ReadOptions::new().read_str(text)
+    }
+
+    /// Reads a model from a file with default [`ReadOptions`].
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Model, ReadError> {
+        ReadOptions::new().read_path(path)
+    }
+}
+
+fn canonical(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| PathBuf::from(files::normalize(&path.to_string_lossy())))
+}
+
+fn utf8<'b>(bytes: &'b [u8], file: Option<&Path>) -> Result<&'b str, ReadError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let good = &bytes[..e.valid_up_to()];
+        // The valid prefix is UTF-8 by definition.
+        let prefix = std::str::from_utf8(good).unwrap_or("");
+        ReadError::new(ErrorKind::InvalidUtf8, file.map(Path::to_path_buf), Some(TextPos::of_offset(prefix, prefix.len())))
+    })
+}
+
+/// An element being read.
+struct Pending {
+    kind: ElementKind,
+    id: ElementId,
+    attrs: Vec<Attr>,
+    children: Vec<usize>,
+    offset: usize,
+}
+
+struct Reader<'t> {
+    text: &'t str,
+    file: Option<PathBuf>,
+    ctx: FileContext,
+    arena: Vec<Pending>,
+    basepaths: Basepaths,
+}
+
+impl Reader<'_> {
+    fn err(&self, kind: ErrorKind, offset: usize) -> ReadError {
+        ReadError::new(kind, self.file.clone(), Some(TextPos::of_offset(self.text, offset)))
+    }
+
+    /// Reads the attributes of a tag into `attrs` (later values win).
+    fn read_attrs(&mut self, kind: ElementKind, tag: &BytesStart<'_>, attrs: &mut Vec<Attr>, offset: usize) -> Result<(), ReadError> {
+        for a in tag.attributes() {
+            let a = a.map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
+            let name = a.key.as_ref();
+            let raw = a
+                .normalized_value(quick_xml::XmlVersion::default())
+                .map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
+            let name = if name == "dclass" { "class" } else { name };
+            let Some(index) = kind.attr_index(name) else {
+                return Err(self.err(ErrorKind::UnknownAttribute { tag: kind.tag(), attribute: name.into() }, offset));
+            };
+            let spec = kind.attr(index);
+            let invalid = |error: ValueError| ErrorKind::InvalidValue {
+                tag: kind.tag(),
+                attribute: spec.name,
+                value: cut(&raw),
+                error,
+            };
+            let clears = raw.is_empty()
+                && matches!(
+                    spec.ty,
+                    AttrType::Identifier
+                        | AttrType::Reference(_)
+                        | AttrType::String
+                        | AttrType::Basepath { .. }
+                        | AttrType::File { .. }
+                );
+            let value = if clears {
+                None
+            } else if let AttrType::File { path_namespace } = spec.ty {
+                let base = self.basepaths.for_namespace(path_namespace);
+                let (_, contents) = self.ctx.read(base, &raw).map_err(|k| self.err(k, offset))?;
+                let asset = FileAsset::from_path_and_contents(&raw, contents);
+                if kind.tag() == "mesh" && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj") {
+                    return Err(self.err(invalid(ValueError::MeshExtension), offset));
+                }
+                Some(Value::File(asset))
+            } else {
+                Some(value::parse_text(spec, kind.namespace(), &raw).map_err(|e| self.err(invalid(e), offset))?)
+            };
+            if let AttrType::Basepath { path_namespace } = spec.ty {
+                self.basepaths.set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
+            }
+            let i = index as u16;
+            let pos = attrs.iter().position(|(k, _)| *k == i);
+            match (pos, value) {
+                (Some(p), Some(v)) => attrs[p].1 = v,
+                (None, Some(v)) => attrs.push((i, v)),
+                (Some(p), None) => {
+                    attrs.remove(p);
+                }
+                (None, None) => {}
+            }
+        }
+        attrs.sort_by_key(|(k, _)| *k);
+        Ok(())
+    }
+}
+
+fn read_document(
+    text: &str,
+    file: Option<PathBuf>,
+    ctx: FileContext,
+    max_depth: usize,
+    include_stack: &mut Vec<PathBuf>,
+) -> Result<Model, ReadError> {
+    let mut xml = quick_xml::Reader::from_str(text);
+    let mut r = Reader { text, file, ctx, arena: Vec::new(), basepaths: Basepaths::default() };
+    let mut stack: Vec<usize> = Vec::new();
+    let mut includes: Vec<(Model, usize)> = Vec::new();
+    let mut model_name: Option<SmolStr> = None;
+    let mut seen_root = false;
+    loop {
+        let offset = xml.buffer_position() as usize;
+        let event = match xml.read_event() {
+            Ok(e) => e,
+            Err(e) => {
+                let at = xml.error_position() as usize;
+                return Err(r.err(ErrorKind::Syntax(e.to_string()), at));
+            }
+        };
+        let (tag, empty) = match event {
+            Event::Start(t) => (t, false),
+            Event::Empty(t) => (t, true),
+            Event::End(_) => {
+                stack.pop();
+                continue;
+            }
+            Event::Eof => break,
+            Event::Text(t) => {
+                if stack.is_empty() && !t.as_ref().trim().is_empty() {
+                    return Err(r.err(ErrorKind::Syntax("text outside the root element".into()), offset));
+                }
+                continue;
+            }
+            _ => continue,
+        };
+        let name = tag.name().as_ref().to_string();
+        // The root.
+        if stack.is_empty() {
+            if seen_root {
+                return Err(r.err(ErrorKind::Syntax("more than one root element".into()), offset));
+            }
+            seen_root = true;
+            if !name.starts_with("mujoco") {
+                return Err(r.err(ErrorKind::WrongRoot(name.into()), offset));
+            }
+            for a in tag.attributes() {
+                let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+                if a.key.as_ref() == "model" {
+                    let v = a
+                        .normalized_value(quick_xml::XmlVersion::default())
+                        .map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+                    model_name = Some(SmolStr::from(v.as_ref()));
+                }
+            }
+            r.arena.push(Pending { kind: ElementKind::ROOT, id: ElementId::fresh(), attrs: Vec::new(), children: Vec::new(), offset });
+            if !empty {
+                stack.push(0);
+            }
+            continue;
+        }
+        let parent = stack[stack.len() - 1];
+        let parent_kind = r.arena[parent].kind;
+        if parent == 0 && name == "include" {
+            includes.push((read_include(&mut r, &tag, offset, max_depth, include_stack)?, offset));
+            if !empty {
+                // An include's content is ignored; track it so its end tag matches.
+                stack.push(usize::MAX);
+            }
+            continue;
+        }
+        if parent == usize::MAX {
+            if !empty {
+                stack.push(usize::MAX);
+            }
+            continue;
+        }
+        let Some(kind) = parent_kind.child(&name) else {
+            return Err(r.err(ErrorKind::InvalidChild { parent: parent_kind.tag(), tag: name.into() }, offset));
+        };
+        if stack.len() >= max_depth {
+            return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
+        }
+        let existing = r.arena[parent].children.iter().copied().find(|c| r.arena[*c].kind == kind);
+        let index = match (kind.multiplicity(), existing) {
+            (Multiplicity::Singleton, Some(e)) => {
+                let mut attrs = std::mem::take(&mut r.arena[e].attrs);
+                let res = r.read_attrs(kind, &tag, &mut attrs, offset);
+                r.arena[e].attrs = attrs;
+                res?;
+                e
+            }
+            (Multiplicity::OnDemand, Some(_)) => {
+                return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
+            }
+            (m, _) => {
+                let mut attrs = Vec::new();
+                r.read_attrs(kind, &tag, &mut attrs, offset)?;
+                if m != Multiplicity::Singleton {
+                    name_from_file(kind, &mut attrs);
+                    check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
+                }
+                let i = r.arena.len();
+                r.arena.push(Pending { kind, id: ElementId::fresh(), attrs, children: Vec::new(), offset });
+                r.arena[parent].children.push(i);
+                i
+            }
+        };
+        if !empty {
+            stack.push(index);
+        }
+    }
+    if !seen_root {
+        return Err(r.err(ErrorKind::Syntax("no root element".into()), text.len()));
+    }
+    if !stack.is_empty() {
+        return Err(r.err(ErrorKind::Syntax("unclosed element at end of input".into()), text.len()));
+    }
+    let model = finish(&mut r, model_name)?;
+    if includes.is_empty() {
+        return Ok(model);
+    }
+    let mut model = model;
+    for (inc, offset) in includes {
+        let inc = inc.with_name(model.name());
+        model = model.include_copy(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
+    }
+    Ok(resolve_all(&model))
+}
+
+fn read_include(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    offset: usize,
+    max_depth: usize,
+    include_stack: &mut Vec<PathBuf>,
+) -> Result<Model, ReadError> {
+    let mut file: Option<String> = None;
+    for a in tag.attributes() {
+        let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+        let v = a
+            .normalized_value(quick_xml::XmlVersion::default())
+            .map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+        match a.key.as_ref() {
+            "file" => file = Some(v.into_owned()),
+            other => {
+                return Err(r.err(ErrorKind::UnknownAttribute { tag: "include", attribute: other.into() }, offset));
+            }
+        }
+    }
+    let Some(file) = file else {
+        return Err(r.err(ErrorKind::MissingRequired { tag: "include", attribute: "file" }, offset));
+    };
+    if include_stack.len() >= 100 {
+        return Err(r.err(ErrorKind::TooDeep(100), offset));
+    }
+    // From the in-memory files first (then relative to nothing), else from disk.
+    if let Some(bytes) = r.ctx.assets.as_ref().and_then(|a| a.get(&file)).cloned() {
+        let key = PathBuf::from(format!("<asset>{file}"));
+        if include_stack.contains(&key) {
+            return Err(r.err(ErrorKind::IncludeCycle(PathBuf::from(&file)), offset));
+        }
+        let text = utf8(&bytes, Some(Path::new(&file)))?;
+        let ctx = FileContext { base_dir: None, assets: r.ctx.assets.clone(), confine: r.ctx.confine };
+        include_stack.push(key);
+        let res = read_document(text, Some(PathBuf::from(&file)), ctx, max_depth, include_stack);
+        include_stack.pop();
+        return res;
+    }
+    let full = r.ctx.disk_path(&file).map_err(|k| r.err(k, offset))?;
+    let key = canonical(&full);
+    if include_stack.contains(&key) {
+        return Err(r.err(ErrorKind::IncludeCycle(full), offset));
+    }
+    let bytes = std::fs::read(&full)
+        .map_err(|e| r.err(ErrorKind::FileNotFound { path: full.clone(), reason: e.to_string() }, offset))?;
+    let text = utf8(&bytes, Some(&full))?;
+    let ctx = r.ctx.for_included(&full);
+    include_stack.push(key);
+    let res = read_document(text, Some(full.clone()), ctx, max_depth, include_stack);
+    include_stack.pop();
+    res
+}
+
+/// Turns the arena into nodes, indexes them and resolves references.
+fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
+    // Index names first (document order), so references can be resolved in the arena.
+    let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> = HashMap::new();
+    for p in &r.arena {
+        if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
+            if let Some(Value::Identifier(n)) = p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v) {
+                if names.insert((ns, n.clone()), p.id).is_some() {
+                    return Err(r.err(ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset));
+                }
+            }
+        }
+    }
+    for p in &mut r.arena {
+        resolve_attrs(p.kind, &mut p.attrs, |ns, n| names.get(&(ns, SmolStr::from(n))).copied());
+    }
+    if let Some(i) = ElementKind::ROOT.attr_index("model") {
+        // A missing or empty name becomes `unnamed_model`, as in the reference.
+        let name = model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| "unnamed_model".into());
+        r.arena[0].attrs.push((i as u16, Value::String(name)));
+    }
+    // Bottom-up: children always have larger arena indices than their parent.
+    let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
+    for i in (0..r.arena.len()).rev() {
+        let p = &mut r.arena[i];
+        let mut children: Vector<Node> = Vector::new();
+        for k in p.kind.spec().children {
+            if k.multiplicity() == Multiplicity::Singleton {
+                let found = p.children.iter().copied().find(|c| built[*c].as_ref().is_some_and(|n| n.kind() == *k));
+                match found.and_then(|c| built[c].take()) {
+                    Some(n) => children.push_back(n),
+                    None => children.push_back(empty_node(*k)),
+                }
+            }
+        }
+        for c in &p.children {
+            if let Some(n) = built[*c].take() {
+                children.push_back(n);
+            }
+        }
+        built[i] = Some(Node::new(p.id, p.kind, std::mem::take(&mut p.attrs), children));
+    }
+    let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
+    let mut index = Index::default();
+    if let Err(d) = index.insert_subtree(None, &root) {
+        let offset = r.arena.iter().find(|p| p.id == d.id).map_or(0, |p| p.offset);
+        return Err(r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset));
+    }
+    Ok(Model::from_parts(root, index, r.ctx.clone()))
+}
+
+/// Replaces every named reference that `lookup` finds by a reference to the element.
+fn resolve_attrs(kind: ElementKind, attrs: &mut [Attr], lookup: impl Fn(crate::Namespace, &str) -> Option<ElementId>) {
+    for j in 0..attrs.len() {
+        let (i, v) = &attrs[j];
+        let Value::Reference(Reference::Name(n)) = v else { continue };
+        let AttrType::Reference(target) = kind.attr(*i as usize).ty else { continue };
+        let ns = match target {
+            RefTarget::Fixed(ns) => Some(ns),
+            RefTarget::ByAttribute(k) => attrs
+                .iter()
+                .find(|(x, _)| *x as usize == k)
+                .and_then(|(_, v)| v.as_str())
+                .and_then(namespace_of_objtype),
+        };
+        if let Some(id) = ns.and_then(|ns| lookup(ns, n)) {
+            attrs[j].1 = Value::Reference(Reference::Element(id));
+        }
+    }
+}
+
+/// Resolves named references across a whole model (after includes were merged).
+fn resolve_all(model: &Model) -> Model {
+    let lookup = |ns, n: &str| model.find(ns, n).map(|l| l.id());
+    let mut stack: Vec<(&Node, bool)> = vec![(&model.root, false)];
+    let mut built: Vec<Node> = Vec::new();
+    while let Some((n, done)) = stack.pop() {
+        if !done {
+            stack.push((n, true));
+            for c in n.children().iter().rev() {
+                stack.push((c, false));
+            }
+            continue;
+        }
+        let k = n.children().len();
+        let children: Vector<Node> = built.split_off(built.len() - k).into_iter().collect();
+        let mut attrs = n.attrs().to_vec();
+        resolve_attrs(n.kind(), &mut attrs, lookup);
+        built.push(Node::new(n.id(), n.kind(), attrs, children));
+    }
+    let root = built.pop().unwrap_or_else(|| model.root.clone());
+    Model { root, ..model.clone() }
+}
