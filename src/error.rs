@@ -142,6 +142,14 @@ pub enum ErrorKind {
     /// An element nested deeper than the reader allows.
     #[error("elements nested deeper than {0} levels")]
     TooDeep(usize),
+    /// `include_copy` with override found a same-named element under another parent.
+    #[error("{namespace} '{name}' is already a child of another element")]
+    CopyConflict {
+        /// The namespace.
+        namespace: Namespace,
+        /// The identifier.
+        name: SmolStr,
+    },
     /// A locator that names no element of this model.
     #[error("no such element")]
     NotFound,

@@ -71,7 +71,7 @@ impl Copier<'_> {
             let kind = s.kind();
             let existing = match kind.multiplicity() {
                 Multiplicity::Singleton | Multiplicity::OnDemand => children.iter().position(|c| c.kind() == kind),
-                Multiplicity::Repeated => self.override_target(dest, &children, s)?,
+                Multiplicity::Repeated => self.override_target(&children, s)?,
             };
             match existing {
                 Some(p) => {
@@ -88,7 +88,7 @@ impl Copier<'_> {
     }
 
     /// With `override_attributes`, the position of the same-named child of `dest`.
-    fn override_target(&self, dest: &Node, children: &Vector<Node>, s: &Node) -> Result<Option<usize>, ErrorKind> {
+    fn override_target(&self, children: &Vector<Node>, s: &Node) -> Result<Option<usize>, ErrorKind> {
         if !self.override_attributes {
             return Ok(None);
         }
@@ -96,8 +96,7 @@ impl Copier<'_> {
         let Some(loc) = self.dest.find(ns, name) else { return Ok(None) };
         match children.iter().position(|c| c.id() == loc.id()) {
             Some(p) => Ok(Some(p)),
-            None if dest.children().iter().any(|c| c.id() == loc.id()) => Ok(None),
-            None => Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() }),
+            None => Err(ErrorKind::CopyConflict { namespace: ns, name: name.into() }),
         }
     }
 

@@ -227,7 +227,7 @@ mod tests {
             (5e-324, 17, "4.9406564584124654e-324"),
         ];
         for (x, p, want) in cases {
-            assert_eq!(g(*x, *p), want, "{x} at {p}");
+            assert_eq!(g(*x, *p), *want, "{x} at {p}");
         }
     }
 
@@ -293,7 +293,9 @@ mod tests {
             let t = short(x);
             let back = parse_float(&t).unwrap();
             proptest::prop_assert!(back == x || (back.is_nan() && x.is_nan()), "{} -> {}", x, t);
-            proptest::prop_assert_eq!(back.is_sign_negative(), x.is_sign_negative());
+            if !x.is_nan() {
+                proptest::prop_assert_eq!(back.is_sign_negative(), x.is_sign_negative());
+            }
         }
 
         #[test]

@@ -104,7 +104,7 @@ fn singleton_emits(node: &Node) -> bool {
     if node.attrs().iter().any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. })) {
         return true;
     }
-    if kind.class_attr().is_some() || (kind.identifier().is_some() && kind.tag() != "default") {
+    if kind.class_attr().is_some() || kind.identifier().is_some() {
         return true;
     }
     node.children().iter().any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
