@@ -197,9 +197,12 @@ impl fmt::Display for TextPos {
     }
 }
 
-/// Reading MJCF failed.
+/// Reading MJCF failed. (One pointer wide; the details are boxed.)
 #[derive(Clone, Debug, PartialEq)]
-pub struct ReadError {
+pub struct ReadError(Box<ReadErrorData>);
+
+#[derive(Clone, Debug, PartialEq)]
+struct ReadErrorData {
     kind: ErrorKind,
     file: Option<PathBuf>,
     pos: Option<TextPos>,
@@ -207,30 +210,30 @@ pub struct ReadError {
 
 impl ReadError {
     pub(crate) fn new(kind: ErrorKind, file: Option<PathBuf>, pos: Option<TextPos>) -> ReadError {
-        ReadError { kind, file, pos }
+        ReadError(Box::new(ReadErrorData { kind, file, pos }))
     }
 
     /// What went wrong.
     pub fn kind(&self) -> &ErrorKind {
-        &self.kind
+        &self.0.kind
     }
 
     /// The file being read, when reading from a file (for an error inside an
     /// included file, the included file).
     pub fn file(&self) -> Option<&std::path::Path> {
-        self.file.as_deref()
+        self.0.file.as_deref()
     }
 
     /// Where in the text, when the error is tied to a place in it.
     pub fn pos(&self) -> Option<TextPos> {
-        self.pos
+        self.0.pos
     }
 }
 
 impl fmt::Display for ReadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.kind)?;
-        match (&self.file, self.pos) {
+        write!(f, "{}", self.0.kind)?;
+        match (&self.0.file, self.0.pos) {
             (Some(file), Some(pos)) => write!(f, " at {}:{pos}", file.display()),
             (Some(file), None) => write!(f, " in {}", file.display()),
             (None, Some(pos)) => write!(f, " at {pos}"),
@@ -241,47 +244,51 @@ impl fmt::Display for ReadError {
 
 impl std::error::Error for ReadError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&self.kind)
+        Some(&self.0.kind)
     }
 }
 
-/// An edit of a model failed; the model is unchanged.
+/// An edit of a model failed; the model is unchanged. (One pointer wide; the details
+/// are boxed.)
 #[derive(Clone, Debug, PartialEq)]
-pub struct EditError {
+pub struct EditError(Box<EditErrorData>);
+
+#[derive(Clone, Debug, PartialEq)]
+struct EditErrorData {
     kind: ErrorKind,
     path: String,
 }
 
 impl EditError {
     pub(crate) fn new(kind: ErrorKind, path: String) -> EditError {
-        EditError { kind, path }
+        EditError(Box::new(EditErrorData { kind, path }))
     }
 
     /// What went wrong.
     pub fn kind(&self) -> &ErrorKind {
-        &self.kind
+        &self.0.kind
     }
 
     /// The path of the element the edit was aimed at, such as
     /// `worldbody/body[name=torso]/geom[2]` (empty for the model's root).
     pub fn path(&self) -> &str {
-        &self.path
+        &self.0.path
     }
 }
 
 impl fmt::Display for EditError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.path.is_empty() {
-            write!(f, "{} at <mujoco>", self.kind)
+        if self.0.path.is_empty() {
+            write!(f, "{} at <mujoco>", self.0.kind)
         } else {
-            write!(f, "{} at {}", self.kind, self.path)
+            write!(f, "{} at {}", self.0.kind, self.0.path)
         }
     }
 }
 
 impl std::error::Error for EditError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&self.kind)
+        Some(&self.0.kind)
     }
 }
 
@@ -332,8 +339,9 @@ mod tests {
     #[test]
     fn errors_stay_small() {
         assert!(std::mem::size_of::<ErrorKind>() <= 88, "{}", std::mem::size_of::<ErrorKind>());
-        assert!(std::mem::size_of::<ReadError>() <= 136);
-        assert!(std::mem::size_of::<EditError>() <= 120);
+        assert_eq!(std::mem::size_of::<ReadError>(), std::mem::size_of::<usize>());
+        assert_eq!(std::mem::size_of::<EditError>(), std::mem::size_of::<usize>());
+        assert!(std::mem::size_of::<Error>() <= 64, "{}", std::mem::size_of::<Error>());
     }
 
     #[test]

@@ -79,8 +79,7 @@ impl FileContext {
         let rel = Path::new(joined);
         if self.confine {
             let normal = normalize(joined);
-            let escapes = rel.is_absolute()
-                || Path::new(&normal).components().next() == Some(Component::ParentDir);
+            let escapes = rel.is_absolute() || Path::new(&normal).components().next() == Some(Component::ParentDir);
             if escapes {
                 return Err(ErrorKind::FileOutsideRoot(rel.to_path_buf()));
             }

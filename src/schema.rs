@@ -222,9 +222,23 @@ mod tests {
         assert_eq!(
             tags,
             [
-                "compiler", "option", "size", "statistic", "visual", "default", "extension",
-                "asset", "worldbody", "deformable", "contact", "tendon", "equality", "actuator",
-                "sensor", "custom", "keyframe"
+                "compiler",
+                "option",
+                "size",
+                "statistic",
+                "visual",
+                "default",
+                "extension",
+                "asset",
+                "worldbody",
+                "deformable",
+                "contact",
+                "tendon",
+                "equality",
+                "actuator",
+                "sensor",
+                "custom",
+                "keyframe"
             ]
         );
     }

@@ -137,11 +137,7 @@ impl Node {
 
     /// Rebuilds the path `path` (child indices from this node) with `f` applied to the
     /// node at its end. Time: O(depth · log width).
-    pub(crate) fn update_path<E>(
-        &self,
-        path: &[usize],
-        f: impl FnOnce(&Node) -> Result<Node, E>,
-    ) -> Result<Node, E> {
+    pub(crate) fn update_path<E>(&self, path: &[usize], f: impl FnOnce(&Node) -> Result<Node, E>) -> Result<Node, E> {
         // Iterative, so deep trees cannot overflow the stack.
         let mut chain: Vec<&Node> = Vec::with_capacity(path.len() + 1);
         chain.push(self);

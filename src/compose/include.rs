@@ -146,7 +146,13 @@ fn merge_attrs(dest: &Node, src: &Node, override_attributes: bool) -> Result<Vec
 
 /// Combines two set values of one attribute by its merge rule (the copying variant:
 /// `Replace` takes the incoming value).
-pub(crate) fn combine(kind: ElementKind, i: usize, ours: &Value, theirs: &Value, merge: Merge) -> Result<Value, ErrorKind> {
+pub(crate) fn combine(
+    kind: ElementKind,
+    i: usize,
+    ours: &Value,
+    theirs: &Value,
+    merge: Merge,
+) -> Result<Value, ErrorKind> {
     let spec = kind.attr(i);
     let conflict = || ErrorKind::AttributeConflict {
         tag: kind.tag(),
@@ -212,7 +218,10 @@ pub(crate) fn remap_refs(root: &Node, ids: &HashMap<ElementId, ElementId>, under
         let k = n.children().len();
         let new_children = built.split_off(built.len() - k);
         let children_same = new_children.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b));
-        let needs = inside && n.attrs().iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Element(t)) if ids.get(t).is_some_and(|x| x != t)));
+        let needs = inside
+            && n.attrs().iter().any(
+                |(_, v)| matches!(v, Value::Reference(Reference::Element(t)) if ids.get(t).is_some_and(|x| x != t)),
+            );
         if children_same && !needs {
             built.push(n.clone());
             continue;

@@ -297,10 +297,8 @@ pub(crate) fn build(
     el: &Element,
     path: &mut String,
 ) -> Result<Node, ErrorKind> {
-    let kind = parent.child(&el.tag).ok_or_else(|| ErrorKind::InvalidChild {
-        parent: parent.tag(),
-        tag: el.tag.clone(),
-    })?;
+    let kind =
+        parent.child(&el.tag).ok_or_else(|| ErrorKind::InvalidChild { parent: parent.tag(), tag: el.tag.clone() })?;
     if kind.multiplicity() == Multiplicity::Singleton {
         return Err(ErrorKind::DuplicateChild(kind.tag()));
     }

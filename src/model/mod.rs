@@ -19,8 +19,8 @@ use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace};
 use crate::tree::{ElementId, Node};
 use crate::value::{AttrInput, Value};
 
-pub use build::{Attrs, Element};
 pub(crate) use build::push_segment as push_path;
+pub use build::{Attrs, Element};
 pub(crate) use build::{Basepaths, ValueCtx, apply_attrs, check_required, cut, empty_node, name_from_file};
 pub(crate) use index::Index;
 
@@ -191,11 +191,7 @@ impl Model {
     ///
     /// Time: O(n).
     pub fn find_all(&self, namespace: Namespace) -> Vec<Loc> {
-        self.root
-            .descendants()
-            .filter(|n| n.kind().namespace() == Some(namespace))
-            .map(|n| Loc::new(n.id()))
-            .collect()
+        self.root.descendants().filter(|n| n.kind().namespace() == Some(namespace)).map(|n| Loc::new(n.id())).collect()
     }
 
     /// Whether both values share the same tree (O(1)).
@@ -287,7 +283,8 @@ impl Model {
     fn insert_at(&self, parent: &Loc, index: Option<usize>, element: Element) -> Result<(Model, Loc), EditError> {
         let path = self.locate(parent)?;
         let mut where_ = self.describe(&path);
-        let parent_node = self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, where_.clone()))?;
+        let parent_node =
+            self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, where_.clone()))?;
         let basepaths = self.basepaths();
         let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
         let node = build::build(&ctx, parent_node.kind(), &element, &mut where_)
@@ -376,7 +373,8 @@ impl Model {
     /// Time: O(depth · log width + size of the subtree).
     pub fn remove(&self, loc: &Loc) -> Result<Model, EditError> {
         let path = self.locate(loc)?;
-        let node = self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, self.describe(&path)))?;
+        let node =
+            self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, self.describe(&path)))?;
         let mut index = self.index.clone();
         index.remove_subtree(&node);
         let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {

@@ -85,9 +85,7 @@ impl FileAsset {
 impl PartialEq for FileAsset {
     fn eq(&self, other: &Self) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
-            || (self.0.sha1 == other.0.sha1
-                && self.0.stem == other.0.stem
-                && self.0.extension == other.0.extension)
+            || (self.0.sha1 == other.0.sha1 && self.0.stem == other.0.stem && self.0.extension == other.0.extension)
     }
 }
 

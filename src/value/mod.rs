@@ -145,11 +145,7 @@ impl From<Value> for AttrInput {
 
 /// What the reader needs beyond the text to build a value: the element's namespace (a
 /// body may not be named `world`).
-pub(crate) fn parse_text(
-    spec: &AttrSpec,
-    namespace: Option<Namespace>,
-    text: &str,
-) -> Result<Value, ValueError> {
+pub(crate) fn parse_text(spec: &AttrSpec, namespace: Option<Namespace>, text: &str) -> Result<Value, ValueError> {
     match spec.ty {
         AttrType::Float => number::parse_float(text).map(Value::Float).ok_or(ValueError::NotFloat),
         AttrType::Int => number::parse_int(text).map(Value::Int).ok_or(ValueError::NotInt),
@@ -212,10 +208,8 @@ pub(crate) fn from_input(
     namespace: Option<Namespace>,
     input: &AttrInput,
 ) -> Result<Option<Value>, ValueError> {
-    let clears_when_empty = matches!(
-        spec.ty,
-        AttrType::Identifier | AttrType::Reference(_) | AttrType::String | AttrType::Basepath { .. }
-    );
+    let clears_when_empty =
+        matches!(spec.ty, AttrType::Identifier | AttrType::Reference(_) | AttrType::String | AttrType::Basepath { .. });
     match input {
         AttrInput::Text(t) => {
             if t.is_empty() && clears_when_empty {
@@ -245,9 +239,7 @@ pub(crate) fn from_input(
                 check_len(&value, max_len)?;
                 Ok(Some(value))
             }
-            AttrType::Float | AttrType::Int if xs.len() == 1 => {
-                from_input(spec, namespace, &AttrInput::Number(xs[0]))
-            }
+            AttrType::Float | AttrType::Int if xs.len() == 1 => from_input(spec, namespace, &AttrInput::Number(xs[0])),
             _ => Err(ValueError::WrongType),
         },
         AttrInput::Value(v) => check_value(spec, namespace, v).map(Some),
@@ -435,10 +427,7 @@ mod tests {
         assert_eq!(from_input(s, ns, &4.5.into()), Err(ValueError::NotInt));
         let (s, ns) = spec(GEOM, "size");
         assert_eq!(text(&from_input(s, ns, &0.1.into()).unwrap().unwrap()), "0.1");
-        assert_eq!(
-            from_input(s, ns, &[1.0, 2.0, 3.0, 4.0].into()),
-            Err(ValueError::TooLong { max: 3, len: 4 })
-        );
+        assert_eq!(from_input(s, ns, &[1.0, 2.0, 3.0, 4.0].into()), Err(ValueError::TooLong { max: 3, len: 4 }));
         let (s, ns) = spec(GEOM, "name");
         assert_eq!(from_input(s, ns, &1.0.into()), Err(ValueError::WrongType));
         let (s, ns) = spec(&["compiler"], "inertiagrouprange");

@@ -46,11 +46,8 @@ pub(crate) fn parse_int(text: &str) -> Option<i64> {
 /// Converts an integral, in-range float to an integer.
 pub(crate) fn float_to_int(v: f64) -> Option<i64> {
     // 2^63 is exactly representable; every double below it in magnitude fits.
-    if v.is_finite() && v.fract() == 0.0 && v >= -9.223_372_036_854_775_808e18 && v < 9.223_372_036_854_775_808e18 {
-        Some(v as i64)
-    } else {
-        None
-    }
+    const LIMIT: f64 = 9_223_372_036_854_775_808.0; // 2^63
+    if v.is_finite() && v.fract() == 0.0 && (-LIMIT..LIMIT).contains(&v) { Some(v as i64) } else { None }
 }
 
 /// Appends the text of `x` in the given style.

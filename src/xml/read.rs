@@ -162,7 +162,11 @@ fn utf8<'b>(bytes: &'b [u8], file: Option<&Path>) -> Result<&'b str, ReadError> 
         let good = &bytes[..e.valid_up_to()];
         // The valid prefix is UTF-8 by definition.
         let prefix = std::str::from_utf8(good).unwrap_or("");
-        ReadError::new(ErrorKind::InvalidUtf8, file.map(Path::to_path_buf), Some(TextPos::of_offset(prefix, prefix.len())))
+        ReadError::new(
+            ErrorKind::InvalidUtf8,
+            file.map(Path::to_path_buf),
+            Some(TextPos::of_offset(prefix, prefix.len())),
+        )
     })
 }
 
@@ -189,7 +193,13 @@ impl Reader<'_> {
     }
 
     /// Reads the attributes of a tag into `attrs` (later values win).
-    fn read_attrs(&mut self, kind: ElementKind, tag: &BytesStart<'_>, attrs: &mut Vec<Attr>, offset: usize) -> Result<(), ReadError> {
+    fn read_attrs(
+        &mut self,
+        kind: ElementKind,
+        tag: &BytesStart<'_>,
+        attrs: &mut Vec<Attr>,
+        offset: usize,
+    ) -> Result<(), ReadError> {
         for a in tag.attributes() {
             let a = a.map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
             let name = a.key.as_ref();
@@ -222,7 +232,9 @@ impl Reader<'_> {
                 let base = self.basepaths.for_namespace(path_namespace);
                 let (_, contents) = self.ctx.read(base, &raw).map_err(|k| self.err(k, offset))?;
                 let asset = FileAsset::from_path_and_contents(&raw, contents);
-                if kind.tag() == "mesh" && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj") {
+                if kind.tag() == "mesh"
+                    && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj")
+                {
                     return Err(self.err(invalid(ValueError::MeshExtension), offset));
                 }
                 Some(Value::File(asset))
@@ -305,7 +317,13 @@ fn read_document(
                     model_name = Some(SmolStr::from(v.as_ref()));
                 }
             }
-            r.arena.push(Pending { kind: ElementKind::ROOT, id: ElementId::fresh(), attrs: Vec::new(), children: Vec::new(), offset });
+            r.arena.push(Pending {
+                kind: ElementKind::ROOT,
+                id: ElementId::fresh(),
+                attrs: Vec::new(),
+                children: Vec::new(),
+                offset,
+            });
             if !empty {
                 stack.push(0);
             }
