@@ -20,7 +20,8 @@ use replay::Outcome;
 fn conformance_cases() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/conformance");
     let listed_text = std::fs::read_to_string(root.join("expected_failures.txt")).unwrap_or_default();
-    let listed: Vec<&str> = listed_text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).collect();
+    let listed: Vec<&str> =
+        listed_text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).collect();
     let results = replay::run_all(&root.join("cases"), None).expect("cases load");
     assert!(!results.is_empty(), "no conformance cases found");
     let (mut passed, mut failed, mut deviations) = (0, 0, 0);
@@ -35,7 +36,8 @@ fn conformance_cases() {
                     deviations += 1;
                 }
                 if expected_to_fail {
-                    problems.push(format!("{name} is listed as expected to fail but now passes: remove it from the list"));
+                    problems
+                        .push(format!("{name} is listed as expected to fail but now passes: remove it from the list"));
                 }
             }
             Outcome::Fail(why) => {

@@ -100,49 +100,22 @@ pub enum OpKind {
     /// `name = mjcf.RootElement(model=model)`.
     New { name: String, model: Option<String> },
     /// `parent.add(tag, **attrs)`, optionally saved as handle `as_handle`.
-    Add {
-        model: String,
-        parent: Loc,
-        tag: String,
-        attrs: Vec<(String, AttrValue)>,
-        as_handle: Option<String>,
-    },
+    Add { model: String, parent: Loc, tag: String, attrs: Vec<(String, AttrValue)>, as_handle: Option<String> },
     /// `parent.find("site", site).attach(child)` (or at the worldbody, or at
     /// a located element); the frame optionally saved as handle `as_handle`.
-    Attach {
-        parent: String,
-        site: AttachSite,
-        child: String,
-        as_handle: Option<String>,
-    },
+    Attach { parent: String, site: AttachSite, child: String, as_handle: Option<String> },
     /// `parent.include_copy(child, override_attributes=...)`.
-    IncludeCopy {
-        parent: String,
-        child: String,
-        override_attributes: bool,
-    },
+    IncludeCopy { parent: String, child: String, override_attributes: bool },
     /// `child.detach()`.
     Detach { child: String },
     /// `target.set_attributes(**attrs)`; `AttrValue::Null` clears.
-    Set {
-        model: String,
-        target: Loc,
-        attrs: Vec<(String, AttrValue)>,
-    },
+    Set { model: String, target: Loc, attrs: Vec<(String, AttrValue)> },
     /// `target.remove(affect_attachments=...)`.
-    Remove {
-        model: String,
-        target: Loc,
-        affect_attachments: bool,
-    },
+    Remove { model: String, target: Loc, affect_attachments: bool },
     /// `model.model = to`.
     Rename { model: String, to: String },
     /// Write `model.to_xml_string(**options)` to `file`.
-    Output {
-        model: String,
-        file: String,
-        options: OutputOptions,
-    },
+    Output { model: String, file: String, options: OutputOptions },
 }
 
 impl OpKind {
@@ -180,10 +153,7 @@ pub enum Loc {
     /// A section of the root: `"option.flag"` -> `["option", "flag"]`.
     Section(Vec<String>),
     /// `{"find": [namespace, identifier]}`.
-    Find {
-        namespace: String,
-        identifier: String,
-    },
+    Find { namespace: String, identifier: String },
     /// `{"handle": "h"}`: an element saved earlier with `"as": "h"`.
     Handle(String),
     /// `{"frame_of": VAR}`: the attachment frame of model VAR.
@@ -216,13 +186,7 @@ impl AttrValue {
             AttrValue::Str(text) => Some(text.clone()),
             AttrValue::Number(value) => Some(format_number(*value)),
             AttrValue::Bool(value) => Some(value.to_string()),
-            AttrValue::Numbers(values) => Some(
-                values
-                    .iter()
-                    .map(|v| format_number(*v))
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            ),
+            AttrValue::Numbers(values) => Some(values.iter().map(|v| format_number(*v)).collect::<Vec<_>>().join(" ")),
         }
     }
 }
@@ -245,8 +209,8 @@ pub fn load_case(dir: &Path) -> Result<Case, String> {
         .ok_or_else(|| format!("{}: not a case folder name", dir.display()))?
         .to_owned();
     let path = dir.join("case.json");
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("case {name}: cannot read {}: {e}", path.display()))?;
+    let text =
+        std::fs::read_to_string(&path).map_err(|e| format!("case {name}: cannot read {}: {e}", path.display()))?;
     parse_case(&name, dir, &text)
 }
 
@@ -265,10 +229,7 @@ pub fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, String> {
     let mut ops = Vec::with_capacity(ops_json.len());
     for (index, op) in ops_json.iter().enumerate() {
         let op_name = match op {
-            Json::Object(entries) => entries
-                .iter()
-                .find(|(k, _)| k == "op")
-                .and_then(|(_, v)| v.as_str()),
+            Json::Object(entries) => entries.iter().find(|(k, _)| k == "op").and_then(|(_, v)| v.as_str()),
             _ => None,
         };
         let op = parse_op(op, index).map_err(|e| match op_name {
@@ -277,19 +238,13 @@ pub fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, String> {
         })?;
         ops.push(op);
     }
-    Ok(Case {
-        name: name.to_owned(),
-        dir: dir.to_path_buf(),
-        description,
-        ops,
-    })
+    Ok(Case { name: name.to_owned(), dir: dir.to_path_buf(), description, ops })
 }
 
 /// Every immediate subfolder of `root` that holds a `case.json`, sorted by
 /// name.
 pub fn list_cases(root: &Path) -> Result<Vec<PathBuf>, String> {
-    let entries =
-        std::fs::read_dir(root).map_err(|e| format!("cannot list {}: {e}", root.display()))?;
+    let entries = std::fs::read_dir(root).map_err(|e| format!("cannot list {}: {e}", root.display()))?;
     let mut dirs = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|e| format!("cannot list {}: {e}", root.display()))?;
@@ -323,14 +278,8 @@ fn parse_op(json: &Json, index: usize) -> Result<Op, String> {
     op.check_keys(&allowed)?;
 
     let kind = match op_name.as_str() {
-        "load" => OpKind::Load {
-            name: op.req_str("name")?,
-            file: op.req_str("file")?,
-        },
-        "new" => OpKind::New {
-            name: op.req_str("name")?,
-            model: op.opt_str("model")?,
-        },
+        "load" => OpKind::Load { name: op.req_str("name")?, file: op.req_str("file")? },
+        "new" => OpKind::New { name: op.req_str("name")?, model: op.opt_str("model")? },
         "add" => OpKind::Add {
             model: op.req_str("model")?,
             parent: parse_loc(op.req("parent")?).map_err(|e| format!("\"parent\": {e}"))?,
@@ -349,9 +298,7 @@ fn parse_op(json: &Json, index: usize) -> Result<Op, String> {
                 (Some(Json::Null), None) => AttachSite::World,
                 (Some(Json::String(name)), None) => AttachSite::Name(name.clone()),
                 (Some(_), None) => return Err("\"site\" must be a string or null".to_owned()),
-                (None, Some(loc)) => {
-                    AttachSite::Loc(parse_loc(loc).map_err(|e| format!("\"site_loc\": {e}"))?)
-                }
+                (None, Some(loc)) => AttachSite::Loc(parse_loc(loc).map_err(|e| format!("\"site_loc\": {e}"))?),
                 (None, None) => return Err("missing \"site\" or \"site_loc\"".to_owned()),
             };
             OpKind::Attach {
@@ -366,9 +313,7 @@ fn parse_op(json: &Json, index: usize) -> Result<Op, String> {
             child: op.req_str("child")?,
             override_attributes: op.opt_bool("override_attributes")?.unwrap_or(false),
         },
-        "detach" => OpKind::Detach {
-            child: op.req_str("child")?,
-        },
+        "detach" => OpKind::Detach { child: op.req_str("child")? },
         "set" => OpKind::Set {
             model: op.req_str("model")?,
             target: parse_loc(op.req("target")?).map_err(|e| format!("\"target\": {e}"))?,
@@ -379,18 +324,13 @@ fn parse_op(json: &Json, index: usize) -> Result<Op, String> {
             target: parse_loc(op.req("target")?).map_err(|e| format!("\"target\": {e}"))?,
             affect_attachments: op.opt_bool("affect_attachments")?.unwrap_or(false),
         },
-        "rename" => OpKind::Rename {
-            model: op.req_str("model")?,
-            to: op.req_str("to")?,
-        },
+        "rename" => OpKind::Rename { model: op.req_str("model")?, to: op.req_str("to")? },
         "output" => OpKind::Output {
             model: op.req_str("model")?,
             file: op.req_str("file")?,
             options: match op.get("options") {
                 None | Some(Json::Null) => OutputOptions::default(),
-                Some(options) => {
-                    parse_output_options(options).map_err(|e| format!("\"options\": {e}"))?
-                }
+                Some(options) => parse_output_options(options).map_err(|e| format!("\"options\": {e}"))?,
             },
         },
         // All kinds were matched above.
@@ -405,26 +345,13 @@ fn parse_op(json: &Json, index: usize) -> Result<Op, String> {
     }
     let deviation = match op.opt_str("deviation")? {
         None => Vec::new(),
-        Some(text) => text
-            .split(',')
-            .map(str::trim)
-            .filter(|label| !label.is_empty())
-            .map(str::to_owned)
-            .collect(),
+        Some(text) => text.split(',').map(str::trim).filter(|label| !label.is_empty()).map(str::to_owned).collect(),
     };
     let observed_error = match op.get("observed_error") {
         None | Some(Json::Null) => None,
-        Some(json) => {
-            Some(parse_observed_error(json).map_err(|e| format!("\"observed_error\": {e}"))?)
-        }
+        Some(json) => Some(parse_observed_error(json).map_err(|e| format!("\"observed_error\": {e}"))?),
     };
-    Ok(Op {
-        kind,
-        expect_error,
-        deviation,
-        observed_error,
-        index,
-    })
+    Ok(Op { kind, expect_error, deviation, observed_error, index })
 }
 
 fn parse_loc(json: &Json) -> Result<Loc, String> {
@@ -442,17 +369,14 @@ fn parse_loc(json: &Json) -> Result<Loc, String> {
             };
             match (key.as_str(), value) {
                 ("find", Json::Array(items)) => match items.as_slice() {
-                    [Json::String(namespace), Json::String(identifier)] => Ok(Loc::Find {
-                        namespace: namespace.clone(),
-                        identifier: identifier.clone(),
-                    }),
+                    [Json::String(namespace), Json::String(identifier)] => {
+                        Ok(Loc::Find { namespace: namespace.clone(), identifier: identifier.clone() })
+                    }
                     _ => Err("\"find\" must be [namespace, identifier] strings".to_owned()),
                 },
                 ("handle", Json::String(handle)) => Ok(Loc::Handle(handle.clone())),
                 ("frame_of", Json::String(var)) => Ok(Loc::FrameOf(var.clone())),
-                ("find" | "handle" | "frame_of", _) => {
-                    Err(format!("bad value for locator {key:?}"))
-                }
+                ("find" | "handle" | "frame_of", _) => Err(format!("bad value for locator {key:?}")),
                 _ => Err(format!("unknown locator {key:?}")),
             }
         }
@@ -493,12 +417,7 @@ fn parse_attrs(json: &Json, allow_null: bool) -> Result<Vec<(String, AttrValue)>
 
 fn parse_output_options(json: &Json) -> Result<OutputOptions, String> {
     let fields = Fields::new(json, "options")?;
-    fields.check_keys(&[
-        "precision",
-        "zero_threshold",
-        "pretty_print",
-        "filename_with_hash",
-    ])?;
+    fields.check_keys(&["precision", "zero_threshold", "pretty_print", "filename_with_hash"])?;
     let precision = match fields.get("precision") {
         None | Some(Json::Null) => None,
         Some(Json::Number(n)) if n.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(n) => {
@@ -572,8 +491,7 @@ impl<'a> Fields<'a> {
     }
 
     fn req(&self, key: &str) -> Result<&'a Json, String> {
-        self.get(key)
-            .ok_or_else(|| format!("missing field {key:?}"))
+        self.get(key).ok_or_else(|| format!("missing field {key:?}"))
     }
 
     fn req_str(&self, key: &str) -> Result<String, String> {
@@ -627,10 +545,7 @@ impl Json {
 
     /// Parses a complete JSON document (RFC 8259).
     fn parse(text: &str) -> Result<Json, String> {
-        let mut parser = JsonParser {
-            bytes: text.as_bytes(),
-            pos: 0,
-        };
+        let mut parser = JsonParser { bytes: text.as_bytes(), pos: 0 };
         parser.skip_whitespace();
         let value = parser.value(0)?;
         parser.skip_whitespace();
@@ -778,8 +693,7 @@ impl JsonParser<'_> {
                 return Err(self.error("invalid number"));
             }
         }
-        let text = std::str::from_utf8(&self.bytes[start..self.pos])
-            .map_err(|_| self.error("invalid number"))?;
+        let text = std::str::from_utf8(&self.bytes[start..self.pos]).map_err(|_| self.error("invalid number"))?;
         match text.parse::<f64>() {
             Ok(value) if value.is_finite() => Ok(Json::Number(value)),
             _ => Err(self.error("number out of range")),
@@ -811,8 +725,7 @@ impl JsonParser<'_> {
                 }
                 self.pos += 1;
             }
-            let run = std::str::from_utf8(&self.bytes[start..self.pos])
-                .map_err(|_| self.error("invalid UTF-8"))?;
+            let run = std::str::from_utf8(&self.bytes[start..self.pos]).map_err(|_| self.error("invalid UTF-8"))?;
             out.push_str(run);
             match self.peek() {
                 None => return Err(self.error("unterminated string")),
@@ -822,9 +735,7 @@ impl JsonParser<'_> {
                 }
                 Some(b'\\') => {
                     self.pos += 1;
-                    let escape = self
-                        .peek()
-                        .ok_or_else(|| self.error("unterminated string"))?;
+                    let escape = self.peek().ok_or_else(|| self.error("unterminated string"))?;
                     self.pos += 1;
                     match escape {
                         b'"' => out.push('"'),
@@ -848,8 +759,7 @@ impl JsonParser<'_> {
                                 }
                                 code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
                             }
-                            let c = char::from_u32(code)
-                                .ok_or_else(|| self.error("unpaired surrogate"))?;
+                            let c = char::from_u32(code).ok_or_else(|| self.error("unpaired surrogate"))?;
                             out.push(c);
                         }
                         _ => return Err(self.error("invalid escape")),
@@ -889,12 +799,7 @@ mod tests {
             Json::Number(n) => serde_json::Number::from_f64(*n).map_or(Value::Null, Value::Number),
             Json::String(s) => Value::String(s.clone()),
             Json::Array(items) => Value::Array(items.iter().map(to_serde).collect()),
-            Json::Object(entries) => Value::Object(
-                entries
-                    .iter()
-                    .map(|(k, v)| (k.clone(), to_serde(v)))
-                    .collect(),
-            ),
+            Json::Object(entries) => Value::Object(entries.iter().map(|(k, v)| (k.clone(), to_serde(v))).collect()),
         }
     }
 
@@ -902,14 +807,9 @@ mod tests {
     fn normalize(value: &serde_json::Value) -> serde_json::Value {
         use serde_json::Value;
         match value {
-            Value::Number(n) => n
-                .as_f64()
-                .and_then(serde_json::Number::from_f64)
-                .map_or(Value::Null, Value::Number),
+            Value::Number(n) => n.as_f64().and_then(serde_json::Number::from_f64).map_or(Value::Null, Value::Number),
             Value::Array(items) => Value::Array(items.iter().map(normalize).collect()),
-            Value::Object(map) => {
-                Value::Object(map.iter().map(|(k, v)| (k.clone(), normalize(v))).collect())
-            }
+            Value::Object(map) => Value::Object(map.iter().map(|(k, v)| (k.clone(), normalize(v))).collect()),
             other => other.clone(),
         }
     }
@@ -924,10 +824,7 @@ mod tests {
         let mut expected_errors = 0;
         for dir in &dirs {
             let case = load_case(dir).unwrap_or_else(|e| panic!("{e}"));
-            assert_eq!(
-                Some(case.name.as_str()),
-                dir.file_name().and_then(|n| n.to_str())
-            );
+            assert_eq!(Some(case.name.as_str()), dir.file_name().and_then(|n| n.to_str()));
             assert!(!case.description.is_empty(), "{}", case.name);
             assert!(!case.ops.is_empty(), "{}", case.name);
             for (i, op) in case.ops.iter().enumerate() {
@@ -948,33 +845,23 @@ mod tests {
             let path = dir.join("case.json");
             let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
             let ours = Json::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let theirs: serde_json::Value =
-                serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}"));
+            let theirs: serde_json::Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(to_serde(&ours), normalize(&theirs), "{}", path.display());
         }
     }
 
     #[test]
     fn json_reader_edge_cases() {
-        let value =
-            Json::parse(r#" {"b": [1, -0.5e2, true, null], "a": "\u00e9\ud83d\ude00\n\"\\\/"} "#)
-                .unwrap_or_else(|e| panic!("{e}"));
+        let value = Json::parse(r#" {"b": [1, -0.5e2, true, null], "a": "\u00e9\ud83d\ude00\n\"\\\/"} "#)
+            .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
             value,
             Json::Object(vec![
                 (
                     "b".to_owned(),
-                    Json::Array(vec![
-                        Json::Number(1.0),
-                        Json::Number(-50.0),
-                        Json::Bool(true),
-                        Json::Null
-                    ])
+                    Json::Array(vec![Json::Number(1.0), Json::Number(-50.0), Json::Bool(true), Json::Null])
                 ),
-                (
-                    "a".to_owned(),
-                    Json::String("\u{e9}\u{1f600}\n\"\\/".to_owned())
-                ),
+                ("a".to_owned(), Json::String("\u{e9}\u{1f600}\n\"\\/".to_owned())),
             ])
         );
         for bad in [
@@ -1012,13 +899,7 @@ mod tests {
         assert_eq!(case.name, "hand_001_seed_example");
         assert!(case.dir.ends_with("hand_001_seed_example"));
         assert_eq!(case.ops.len(), 10);
-        assert_eq!(
-            case.ops[0].kind,
-            OpKind::Load {
-                name: "arena".to_owned(),
-                file: "arena.xml".to_owned()
-            }
-        );
+        assert_eq!(case.ops[0].kind, OpKind::Load { name: "arena".to_owned(), file: "arena.xml".to_owned() });
         assert_eq!(
             case.ops[3].kind,
             OpKind::Attach {
@@ -1042,12 +923,7 @@ mod tests {
             &case.ops[5].kind,
             OpKind::Attach { site: AttachSite::World, child, .. } if child == "robot2"
         ));
-        assert_eq!(
-            case.ops[7].kind,
-            OpKind::Detach {
-                child: "robot2".to_owned()
-            }
-        );
+        assert_eq!(case.ops[7].kind, OpKind::Detach { child: "robot2".to_owned() });
         let last = &case.ops[9];
         assert_eq!(last.deviation, vec!["D2".to_owned()]);
         assert!(last.has_deviation("D2") && !last.has_deviation("D3"));
@@ -1065,21 +941,8 @@ mod tests {
     #[test]
     fn attrs_keep_json_order() {
         let case = load("hand_002_attach_worldbody_built");
-        assert_eq!(
-            case.ops[0].kind,
-            OpKind::New {
-                name: "world".to_owned(),
-                model: Some("world_model".to_owned())
-            }
-        );
-        let OpKind::Add {
-            model,
-            parent,
-            tag,
-            attrs,
-            as_handle,
-        } = &case.ops[1].kind
-        else {
+        assert_eq!(case.ops[0].kind, OpKind::New { name: "world".to_owned(), model: Some("world_model".to_owned()) });
+        let OpKind::Add { model, parent, tag, attrs, as_handle } = &case.ops[1].kind else {
             panic!("{:?}", case.ops[1]);
         };
         assert_eq!((model.as_str(), tag.as_str()), ("world", "geom"));
@@ -1106,14 +969,7 @@ mod tests {
             panic!("{:?}", case.ops[1]);
         };
         let texts: Vec<_> = attrs.iter().map(|(_, v)| v.to_mjcf_text()).collect();
-        assert_eq!(
-            texts,
-            [
-                Some("a".to_owned()),
-                Some("1e-16 2 3e20".to_owned()),
-                Some("-0 0.5 100".to_owned())
-            ]
-        );
+        assert_eq!(texts, [Some("a".to_owned()), Some("1e-16 2 3e20".to_owned()), Some("-0 0.5 100".to_owned())]);
         let OpKind::Add { attrs, .. } = &case.ops[2].kind else {
             panic!("{:?}", case.ops[2]);
         };
@@ -1152,10 +1008,7 @@ mod tests {
     fn to_mjcf_text() {
         let text = |v: AttrValue| v.to_mjcf_text();
         assert_eq!(text(AttrValue::Null), None);
-        assert_eq!(
-            text(AttrValue::Str("1 2".to_owned())).as_deref(),
-            Some("1 2")
-        );
+        assert_eq!(text(AttrValue::Str("1 2".to_owned())).as_deref(), Some("1 2"));
         assert_eq!(text(AttrValue::Bool(true)).as_deref(), Some("true"));
         assert_eq!(text(AttrValue::Bool(false)).as_deref(), Some("false"));
         assert_eq!(text(AttrValue::Numbers(Vec::new())).as_deref(), Some(""));
@@ -1177,13 +1030,7 @@ mod tests {
             assert_eq!(text(AttrValue::Number(value)).as_deref(), Some(expected));
         }
         // Round trip.
-        for value in [
-            1.0 / 3.0,
-            2.0f64.sqrt() * 1e-7,
-            6.02214076e23,
-            f64::MIN_POSITIVE,
-            f64::MAX,
-        ] {
+        for value in [1.0 / 3.0, 2.0f64.sqrt() * 1e-7, 6.02214076e23, f64::MIN_POSITIVE, f64::MAX] {
             let rendered = format_number(value);
             assert_eq!(rendered.parse::<f64>().ok(), Some(value), "{rendered}");
         }
@@ -1230,13 +1077,7 @@ mod tests {
                 "output"
             ]
         );
-        assert_eq!(
-            ops[0].kind,
-            OpKind::New {
-                name: "a".to_owned(),
-                model: None
-            }
-        );
+        assert_eq!(ops[0].kind, OpKind::New { name: "a".to_owned(), model: None });
         assert_eq!(
             ops[2].kind,
             OpKind::Add {
@@ -1261,34 +1102,16 @@ mod tests {
                 as_handle: Some("f".to_owned()),
             }
         );
-        assert!(matches!(
-            ops[4].kind,
-            OpKind::IncludeCopy {
-                override_attributes: true,
-                ..
-            }
-        ));
-        assert!(matches!(
-            ops[5].kind,
-            OpKind::IncludeCopy {
-                override_attributes: false,
-                ..
-            }
-        ));
+        assert!(matches!(ops[4].kind, OpKind::IncludeCopy { override_attributes: true, .. }));
+        assert!(matches!(ops[5].kind, OpKind::IncludeCopy { override_attributes: false, .. }));
         assert_eq!(ops[6].expect_error.as_deref(), Some("not_attached"));
         assert_eq!(ops[6].observed_error, None);
         assert_eq!(
             ops[7].kind,
             OpKind::Set {
                 model: "a".to_owned(),
-                target: Loc::Find {
-                    namespace: "body".to_owned(),
-                    identifier: "r/t".to_owned()
-                },
-                attrs: vec![
-                    ("pos".to_owned(), AttrValue::Null),
-                    ("name".to_owned(), AttrValue::Str("n".to_owned())),
-                ],
+                target: Loc::Find { namespace: "body".to_owned(), identifier: "r/t".to_owned() },
+                attrs: vec![("pos".to_owned(), AttrValue::Null), ("name".to_owned(), AttrValue::Str("n".to_owned())),],
             }
         );
         assert_eq!(ops[7].deviation, ["D2", "D3"]);
@@ -1300,13 +1123,7 @@ mod tests {
             &ops[9].kind,
             OpKind::Remove { target: Loc::FrameOf(v), affect_attachments: true, .. } if v == "b"
         ));
-        assert_eq!(
-            ops[10].kind,
-            OpKind::Rename {
-                model: "a".to_owned(),
-                to: "c".to_owned()
-            }
-        );
+        assert_eq!(ops[10].kind, OpKind::Rename { model: "a".to_owned(), to: "c".to_owned() });
         assert_eq!(
             ops[11].kind,
             OpKind::Output {
@@ -1326,32 +1143,14 @@ mod tests {
     #[test]
     fn malformed_ops_are_errors() {
         let cases: &[(&str, &str)] = &[
-            (
-                r#"{"op": "frobnicate"}"#,
-                "op 1 (frobnicate): unknown op kind \"frobnicate\"",
-            ),
+            (r#"{"op": "frobnicate"}"#, "op 1 (frobnicate): unknown op kind \"frobnicate\""),
             (r#"{"name": "x"}"#, "op 1: missing field \"op\""),
             (r#"[]"#, "op 1: an op must be an object"),
-            (
-                r#"{"op": "load", "name": "x"}"#,
-                "op 1 (load): missing field \"file\"",
-            ),
-            (
-                r#"{"op": "load", "name": "x", "file": "f", "extra": 1}"#,
-                "op 1 (load): unknown field \"extra\"",
-            ),
-            (
-                r#"{"op": "load", "name": "x", "name": "y", "file": "f"}"#,
-                "op 1 (load): duplicate field \"name\"",
-            ),
-            (
-                r#"{"op": "load", "name": 3, "file": "f"}"#,
-                "field \"name\" must be a string",
-            ),
-            (
-                r#"{"op": "detach", "child": "c", "expect_error": "oops"}"#,
-                "unknown error category \"oops\"",
-            ),
+            (r#"{"op": "load", "name": "x"}"#, "op 1 (load): missing field \"file\""),
+            (r#"{"op": "load", "name": "x", "file": "f", "extra": 1}"#, "op 1 (load): unknown field \"extra\""),
+            (r#"{"op": "load", "name": "x", "name": "y", "file": "f"}"#, "op 1 (load): duplicate field \"name\""),
+            (r#"{"op": "load", "name": 3, "file": "f"}"#, "field \"name\" must be a string"),
+            (r#"{"op": "detach", "child": "c", "expect_error": "oops"}"#, "unknown error category \"oops\""),
             (
                 r#"{"op": "add", "model": "m", "parent": "worldbody", "tag": "g", "attrs": {"a": null}}"#,
                 "null is only allowed in set",
@@ -1364,10 +1163,7 @@ mod tests {
                 r#"{"op": "add", "model": "m", "parent": "worldbody", "tag": "g", "attrs": {"a": 1, "a": 2}}"#,
                 "duplicate attribute \"a\"",
             ),
-            (
-                r#"{"op": "add", "model": "m", "parent": "option..flag", "tag": "g"}"#,
-                "bad section locator",
-            ),
+            (r#"{"op": "add", "model": "m", "parent": "option..flag", "tag": "g"}"#, "bad section locator"),
             (
                 r#"{"op": "add", "model": "m", "parent": {"find": ["body"]}, "tag": "g"}"#,
                 "\"find\" must be [namespace, identifier] strings",
@@ -1376,43 +1172,20 @@ mod tests {
                 r#"{"op": "add", "model": "m", "parent": {"handle": "h", "find": ["a", "b"]}, "tag": "g"}"#,
                 "exactly one key",
             ),
-            (
-                r#"{"op": "add", "model": "m", "parent": {"nearest": "h"}, "tag": "g"}"#,
-                "unknown locator \"nearest\"",
-            ),
-            (
-                r#"{"op": "set", "model": "m", "target": "worldbody"}"#,
-                "missing field \"attrs\"",
-            ),
-            (
-                r#"{"op": "attach", "parent": "p", "child": "c"}"#,
-                "missing \"site\" or \"site_loc\"",
-            ),
+            (r#"{"op": "add", "model": "m", "parent": {"nearest": "h"}, "tag": "g"}"#, "unknown locator \"nearest\""),
+            (r#"{"op": "set", "model": "m", "target": "worldbody"}"#, "missing field \"attrs\""),
+            (r#"{"op": "attach", "parent": "p", "child": "c"}"#, "missing \"site\" or \"site_loc\""),
             (
                 r#"{"op": "attach", "parent": "p", "child": "c", "site": null, "site_loc": "worldbody"}"#,
                 "both \"site\" and \"site_loc\" given",
             ),
-            (
-                r#"{"op": "attach", "parent": "p", "child": "c", "site": 1}"#,
-                "must be a string or null",
-            ),
-            (
-                r#"{"op": "include_copy", "parent": "p", "child": "c", "override_attributes": 1}"#,
-                "must be a boolean",
-            ),
-            (
-                r#"{"op": "output", "model": "m", "file": "f", "options": {"precision": 1.5}}"#,
-                "non-negative integer",
-            ),
-            (
-                r#"{"op": "output", "model": "m", "file": "f", "options": {"indent": 2}}"#,
-                "unknown field \"indent\"",
-            ),
+            (r#"{"op": "attach", "parent": "p", "child": "c", "site": 1}"#, "must be a string or null"),
+            (r#"{"op": "include_copy", "parent": "p", "child": "c", "override_attributes": 1}"#, "must be a boolean"),
+            (r#"{"op": "output", "model": "m", "file": "f", "options": {"precision": 1.5}}"#, "non-negative integer"),
+            (r#"{"op": "output", "model": "m", "file": "f", "options": {"indent": 2}}"#, "unknown field \"indent\""),
         ];
         for (op, message) in cases {
-            let json = format!(
-                r#"{{"description": "d", "ops": [{{"op": "detach", "child": "c"}}, {op}]}}"#
-            );
+            let json = format!(r#"{{"description": "d", "ops": [{{"op": "detach", "child": "c"}}, {op}]}}"#);
             match parse(&json) {
                 Ok(case) => panic!("{op} loaded: {case:?}"),
                 Err(e) => {

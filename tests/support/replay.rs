@@ -8,7 +8,9 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use mjcf::{Attrs, EditError, Element, ErrorKind, Loc, Model, ReadError, ReadOptions, ValueError, WriteError, WriteOptions};
+use mjcf::{
+    Attrs, EditError, Element, ErrorKind, Loc, Model, ReadError, ReadOptions, ValueError, WriteError, WriteOptions,
+};
 
 use super::case::{self, AttrValue, Case, Op, OpKind};
 use super::compare;
@@ -109,7 +111,9 @@ pub fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
         let result = st.apply(op, marked && is_output);
         let mismatch = match (&result, &op.expect_error) {
             (Ok(()), None) => None,
-            (Ok(()), Some(want)) => Some(format!("op {} ({}): expected error {want}, but it succeeded", op.index, op.op_name())),
+            (Ok(()), Some(want)) => {
+                Some(format!("op {} ({}): expected error {want}, but it succeeded", op.index, op.op_name()))
+            }
             (Err(e), Some(want)) if e.category == want => None,
             (Err(e), Some(want)) => Some(format!(
                 "op {} ({}): expected error {want}, got {}: {}",
@@ -118,7 +122,9 @@ pub fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
                 e.category,
                 e.message
             )),
-            (Err(e), None) => Some(format!("op {} ({}): unexpected error {}: {}", op.index, op.op_name(), e.category, e.message)),
+            (Err(e), None) => {
+                Some(format!("op {} ({}): unexpected error {}: {}", op.index, op.op_name(), e.category, e.message))
+            }
         };
         if marked && (is_output || mismatch.is_some()) {
             for d in &op.deviation {
@@ -159,7 +165,9 @@ impl State<'_> {
                 for tag in &path[1..] {
                     let el = m.element(&l).ok_or_else(|| OpError::new("not_found", "section vanished"))?;
                     let child = el.children().find(|c| c.tag() == tag);
-                    l = child.map(|c| c.loc()).ok_or_else(|| OpError::new("not_found", format!("no {tag} in {first}")))?;
+                    l = child
+                        .map(|c| c.loc())
+                        .ok_or_else(|| OpError::new("not_found", format!("no {tag} in {first}")))?;
                 }
                 Ok((var.to_string(), l))
             }
