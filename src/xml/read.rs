@@ -1,6 +1,6 @@
 //! MJCF text → [`Model`]. The only code that reads XML.
 //!
-//! What is kept and what is dropped (see also `docs/parsing.md`):
+//! What is kept and what is dropped:
 //! - comments, processing instructions, the XML declaration, a DOCTYPE and text are
 //!   dropped; entities other than XML's five and character references are errors
 //!   (nothing is ever expanded);
