@@ -226,7 +226,10 @@ impl Reader<'_> {
                         | AttrType::Basepath { .. }
                         | AttrType::File { .. }
                 );
-            let value = if clears {
+            // Auto names (`//unnamed_geom_0`) written by this crate and by dm_control
+            // mean "unnamed": they are derived again when the model is written.
+            let auto_name = spec.ty == AttrType::Identifier && raw.starts_with("//unnamed_");
+            let value = if clears || auto_name {
                 None
             } else if let AttrType::File { path_namespace } = spec.ty {
                 let base = self.basepaths.for_namespace(path_namespace);
@@ -273,6 +276,7 @@ fn read_document(
     let mut includes: Vec<(Model, usize)> = Vec::new();
     let mut model_name: Option<SmolStr> = None;
     let mut seen_root = false;
+    let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
     loop {
         let offset = xml.buffer_position() as usize;
         let event = match xml.read_event() {
@@ -344,6 +348,17 @@ fn read_document(
                 stack.push(usize::MAX);
             }
             continue;
+        }
+        // `<default class="/">` directly in the root `<default>` is the root class as
+        // written by this crate and by dm_control: read its content into the root class.
+        if name == "default" && parent_kind == root_default && parent_kind.spec().parent == Some(ElementKind::ROOT) {
+            let slash = tag.attributes().flatten().any(|a| a.key.as_ref() == "class" && a.value.as_ref() == "/");
+            if slash && r.arena[parent].attrs.is_empty() && r.arena[parent].children.is_empty() {
+                if !empty {
+                    stack.push(parent);
+                }
+                continue;
+            }
         }
         let Some(kind) = parent_kind.child(&name) else {
             return Err(r.err(ErrorKind::InvalidChild { parent: parent_kind.tag(), tag: name.into() }, offset));
@@ -464,6 +479,11 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                 }
             }
         }
+    }
+    if let Some(d) =
+        r.arena.iter().find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
+    {
+        names.entry((crate::Namespace::Default, SmolStr::from("/"))).or_insert(d.id);
     }
     for p in &mut r.arena {
         resolve_attrs(p.kind, &mut p.attrs, |ns, n| names.get(&(ns, SmolStr::from(n))).copied());
