@@ -156,6 +156,23 @@ impl Node {
         Ok(node)
     }
 
+    /// Rebuilds the subtree bottom-up (iteratively): `f` gets each node and its rebuilt
+    /// children and returns the node's replacement.
+    pub(crate) fn rebuild(&self, mut f: impl FnMut(&Node, Vector<Node>) -> Node) -> Node {
+        let mut stack: Vec<(&Node, bool)> = vec![(self, false)];
+        let mut built: Vec<Node> = Vec::new();
+        while let Some((n, done)) = stack.pop() {
+            if !done {
+                stack.push((n, true));
+                stack.extend(n.children().iter().rev().map(|c| (c, false)));
+                continue;
+            }
+            let children: Vector<Node> = built.split_off(built.len() - n.children().len()).into_iter().collect();
+            built.push(f(n, children));
+        }
+        built.pop().unwrap_or_else(|| self.clone())
+    }
+
     /// Every node of the subtree in document order (pre-order), iteratively.
     pub(crate) fn descendants(&self) -> Descendants<'_> {
         Descendants { stack: vec![self] }

@@ -102,24 +102,11 @@ impl Copier<'_> {
 
     /// Copies a subtree with fresh ids (iteratively).
     fn copy(&mut self, src: &Node) -> Node {
-        // Post-order rebuild with an explicit stack.
-        let mut stack: Vec<(&Node, bool)> = vec![(src, false)];
-        let mut built: Vec<Node> = Vec::new();
-        while let Some((n, done)) = stack.pop() {
-            if !done {
-                stack.push((n, true));
-                for c in n.children().iter().rev() {
-                    stack.push((c, false));
-                }
-                continue;
-            }
-            let k = n.children().len();
-            let children: Vector<Node> = built.split_off(built.len() - k).into_iter().collect();
+        let copy = src.rebuild(|n, children| {
             let id = ElementId::fresh();
             self.ids.insert(n.id(), id);
-            built.push(Node::new(id, n.kind(), n.attrs().to_vec(), children));
-        }
-        let copy = built.pop().unwrap_or_else(|| src.clone());
+            Node::new(id, n.kind(), n.attrs().to_vec(), children)
+        });
         self.copied.insert(copy.id());
         copy
     }

@@ -546,22 +546,10 @@ fn resolve_attrs(kind: ElementKind, attrs: &mut [Attr], lookup: impl Fn(crate::N
 /// Resolves named references across a whole model (after includes were merged).
 fn resolve_all(model: &Model) -> Model {
     let lookup = |ns, n: &str| model.find(ns, n).map(|l| l.id());
-    let mut stack: Vec<(&Node, bool)> = vec![(&model.root, false)];
-    let mut built: Vec<Node> = Vec::new();
-    while let Some((n, done)) = stack.pop() {
-        if !done {
-            stack.push((n, true));
-            for c in n.children().iter().rev() {
-                stack.push((c, false));
-            }
-            continue;
-        }
-        let k = n.children().len();
-        let children: Vector<Node> = built.split_off(built.len() - k).into_iter().collect();
+    let root = model.root.rebuild(|n, children| {
         let mut attrs = n.attrs().to_vec();
         resolve_attrs(n.kind(), &mut attrs, lookup);
-        built.push(Node::new(n.id(), n.kind(), attrs, children));
-    }
-    let root = built.pop().unwrap_or_else(|| model.root.clone());
+        Node::new(n.id(), n.kind(), attrs, children)
+    });
     Model { root, ..model.clone() }
 }
