@@ -51,6 +51,9 @@ pub enum ValueError {
     /// An identifier with `/`, which is reserved for scopes.
     #[error("an identifier cannot contain '/', which is reserved for scopes")]
     SlashInIdentifier,
+    /// A character that XML 1.0 cannot hold (most control characters, U+FFFE, U+FFFF).
+    #[error("{} (U+{:04X}) cannot be written in XML", .0.escape_debug(), *.0 as u32)]
+    InvalidCharacter(char),
     /// A body named `world`.
     #[error("a body cannot be named 'world'")]
     WorldBody,
@@ -305,6 +308,17 @@ pub enum WriteError {
         attribute: &'static str,
         /// The element's path.
         path: String,
+    },
+    /// A character that XML 1.0 cannot hold (such as NUL), which only the model name
+    /// can carry: attribute values refuse it when they are set or read.
+    #[error("attribute '{attribute}' of <{tag}> holds {} (U+{:04X}), which XML cannot hold", character.escape_debug(), *character as u32)]
+    InvalidCharacter {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+        /// The character.
+        character: char,
     },
 }
 

@@ -4,20 +4,14 @@
 //! `PROPTEST_RNG_SEED` to explore others); failures are saved to
 //! `proptest-regressions/properties.txt` and replayed first on later runs.
 //!
-//! Why the round trip (property a) has the shape it has: the writer prints the root
-//! default class as `<default><default class="R">…</default></default>` with `R = "/"`
-//! when the class is unnamed, and names unnamed elements `//unnamed_<ns>_<i>`, as
-//! dm_control does. The reader rejects a `/` in an identifier, so a model's output reads
-//! back only when its root class is named and every element with an identifier is
-//! named. Even then the reader takes the inner `<default class="R">` for a class nested
-//! in an unnamed root class, so the second write gains one level (`<default
-//! class="/">`) and cannot be read again: write∘read∘write is never equal to write.
-//! The passing properties therefore build fully named models with a named root class
-//! and check that the second write equals the first with exactly that extra level; the
-//! strict fixed point is kept as an ignored test (`bug:`). Starting from generated MJCF
-//! text instead does not help (its first write already has the wrapper), but the same
-//! text is used for a differential check: reading the text written by our own small
-//! renderer gives the same output as building the model through the API.
+//! The round trip (property a): the writer prints the root default class as
+//! `<default><default class="R">…</default></default>` (`R = "/"` when unnamed) and
+//! unnamed elements as `//unnamed_<ns>_<i>`, as dm_control does; the reader takes both
+//! forms back, so write∘read∘write == write for every generated model with an unnamed
+//! root class, and one round later for a named one (see the fixed-point test).
+//! The same generated steps are also rendered as MJCF text by a small renderer here, a
+//! differential check: reading that text gives the same output as building the model
+//! through the API.
 
 use std::collections::{HashMap, HashSet};
 
@@ -407,6 +401,64 @@ fn write(model: &Model) -> String {
     model.to_xml_string().unwrap_or_else(|e| panic!("cannot write: {e}"))
 }
 
+// ---------------------------------------------------------------------------------
+// a. Round trips.
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Reading MJCF text rendered by hand from the same steps (other quoting, tabs,
+    /// exponent floats, upper-case keywords, a declaration and a comment) gives the
+    /// same output as building the model through the API.
+    #[test]
+    fn reading_rendered_text_equals_building_through_the_api((root, acts) in actions(true)) {
+        let b = build(&root, &acts);
+        let text = b.text();
+        let read = Model::from_xml_str(&text).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        prop_assert_eq!(write(&read), write(&b.model), "text:\n{}", text);
+        let one_line = WriteOptions { pretty_print: false, precision: Some(17), ..WriteOptions::default() };
+        prop_assert_eq!(read.to_xml_string_with(&one_line).unwrap(), b.model.to_xml_string_with(&one_line).unwrap());
+    }
+}
+
+/// The fixed point: write(read(write(m))) == write(m) when the root class is unnamed.
+/// A named root class `R` is written, as dm_control writes it, as
+/// `<default><default class="R">`, which MJCF reads as a class nested in the unnamed
+/// root class; the reader reads it so (guessing would change what hand-written models
+/// mean), so the next write gains one level and the one after that is the fixed point.
+#[test]
+fn write_read_write_is_a_fixed_point() {
+    let mut runner = proptest::test_runner::TestRunner::new(config());
+    runner
+        .run(&actions(true), |(root, acts)| {
+            let b = build(&root, &acts);
+            let w1 = write(&b.model);
+            let w2 = write(&Model::from_xml_str(&w1).map_err(|e| TestCaseError::fail(format!("{e}\n{w1}")))?);
+            if root.is_none() {
+                prop_assert_eq!(w2, w1);
+            } else {
+                prop_assert_eq!(&w2, &rewrapped_root_default(&w1));
+                let w3 = write(&Model::from_xml_str(&w2).map_err(|e| TestCaseError::fail(format!("{e}\n{w2}")))?);
+                prop_assert_eq!(w3, w2);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+/// The smallest instances of the above: an unnamed and a named root class.
+#[test]
+fn written_empty_models_read_back_unchanged() {
+    let m = Model::new("m");
+    let w = write(&m);
+    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), w);
+    let m = m.set_attr(&m.default_class(), "class", "main").unwrap();
+    let w = write(&m);
+    let again = write(&Model::from_xml_str(&w).unwrap());
+    assert_eq!(again, rewrapped_root_default(&w));
+    assert_eq!(write(&Model::from_xml_str(&again).unwrap()), again);
+}
+
 /// What reading `text` (a model with a named root class) and writing it again gives:
 /// the root class `<default class="R">` comes back as a class nested in an unnamed
 /// root class, so the defaults gain one level, `<default class="/">`.
@@ -428,94 +480,6 @@ fn rewrapped_root_default(text: &str) -> String {
         }
     }
     out
-}
-
-fn unnamed_count(model: &Model) -> usize {
-    elements_with_ancestry(model)
-        .iter()
-        .filter(|(l, _)| {
-            let e = model.element(l).unwrap();
-            let k = e.kind();
-            k.identifier().is_some() && k.namespace().is_some() && e.identifier().is_none()
-        })
-        .count()
-}
-
-// ---------------------------------------------------------------------------------
-// a. Round trips.
-
-proptest! {
-    #![proptest_config(config())]
-
-    /// A fully named model with a named root class: its output reads back, and writing
-    /// that gives the same text but for one extra class level in the defaults (see the
-    /// module comment); the second write mentions the first's classes in the same way.
-    #[test]
-    #[ignore = "describes the reader before it read <default class=\"/\"> as the root class; the second output now reads back"]
-    fn write_read_write_differs_only_by_the_root_class_level((root, acts) in actions(false)) {
-        let b = build(&root, &acts);
-        prop_assert_eq!(unnamed_count(&b.model), 0);
-        let w1 = write(&b.model);
-        let m2 = Model::from_xml_str(&w1).map_err(|e| TestCaseError::fail(format!("{e}\n{w1}")))?;
-        let w2 = write(&m2);
-        prop_assert_eq!(&w2, &rewrapped_root_default(&w1));
-        // Every name is found again, in the same namespace and with the same tag.
-        for (ns, name, loc) in names(&b.model) {
-            let l2 = m2.find(ns, &name);
-            prop_assert!(l2.is_some(), "{:?} {} lost", ns, name);
-            prop_assert_eq!(m2.element(&l2.unwrap()).unwrap().tag(), b.model.element(&loc).unwrap().tag());
-        }
-        // The re-read model's output cannot be read again: its root class is unnamed.
-        let e = Model::from_xml_str(&w2).unwrap_err();
-        let slash_in_root_class = matches!(
-            e.kind(),
-            ErrorKind::InvalidValue { tag: "default", attribute: "class", error: ValueError::SlashInIdentifier, .. }
-        );
-        prop_assert!(slash_in_root_class, "{}", e);
-    }
-
-    /// Reading MJCF text rendered by hand from the same steps (other quoting, tabs,
-    /// exponent floats, upper-case keywords, a declaration and a comment) gives the
-    /// same output as building the model through the API.
-    #[test]
-    fn reading_rendered_text_equals_building_through_the_api((root, acts) in actions(true)) {
-        let b = build(&root, &acts);
-        let text = b.text();
-        let read = Model::from_xml_str(&text).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
-        prop_assert_eq!(write(&read), write(&b.model), "text:\n{}", text);
-        let one_line = WriteOptions { pretty_print: false, precision: Some(17), ..WriteOptions::default() };
-        prop_assert_eq!(read.to_xml_string_with(&one_line).unwrap(), b.model.to_xml_string_with(&one_line).unwrap());
-    }
-}
-
-/// The strict fixed point: write(read(write(m))) == write(m) for a fully named model
-/// with a named root class. Fails for every model (see the module comment).
-#[test]
-#[ignore = "bug: the written root class <default><default class=\"R\"> reads back as a nested class, so write(read(write(m))) != write(m)"]
-fn write_read_write_is_a_fixed_point() {
-    let mut runner = proptest::test_runner::TestRunner::new(config());
-    runner
-        .run(&actions(false), |(root, acts)| {
-            let b = build(&root, &acts);
-            let w1 = write(&b.model);
-            let w2 = write(&Model::from_xml_str(&w1).map_err(|e| TestCaseError::fail(e.to_string()))?);
-            prop_assert_eq!(w2, w1);
-            Ok(())
-        })
-        .unwrap();
-}
-
-/// The smallest instance of the above, and of an unnamed root class's output not
-/// reading back at all.
-#[test]
-#[ignore = "bug: Model::new(\"m\").to_xml_string() does not read back (<default class=\"/\">), and a named root class gains a level"]
-fn written_empty_models_read_back_unchanged() {
-    let m = Model::new("m");
-    let w = write(&m);
-    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), w);
-    let m = m.set_attr(&m.default_class(), "class", "main").unwrap();
-    let w = write(&m);
-    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), w);
 }
 
 // ---------------------------------------------------------------------------------
@@ -680,21 +644,22 @@ proptest! {
 // ---------------------------------------------------------------------------------
 // c. Any legal identifier survives writing and reading.
 
-/// Identifier characters: everything but '/' and NUL. The writer escapes every
-/// control character, tab, CR and LF as a character reference (`&#9;`), which
-/// attribute-value normalization leaves alone, so they survive; so do U+FFFE/U+FFFF
-/// and C0 controls, although `&#1;` and `&#65534;` are not well-formed XML 1.0 (this
-/// reader is lenient; a strict parser would refuse such output). NUL is left out: the
-/// API accepts it in a name, but the reader refuses the `&#0;` the writer produces
-/// (see the ignored `identifier_with_nul_survives_write_and_read`).
+/// Identifier characters: every character XML 1.0 can hold but '/'. The writer
+/// escapes tab, CR and LF as character references (`&#9;`), which attribute-value
+/// normalization leaves alone, so they survive. Characters XML cannot hold are
+/// refused (see `characters_xml_cannot_hold_are_refused`).
+/// XML 1.0's `Char` production.
+fn is_xml_char(c: char) -> bool {
+    matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}' | '\u{10000}'..)
+}
+
 fn ident_char() -> impl Strategy<Value = char> {
     prop_oneof![
         4 => prop::char::range(' ', '~').prop_filter("no slash", |c| *c != '/'),
         3 => prop::sample::select(vec![' ', '\t', '\n', '\r', '"', '\'', '&', '<', '>', ';', '#', '=', '\\', ':']),
-        1 => prop::char::range('\u{1}', '\u{1f}'),
         2 => prop::sample::select(vec!['é', 'ß', 'Ω', '中', '€', '\u{a0}', '\u{2028}', '\u{feff}', '\u{fffd}', '😀', '\u{10ffff}', '\u{7f}', '\u{85}']),
-        1 => prop::sample::select(vec!['\u{fffe}', '\u{ffff}', '\u{d7ff}', '\u{e000}']),
-        1 => any::<char>().prop_filter("legal", |c| !matches!(*c, '/' | '\0')),
+        1 => prop::sample::select(vec!['\u{fffd}', '\u{d7ff}', '\u{e000}', '\u{10000}']),
+        1 => any::<char>().prop_filter("legal", |c| *c != '/' && is_xml_char(*c)),
     ]
 }
 
@@ -746,17 +711,36 @@ proptest! {
     }
 }
 
-/// A NUL in a name is accepted by every edit, written as `&#0;`, and refused on read.
+/// Characters XML cannot hold (NUL, other control characters, U+FFFF) are refused
+/// by edits and by the reader with a typed error, so every value that is set can be
+/// written and read back; a model name (which cannot refuse) fails at write time.
 #[test]
-#[ignore = "bug: a name with NUL is accepted by add/set but written as &#0;, which the reader refuses (Syntax error)"]
-fn identifier_with_nul_survives_write_and_read() {
+fn characters_xml_cannot_hold_are_refused() {
     let m = Model::new("m");
-    let m = m.set_attr(&m.default_class(), "class", "main").unwrap();
-    let (m, _) = m.add(&m.worldbody(), Element::new("body").attr("name", "a\0b")).unwrap();
+    for bad in ["a\0b", "\u{1}", "x\u{1f}", "\u{FFFF}"] {
+        let err = m.add(&m.worldbody(), Element::new("body").attr("name", bad)).unwrap_err();
+        assert!(
+            matches!(
+                err.kind(),
+                ErrorKind::InvalidValue { attribute: "name", error: ValueError::InvalidCharacter(_), .. }
+            ),
+            "{err}"
+        );
+        let err = m.set_attr(&m.default_class(), "class", bad).unwrap_err();
+        assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: ValueError::InvalidCharacter(_), .. }), "{err}");
+        let text = format!("<mujoco><worldbody><body name=\"{bad}\"/></worldbody></mujoco>");
+        match Model::from_xml_str(&text) {
+            Err(e) => assert!(e.pos().is_some(), "{e}"),
+            Ok(_) => panic!("{bad:?} was read"),
+        }
+        let named = m.with_name(bad);
+        assert!(matches!(named.to_xml_string(), Err(mjcf::WriteError::InvalidCharacter { attribute: "model", .. })));
+    }
+    // Tab, newline and carriage return are XML characters: they survive as references.
+    let (m, _) = m.add(&m.worldbody(), Element::new("body").attr("name", "a\tb\nc\rd")).unwrap();
     let text = write(&m);
-    assert!(text.contains(r#"<body name="a&#0;b"/>"#), "{text}");
-    let back = Model::from_xml_str(&text).unwrap_or_else(|e| panic!("{e}"));
-    assert!(back.find(Namespace::Body, "a\0b").is_some());
+    assert!(text.contains(r#"name="a&#9;b&#10;c&#13;d""#), "{text}");
+    assert!(Model::from_xml_str(&text).unwrap().find(Namespace::Body, "a\tb\nc\rd").is_some());
 }
 
 // ---------------------------------------------------------------------------------

@@ -146,6 +146,9 @@ impl From<Value> for AttrInput {
 /// What the reader needs beyond the text to build a value: the element's namespace (a
 /// body may not be named `world`).
 pub(crate) fn parse_text(spec: &AttrSpec, namespace: Option<Namespace>, text: &str) -> Result<Value, ValueError> {
+    if matches!(spec.ty, AttrType::String | AttrType::Identifier | AttrType::Reference(_) | AttrType::Basepath { .. }) {
+        check_xml_text(text)?;
+    }
     match spec.ty {
         AttrType::Float => number::parse_float(text).map(Value::Float).ok_or(ValueError::NotFloat),
         AttrType::Int => number::parse_int(text).map(Value::Int).ok_or(ValueError::NotInt),
@@ -186,6 +189,19 @@ fn check_len(value: &Value, max_len: Option<u32>) -> Result<(), ValueError> {
     match max_len {
         Some(max) if len > max as usize => Err(ValueError::TooLong { max, len }),
         _ => Ok(()),
+    }
+}
+
+/// Whether XML 1.0 can hold `c` (its `Char` production).
+pub(crate) fn is_xml_char(c: char) -> bool {
+    matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}' | '\u{10000}'..)
+}
+
+/// Refuses text that XML cannot hold, so that every value can be written and read back.
+fn check_xml_text(text: &str) -> Result<(), ValueError> {
+    match text.chars().find(|c| !is_xml_char(*c)) {
+        Some(c) => Err(ValueError::InvalidCharacter(c)),
+        None => Ok(()),
     }
 }
 
@@ -248,6 +264,9 @@ pub(crate) fn from_input(
 
 /// Checks that a typed value fits the attribute.
 fn check_value(spec: &AttrSpec, namespace: Option<Namespace>, v: &Value) -> Result<Value, ValueError> {
+    if let Value::String(t) | Value::Identifier(t) | Value::Basepath(t) | Value::Reference(Reference::Name(t)) = v {
+        check_xml_text(t)?;
+    }
     let fits = match (spec.ty, v) {
         (AttrType::Float, Value::Float(_)) | (AttrType::Int, Value::Int(_)) => true,
         (AttrType::String, Value::String(_)) | (AttrType::Basepath { .. }, Value::Basepath(_)) => true,

@@ -74,8 +74,12 @@ impl Model {
             counters: HashMap::new(),
             auto_index: None,
             value: String::new(),
+            bad_char: None,
         };
         w.write()?;
+        if let Some((tag, attribute, character)) = w.bad_char {
+            return Err(WriteError::InvalidCharacter { tag, attribute, character });
+        }
         Ok(w.out)
     }
 }
@@ -88,6 +92,8 @@ struct Writer<'a> {
     counters: HashMap<Namespace, usize>,
     auto_index: Option<HashMap<ElementId, usize>>,
     value: String,
+    /// The first character XML cannot hold: (tag, attribute, character).
+    bad_char: Option<(&'static str, &'static str, char)>,
 }
 
 /// One step of the walk.
@@ -225,12 +231,12 @@ impl<'a> Writer<'a> {
                     // Implicit class: the model's root class.
                     self.default_class_name(self.root_class_name());
                 }
-                self.emit_attr(kind.attr(i).name);
+                self.emit_attr(kind.tag(), kind.attr(i).name);
             } else if let Some((i, v)) = set.next() {
                 let i = *i as usize;
                 let spec = kind.attr(i);
                 if self.value_text(node, i, v)? {
-                    self.emit_attr(spec.name);
+                    self.emit_attr(kind.tag(), spec.name);
                 }
             }
         }
@@ -319,11 +325,13 @@ impl<'a> Writer<'a> {
     }
 
     /// Appends ` name="<escaped self.value>"`.
-    fn emit_attr(&mut self, name: &str) {
+    fn emit_attr(&mut self, tag: &'static str, name: &'static str) {
         self.out.push(' ');
         self.out.push_str(name);
         self.out.push_str("=\"");
-        escape_into(&mut self.out, &self.value);
+        if let Some(c) = escape_into(&mut self.out, &self.value) {
+            self.bad_char.get_or_insert((tag, name, c));
+        }
         self.out.push('"');
     }
 }
@@ -335,12 +343,16 @@ fn sets_childclass(node: &Node) -> bool {
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
 /// carriage return as character references, and every non-ASCII character as a
 /// numeric character reference.
-pub(crate) fn escape_into(out: &mut String, s: &str) {
+///
+/// Returns the first character that XML 1.0 cannot hold at all (most control
+/// characters, U+FFFE, U+FFFF), if any; it is written as a reference all the same.
+pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
     let clean = s.bytes().all(|b| (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"'));
     if clean {
         out.push_str(s);
-        return;
+        return None;
     }
+    let bad = s.chars().find(|c| !crate::value::is_xml_char(*c));
     for c in s.chars() {
         match c {
             '&' => out.push_str("&amp;"),
@@ -353,4 +365,5 @@ pub(crate) fn escape_into(out: &mut String, s: &str) {
             }
         }
     }
+    bad
 }
