@@ -168,6 +168,18 @@ pub enum ErrorKind {
         /// The other model's value.
         theirs: String,
     },
+    /// `attach` at an element that is neither a site nor a worldbody.
+    #[error("cannot attach at a <{0}>: only at a site or the worldbody")]
+    InvalidParent(&'static str),
+    /// A scope path that names no attachment.
+    #[error("no model is attached at scope '{0}'")]
+    NotAttached(SmolStr),
+    /// A removal that would take attached content with it.
+    #[error("removing this element affects attached models; remove with attachments explicitly")]
+    AffectsAttachments,
+    /// `include_copy` of a model that has attachments.
+    #[error("cannot copy from a model with attachments")]
+    SourceHasAttachments,
 }
 
 /// A 1-based position in XML text.
@@ -309,6 +321,10 @@ pub enum WriteError {
         /// The element's path.
         path: String,
     },
+    /// Global settings of attached models that cannot be merged (only reachable
+    /// through values built before a conflict check existed; edits refuse them).
+    #[error("cannot merge settings: {0}")]
+    Conflict(String),
     /// A character that XML 1.0 cannot hold (such as NUL), which only the model name
     /// can carry: attribute values refuse it when they are set or read.
     #[error("attribute '{attribute}' of <{tag}> holds {} (U+{:04X}), which XML cannot hold", character.escape_debug(), *character as u32)]

@@ -17,6 +17,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use imbl::Vector;
+use smol_str::SmolStr;
 
 use crate::schema::ElementKind;
 use crate::value::Value;
@@ -59,13 +60,59 @@ pub(crate) struct NodeData {
     pub(crate) kind: ElementKind,
     pub(crate) attrs: Arc<[Attr]>,
     pub(crate) children: Vector<Node>,
+    /// Set on an attachment frame: the attached model and its scope name.
+    pub(crate) attached: Option<Arc<Attached>>,
+}
+
+/// What an attachment frame holds besides its own attributes and children.
+#[derive(Clone, PartialEq)]
+pub(crate) struct Attached {
+    /// The scope name (`robot`, `robot_1`), chosen at attach time.
+    pub(crate) scope: SmolStr,
+    /// The attached model, unchanged and shared.
+    pub(crate) model: crate::model::Model,
 }
 
 impl Node {
     pub(crate) fn new(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, children: Vector<Node>) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
-        Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children }))
+        Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children, attached: None }))
+    }
+
+    /// An attachment frame.
+    pub(crate) fn frame(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, attached: Attached) -> Node {
+        let mut attrs = attrs;
+        attrs.sort_by_key(|(i, _)| *i);
+        Node(Arc::new(NodeData {
+            id,
+            kind,
+            attrs: attrs.into(),
+            children: Vector::new(),
+            attached: Some(Arc::new(attached)),
+        }))
+    }
+
+    /// The attachment this node is the frame of.
+    pub(crate) fn attached(&self) -> Option<&Attached> {
+        self.0.attached.as_deref()
+    }
+
+    /// A copy (a frame) holding another attachment.
+    pub(crate) fn with_attached(&self, attached: Attached) -> Node {
+        let mut data = NodeData::clone(&self.0);
+        data.attached = Some(Arc::new(attached));
+        Node(Arc::new(data))
+    }
+
+    /// A copy with other attributes and children (and the same attachment, if any).
+    pub(crate) fn with_parts(&self, attrs: Vec<Attr>, children: Vector<Node>) -> Node {
+        let mut attrs = attrs;
+        attrs.sort_by_key(|(i, _)| *i);
+        let mut data = NodeData::clone(&self.0);
+        data.attrs = attrs.into();
+        data.children = children;
+        Node(Arc::new(data))
     }
 
     pub(crate) fn id(&self) -> ElementId {
@@ -218,6 +265,7 @@ impl PartialEq for Node {
                 || a.kind() != b.kind()
                 || a.attrs() != b.attrs()
                 || a.children().len() != b.children().len()
+                || a.attached() != b.attached()
             {
                 return false;
             }

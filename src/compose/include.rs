@@ -11,6 +11,7 @@
 use std::collections::{HashMap, HashSet};
 
 use imbl::Vector;
+use smol_str::SmolStr;
 
 use crate::error::{EditError, ErrorKind};
 use crate::model::{Index, Model};
@@ -43,18 +44,30 @@ impl Model {
     /// `override_attributes`) a same-named element under another parent.
     ///
     /// Time: O(size of `other` + size of `self`), as the identifier index is rebuilt.
+    ///
+    /// A source with attachments is refused ([`ErrorKind::SourceHasAttachments`]), as
+    /// in the reference: copy what it was built from instead. The receiving model
+    /// may have attachments; they stay as they are.
     pub fn include_copy(&self, other: &Model, override_attributes: bool) -> Result<Model, EditError> {
+        if !other.index.scopes.is_empty() {
+            return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
+        }
         let mut c = Copier { dest: self, override_attributes, ids: HashMap::new(), copied: HashSet::new() };
         let mut path = String::new();
         let root = c.merge(&self.root, &other.root, 0, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
-        let root = remap_refs(&root, &c.ids, &c.copied);
-        let mut index = Index::default();
+        // References anywhere (in copied and in merged elements, such as an included
+        // default class naming an included material) follow the copies.
+        let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
+        let own_name = (self.name() != other_name(&root)).then(|| SmolStr::from(self.name()));
+        let mut index = Index { scopes: self.index.scopes.clone(), own_name, ..Index::default() };
         if let Err(d) = index.insert_subtree(None, &root) {
             let where_ = Model { root: root.clone(), index: index.clone(), files: self.files.clone() };
             let path = where_.path_of(d.id).map(|p| where_.describe(&p)).unwrap_or_default();
             return Err(EditError::new(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, path));
         }
-        Ok(Model { root, index, files: self.files.clone() })
+        let m = Model { root, index, files: self.files.clone() };
+        crate::compose::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        Ok(m)
     }
 }
 
@@ -84,7 +97,7 @@ impl Copier<'_> {
                 None => children.push_back(self.copy(s)),
             }
         }
-        Ok(Node::new(dest.id(), dest.kind(), attrs, children))
+        Ok(dest.with_parts(attrs, children))
     }
 
     /// With `override_attributes`, the position of the same-named child of `dest`.
@@ -129,6 +142,11 @@ fn merge_attrs(dest: &Node, src: &Node, override_attributes: bool) -> Result<Vec
         }
     }
     Ok(out)
+}
+
+/// The `model` attribute of a root node.
+fn other_name(root: &Node) -> &str {
+    ElementKind::ROOT.attr_index("model").and_then(|i| root.attr(i)).and_then(Value::as_str).unwrap_or("")
 }
 
 /// Combines two set values of one attribute by its merge rule (the copying variant:
@@ -223,7 +241,7 @@ pub(crate) fn remap_refs(root: &Node, ids: &HashMap<ElementId, ElementId>, under
                 _ => (*i, v.clone()),
             })
             .collect();
-        built.push(Node::new(n.id(), n.kind(), attrs, new_children.into_iter().collect()));
+        built.push(n.with_parts(attrs, new_children.into_iter().collect()));
     }
     built.pop().unwrap_or_else(|| root.clone())
 }

@@ -51,25 +51,50 @@ pub struct Model {
 /// A `Loc` stays valid while the element exists: edits elsewhere, renames and moves of
 /// its siblings do not change it. Taken from a model, it can be used with every later
 /// version of that model.
+///
+/// An element inside an attachment (found as `robot/torso`) is located through the
+/// frames of the attachments that lead to it; edits through such a locator copy the
+/// path through those attachments.
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub struct Loc {
+    /// The frames leading to the element's model, outermost first (empty for this
+    /// model's own elements).
+    scope: Option<Arc<[ElementId]>>,
     id: ElementId,
 }
 
 impl Loc {
     pub(crate) fn new(id: ElementId) -> Loc {
-        Loc { id }
+        Loc { scope: None, id }
+    }
+
+    pub(crate) fn scoped(scope: Arc<[ElementId]>, id: ElementId) -> Loc {
+        Loc { scope: if scope.is_empty() { None } else { Some(scope) }, id }
     }
 
     /// The element's stable id.
     pub fn id(&self) -> ElementId {
         self.id
     }
+
+    /// The attachment frames leading to the element, outermost first.
+    pub(crate) fn scope(&self) -> &[ElementId] {
+        self.scope.as_deref().unwrap_or(&[])
+    }
+
+    /// Whether the element lies inside an attachment.
+    pub fn is_scoped(&self) -> bool {
+        self.scope.is_some()
+    }
 }
 
 impl fmt::Debug for Loc {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Loc({:?})", self.id)
+        write!(f, "Loc(")?;
+        for s in self.scope() {
+            write!(f, "{s:?}/")?;
+        }
+        write!(f, "{:?})", self.id)
     }
 }
 
@@ -99,12 +124,17 @@ impl Model {
         Model { root, index, files: Arc::new(files) }
     }
 
-    /// The model's name (its `model` attribute; empty if it has none).
+    /// The model's name: its `model` attribute (empty if it has none), unless
+    /// `include_copy` replaced that attribute, which does not rename the model.
     pub fn name(&self) -> &str {
-        self.root_attr("model").and_then(Value::as_str).unwrap_or("")
+        match &self.index.own_name {
+            Some(n) => n,
+            None => self.root_attr("model").and_then(Value::as_str).unwrap_or(""),
+        }
     }
 
-    /// The model with another name. An empty name removes the `model` attribute.
+    /// The model with another name (its `model` attribute). An empty name removes the
+    /// attribute.
     #[must_use]
     pub fn with_name(&self, name: &str) -> Model {
         let Some(i) = ElementKind::ROOT.attr_index("model") else { return self.clone() };
@@ -113,7 +143,9 @@ impl Model {
         if !name.is_empty() {
             attrs.push((i as u16, Value::String(name.into())));
         }
-        Model { root: self.root.with_attrs(attrs), ..self.clone() }
+        let mut index = self.index.clone();
+        index.own_name = None;
+        Model { root: self.root.with_attrs(attrs), index, files: self.files.clone() }
     }
 
     fn root_attr(&self, name: &str) -> Option<&Value> {
@@ -172,26 +204,136 @@ impl Model {
 
     /// The element at `loc`, if it exists in this version.
     pub fn element(&self, loc: &Loc) -> Option<ElementRef<'_>> {
-        let path = self.path_of(loc.id)?;
-        let mut node = &self.root;
+        let m = self.scoped_model(loc.scope())?;
+        let path = m.path_of(loc.id)?;
+        let mut node = &m.root;
         for i in path {
             node = node.children().get(i)?;
         }
         Some(ElementRef { node })
     }
 
+    /// The model attached along `frames` (this model if empty).
+    pub(crate) fn scoped_model(&self, frames: &[ElementId]) -> Option<&Model> {
+        let mut m = self;
+        for f in frames {
+            m = &m.node_by_id(*f)?.attached()?.model;
+        }
+        Some(m)
+    }
+
+    /// The node with this id in this model's own tree.
+    pub(crate) fn node_by_id(&self, id: ElementId) -> Option<&Node> {
+        let path = self.path_of(id)?;
+        self.node_at(&path)
+    }
+
     /// Finds the element with this identifier in `namespace`.
     ///
     /// Time: O(log n).
+    ///
+    /// An identifier with `/` looks inside attachments: `robot/torso` is `torso` in the
+    /// model attached as `robot`, `arena/robot_1/hip` goes two levels down. In
+    /// [`Namespace::AttachmentFrame`], `robot` finds the frame of that attachment.
+    /// Joints on attachment frames are not found by name (their names are unique per
+    /// frame only); [`Model::find_all`] lists them.
     pub fn find(&self, namespace: Namespace, identifier: &str) -> Option<Loc> {
-        self.index.names.get(&(namespace, SmolStr::from(identifier))).map(|id| Loc::new(*id))
+        let mut m = self;
+        let mut frames: Vec<ElementId> = Vec::new();
+        let mut rest = identifier;
+        loop {
+            match rest.split_once('/') {
+                Some((scope, tail)) => {
+                    let frame = m.index.frame_of(scope)?;
+                    frames.push(frame);
+                    m = &m.node_by_id(frame)?.attached()?.model;
+                    rest = tail;
+                }
+                None => {
+                    let id = if namespace == Namespace::AttachmentFrame {
+                        m.index.frame_of(rest)?
+                    } else {
+                        *m.index.names.get(&(namespace, SmolStr::from(rest)))?
+                    };
+                    return Some(Loc::scoped(frames.into(), id));
+                }
+            }
+        }
     }
 
-    /// Every element of `namespace`, in document order.
+    /// Every element of `namespace`, in the reference's order: depth first through
+    /// this model's own tree, where a frame (which counts as a body) is followed by
+    /// its own joints and then the content of the model it holds, and each section is
+    /// followed by the same section of each attachment, in attach order.
     ///
-    /// Time: O(n).
+    /// Time: O(n) in the size of the composed model.
     pub fn find_all(&self, namespace: Namespace) -> Vec<Loc> {
-        self.root.descendants().filter(|n| n.kind().namespace() == Some(namespace)).map(|n| Loc::new(n.id())).collect()
+        let mut out = Vec::new();
+        if namespace == Namespace::AttachmentFrame {
+            return out;
+        }
+        // (model, frames leading to it, node, whether to follow the section's
+        // attachments after the node's own subtree)
+        enum Step<'a> {
+            Node(&'a Model, Arc<[ElementId]>, &'a Node),
+            Sections(&'a Model, Arc<[ElementId]>, ElementKind),
+        }
+        let mut stack: Vec<Step<'_>> = Vec::new();
+        for section in self.root.children().iter().rev() {
+            stack.push(Step::Sections(self, Arc::from([]), section.kind()));
+            stack.push(Step::Node(self, Arc::from([]), section));
+        }
+        while let Some(step) = stack.pop() {
+            match step {
+                Step::Node(m, scope, n) => {
+                    if n.kind().namespace() == Some(namespace) {
+                        out.push(Loc::scoped(scope.clone(), n.id()));
+                    }
+                    if let Some(a) = n.attached() {
+                        let mut inner: Vec<ElementId> = scope.to_vec();
+                        inner.push(n.id());
+                        let inner: Arc<[ElementId]> = inner.into();
+                        if let Some(wb) = a
+                            .model
+                            .root
+                            .child_of_kind(a.model.root.kind().child("worldbody").unwrap_or(ElementKind::ROOT))
+                        {
+                            for c in wb.children().iter().rev() {
+                                stack.push(Step::Node(&a.model, inner.clone(), c));
+                            }
+                        }
+                    }
+                    for c in n.children().iter().rev() {
+                        stack.push(Step::Node(m, scope.clone(), c));
+                    }
+                }
+                Step::Sections(m, scope, kind) => {
+                    if kind.tag() == "worldbody" {
+                        continue;
+                    }
+                    // Each attachment's same section (its elements, then its own
+                    // attachments' sections), in attach order.
+                    for (_, frame) in m.index.scopes.iter().rev() {
+                        let Some(a) = m.node_by_id(*frame).and_then(Node::attached) else { continue };
+                        let mut inner: Vec<ElementId> = scope.to_vec();
+                        inner.push(*frame);
+                        let inner: Arc<[ElementId]> = inner.into();
+                        if let Some(sec) = a.model.root.child_of_kind(kind) {
+                            stack.push(Step::Sections(&a.model, inner.clone(), kind));
+                            if kind.tag() == "default" {
+                                // The attachment's root class is a sibling class.
+                                stack.push(Step::Node(&a.model, inner.clone(), sec));
+                            } else {
+                                for c in sec.children().iter().rev() {
+                                    stack.push(Step::Node(&a.model, inner.clone(), c));
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// Whether both values share the same tree (O(1)).
@@ -215,7 +357,7 @@ impl Model {
         Some(path)
     }
 
-    fn node_at(&self, path: &[usize]) -> Option<&Node> {
+    pub(crate) fn node_at(&self, path: &[usize]) -> Option<&Node> {
         let mut node = &self.root;
         for &i in path {
             node = node.children().get(i)?;
@@ -281,14 +423,24 @@ impl Model {
     }
 
     fn insert_at(&self, parent: &Loc, index: Option<usize>, element: Element) -> Result<(Model, Loc), EditError> {
+        let scope = parent.scope();
+        let inner = Loc::new(parent.id());
+        let (m, new) = self.in_scope(scope, &mut |m: &Model| m.insert_here(&inner, index, &element))?;
+        Ok((m, new.within(scope)))
+    }
+
+    fn insert_here(&self, parent: &Loc, index: Option<usize>, element: &Element) -> Result<(Model, Loc), EditError> {
         let path = self.locate(parent)?;
         let mut where_ = self.describe(&path);
         let parent_node =
             self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, where_.clone()))?;
         let basepaths = self.basepaths();
         let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
-        let node = build::build(&ctx, parent_node.kind(), &element, &mut where_)
+        let node = build::build(&ctx, parent_node.kind(), element, &mut where_)
             .map_err(|k| EditError::new(k, where_.clone()))?;
+        if parent_node.attached().is_some() {
+            self.check_frame_child(&path, &parent_node, &node).map_err(|k| EditError::new(k, where_.clone()))?;
+        }
         if node.kind().multiplicity() == Multiplicity::OnDemand
             && parent_node.children().iter().any(|c| c.kind() == node.kind())
         {
@@ -319,6 +471,14 @@ impl Model {
     ///
     /// Time: O(depth · log width).
     pub fn set(&self, loc: &Loc, attrs: Attrs) -> Result<Model, EditError> {
+        let inner = Loc::new(loc.id());
+        let (m, ()) = self.in_scope(loc.scope(), &mut |m: &Model| m.set_here(&inner, &attrs).map(|m| (m, ())))?;
+        // An edit of a setting on either side of an attachment may conflict.
+        crate::compose::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        Ok(m)
+    }
+
+    fn set_here(&self, loc: &Loc, attrs: &Attrs) -> Result<Model, EditError> {
         let path = self.locate(loc)?;
         let where_ = self.describe(&path);
         let err = |k: ErrorKind| EditError::new(k, where_.clone());
@@ -327,6 +487,9 @@ impl Model {
         let mut basepaths = self.basepaths();
         let mut changes = Vec::with_capacity(attrs.len());
         for (name, input) in attrs.items() {
+            if node.attached().is_some() && !crate::compose::FRAME_SETTABLE.contains(&name.as_str()) {
+                return Err(err(ErrorKind::UnknownAttribute { tag: "body", attribute: name.clone() }));
+            }
             let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
             let change = ctx.attr(kind, name, input.as_ref()).map_err(err)?;
             // A folder setting applies to file attributes set after it in the same call.
@@ -353,6 +516,29 @@ impl Model {
         Ok(Model { root, index, files: self.files.clone() })
     }
 
+    /// Checks a new child of an attachment frame: joints, one inertial, and one
+    /// freejoint if the frame sits directly in the worldbody.
+    fn check_frame_child(&self, path: &[usize], frame: &Node, child: &Node) -> Result<(), ErrorKind> {
+        let tag = child.kind().tag();
+        let invalid = || ErrorKind::InvalidChild { parent: "body", tag: tag.into() };
+        match tag {
+            "joint" => Ok(()),
+            "inertial" | "freejoint" => {
+                if tag == "freejoint" {
+                    let parent = path.split_last().and_then(|(_, p)| self.node_at(p));
+                    if parent.is_none_or(|p| p.kind().tag() != "worldbody") {
+                        return Err(invalid());
+                    }
+                }
+                if frame.children().iter().any(|c| c.kind() == child.kind()) {
+                    return Err(ErrorKind::DuplicateChild(child.kind().tag()));
+                }
+                Ok(())
+            }
+            _ => Err(invalid()),
+        }
+    }
+
     /// Sets one attribute.
     pub fn set_attr(&self, loc: &Loc, name: &str, value: impl Into<AttrInput>) -> Result<Model, EditError> {
         self.set(loc, Attrs::new().set(name, value))
@@ -371,10 +557,43 @@ impl Model {
     /// reference held as a plain name is written as it is.
     ///
     /// Time: O(depth · log width + size of the subtree).
+    ///
+    /// # Errors
+    /// [`ErrorKind::AffectsAttachments`] if the subtree holds an attachment frame, or
+    /// the element is a global section (or part of one) while models are attached: use
+    /// [`Model::detach`] first.
     pub fn remove(&self, loc: &Loc) -> Result<Model, EditError> {
+        let inner = Loc::new(loc.id());
+        let (m, ()) = self.in_scope(loc.scope(), &mut |m: &Model| m.remove_here(&inner, false).map(|m| (m, ())))?;
+        Ok(m)
+    }
+
+    /// Removes the element at `loc` like [`Model::remove`], together with the
+    /// attachments in its subtree (their frames go with it). A global section keeps
+    /// merging the attachments' settings: only this model's own are cleared.
+    pub fn remove_with_attachments(&self, loc: &Loc) -> Result<Model, EditError> {
+        let inner = Loc::new(loc.id());
+        let (m, ()) = self.in_scope(loc.scope(), &mut |m: &Model| m.remove_here(&inner, true).map(|m| (m, ())))?;
+        Ok(m)
+    }
+
+    fn remove_here(&self, loc: &Loc, affect_attachments: bool) -> Result<Model, EditError> {
         let path = self.locate(loc)?;
         let node =
             self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, self.describe(&path)))?;
+        let in_section_chain = {
+            let mut n = &self.root;
+            path.iter().all(|&i| {
+                n = &n.children()[i];
+                n.kind().multiplicity() == Multiplicity::Singleton
+            })
+        };
+        let holds_frame = !self.index.scopes.is_empty() && node.descendants().any(|n| n.attached().is_some());
+        if !affect_attachments
+            && (holds_frame || (!self.index.scopes.is_empty() && in_section_chain && node.attached().is_none()))
+        {
+            return Err(EditError::new(ErrorKind::AffectsAttachments, self.describe(&path)));
+        }
         let mut index = self.index.clone();
         index.remove_subtree(&node);
         let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {
@@ -403,7 +622,7 @@ impl PartialEq for Model {
     /// attributes and children). Versions derived from each other compare in time
     /// proportional to what differs.
     fn eq(&self, other: &Model) -> bool {
-        self.root == other.root
+        self.root == other.root && self.name() == other.name()
     }
 }
 

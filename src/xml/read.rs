@@ -549,7 +549,7 @@ fn resolve_all(model: &Model) -> Model {
     let root = model.root.rebuild(|n, children| {
         let mut attrs = n.attrs().to_vec();
         resolve_attrs(n.kind(), &mut attrs, lookup);
-        Node::new(n.id(), n.kind(), attrs, children)
+        n.with_parts(attrs, children)
     });
     Model { root, ..model.clone() }
 }

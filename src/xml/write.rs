@@ -17,9 +17,12 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
+use std::rc::Rc;
+
+use crate::compose::settings;
 use crate::error::WriteError;
 use crate::model::Model;
-use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::tree::{ElementId, Node};
 use crate::value::{FloatStyle, Reference, Value};
 
@@ -65,14 +68,17 @@ impl Model {
     }
 
     /// Writes the model as MJCF text.
+    ///
+    /// A model with attachments is written as one composed model: every attached
+    /// model's names get its scope prefix (`robot/torso`), its default classes become
+    /// sibling classes (`robot/`), its section elements follow the parent's own, and
+    /// the global settings are merged.
     pub fn to_xml_string_with(&self, options: &WriteOptions) -> Result<String, WriteError> {
         let mut w = Writer {
-            model: self,
+            insts: instances(self),
             out: String::with_capacity(4096),
             style: FloatStyle { precision: options.precision, zero_threshold: options.zero_threshold },
             options,
-            counters: HashMap::new(),
-            auto_index: None,
             value: String::new(),
             bad_char: None,
         };
@@ -84,13 +90,46 @@ impl Model {
     }
 }
 
-struct Writer<'a> {
+/// One model in the composed output: the root model or an attachment at some depth.
+struct Inst<'a> {
     model: &'a Model,
+    /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
+    prefix: String,
+    /// Running auto-name counters (document order of this model's own elements).
+    counters: HashMap<Namespace, usize>,
+    /// Auto-name indices of every element, counted once when a reference needs one.
+    auto_index: Option<HashMap<ElementId, usize>>,
+    /// Frame id → (scope name, index of the attached instance).
+    frames: HashMap<ElementId, (&'a str, usize)>,
+}
+
+/// Every model of the composition, depth first in attach order (the root first).
+fn instances(model: &Model) -> Vec<Inst<'_>> {
+    let mut insts: Vec<Inst<'_>> = Vec::new();
+    // (model, prefix, (parent instance, frame id))
+    type Pending<'m> = (&'m Model, String, Option<(usize, ElementId)>);
+    let mut stack: Vec<Pending<'_>> = vec![(model, String::new(), None)];
+    while let Some((m, prefix, parent)) = stack.pop() {
+        let i = insts.len();
+        if let Some((p, frame)) = parent {
+            let scope = insts[p].model.index.scope_of(frame).map(|s| s.as_str()).unwrap_or("");
+            insts[p].frames.insert(frame, (scope, i));
+        }
+        for (scope, frame) in m.index.scopes.iter().rev() {
+            if let Some(a) = m.node_by_id(*frame).and_then(Node::attached) {
+                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, *frame))));
+            }
+        }
+        insts.push(Inst { model: m, prefix, counters: HashMap::new(), auto_index: None, frames: HashMap::new() });
+    }
+    insts
+}
+
+struct Writer<'a> {
+    insts: Vec<Inst<'a>>,
     out: String,
     style: FloatStyle,
     options: &'a WriteOptions,
-    counters: HashMap<Namespace, usize>,
-    auto_index: Option<HashMap<ElementId, usize>>,
     value: String,
     /// The first character XML cannot hold: (tag, attribute, character).
     bad_char: Option<(&'static str, &'static str, char)>,
@@ -98,8 +137,10 @@ struct Writer<'a> {
 
 /// One step of the walk.
 enum Step<'a> {
-    /// Write this element; `childclass` tells whether an ancestor sets `childclass`.
-    Enter { node: &'a Node, depth: usize, childclass: bool },
+    /// Write this element of instance `inst`; `childclass` tells whether an ancestor
+    /// (in the same model) sets `childclass`; `frame` is the frame's name for the
+    /// joints of an attachment frame.
+    Enter { inst: usize, node: &'a Node, depth: usize, childclass: bool, frame: Option<Rc<str>> },
     /// Close an element.
     Exit { tag: &'static str, depth: usize },
 }
@@ -122,8 +163,36 @@ fn emits(node: &Node) -> bool {
 
 impl<'a> Writer<'a> {
     fn write(&mut self) -> Result<(), WriteError> {
-        let root = &self.model.root;
-        let mut stack: Vec<Step<'a>> = vec![Step::Enter { node: root, depth: 0, childclass: false }];
+        let model = self.insts[0].model;
+        let root = &model.root;
+        self.out.push_str("<mujoco");
+        self.write_attrs(0, root, false, None)?;
+        if root.children().is_empty() {
+            self.out.push_str("/>");
+            self.newline();
+            return Ok(());
+        }
+        self.out.push('>');
+        self.newline();
+        for section in root.children() {
+            let kind = section.kind();
+            if settings::is_settings_section(kind) {
+                let merged = settings::merged_section(model, kind).map_err(|k| WriteError::Conflict(k.to_string()))?;
+                if let Some(m) = merged.filter(emits) {
+                    self.write_owned(0, &m, 1)?;
+                }
+            } else if kind.tag() != "worldbody" || emits(section) {
+                self.walk(Step::Enter { inst: 0, node: section, depth: 1, childclass: false, frame: None })?;
+            }
+        }
+        self.out.push_str("</mujoco>");
+        self.newline();
+        Ok(())
+    }
+
+    /// Writes one section (iteratively).
+    fn walk(&mut self, first: Step<'a>) -> Result<(), WriteError> {
+        let mut stack = vec![first];
         while let Some(step) = stack.pop() {
             match step {
                 Step::Exit { tag, depth } => {
@@ -133,23 +202,98 @@ impl<'a> Writer<'a> {
                     self.out.push('>');
                     self.newline();
                 }
-                Step::Enter { node, depth, childclass } => {
+                Step::Enter { inst, node, depth, childclass, frame } => {
                     let kind = node.kind();
-                    let is_root_default = kind.tag() == "default" && kind.spec().parent == Some(ElementKind::ROOT);
+                    let top_section = depth == 1 && inst == 0;
+                    let is_root_default = top_section && kind.tag() == "default";
                     let depth = if is_root_default {
                         self.indent(depth);
                         self.out.push_str("<default>");
                         self.newline();
                         stack.push(Step::Exit { tag: "default", depth });
+                        // Each attachment's root class is a sibling of this one.
+                        for j in (1..self.insts.len()).rev() {
+                            if let Some(sec) = self.insts[j].model.root.child_of_kind(kind) {
+                                stack.push(Step::Enter {
+                                    inst: j,
+                                    node: sec,
+                                    depth: depth + 1,
+                                    childclass: false,
+                                    frame: None,
+                                });
+                            }
+                        }
                         depth + 1
                     } else {
                         depth
                     };
-                    self.indent(depth);
-                    self.out.push('<');
-                    self.out.push_str(kind.tag());
-                    self.write_attrs(node, childclass)?;
-                    let children: Vec<&'a Node> = node.children().iter().filter(|c| emits(c)).collect();
+                    // The children to write, each with its instance and frame name.
+                    let mut children: Vec<Step<'a>> = Vec::new();
+                    let child_cc = childclass || sets_childclass(node);
+                    let node_ref: &'a Node = node;
+                    if let Some(&(scope, child_inst)) = self.insts[inst].frames.get(&node_ref.id()) {
+                        let name: Rc<str> = format!("{}{}/", self.insts[inst].prefix, scope).into();
+                        for c in node_ref.children() {
+                            children.push(Step::Enter {
+                                inst,
+                                node: c,
+                                depth: depth + 1,
+                                childclass,
+                                frame: Some(name.clone()),
+                            });
+                        }
+                        let child_model = self.insts[child_inst].model;
+                        if let Some(wb) = section_of(child_model, "worldbody") {
+                            for c in wb.children() {
+                                children.push(Step::Enter {
+                                    inst: child_inst,
+                                    node: c,
+                                    depth: depth + 1,
+                                    childclass: false,
+                                    frame: None,
+                                });
+                            }
+                        }
+                        self.indent(depth);
+                        self.out.push_str("<body");
+                        self.write_frame_attrs(inst, node_ref, &name);
+                    } else {
+                        for c in node_ref.children() {
+                            if emits(c) {
+                                children.push(Step::Enter {
+                                    inst,
+                                    node: c,
+                                    depth: depth + 1,
+                                    childclass: child_cc,
+                                    frame: None,
+                                });
+                            }
+                        }
+                        if top_section && !is_root_default && kind.tag() != "worldbody" {
+                            // Each attachment's part of the section, in attach order.
+                            for j in 1..self.insts.len() {
+                                let Some(sec) = self.insts[j].model.root.child_of_kind(kind) else { continue };
+                                for c in sec.children() {
+                                    if emits(c) {
+                                        children.push(Step::Enter {
+                                            inst: j,
+                                            node: c,
+                                            depth: depth + 1,
+                                            childclass: false,
+                                            frame: None,
+                                        });
+                                    }
+                                }
+                            }
+                            if children.is_empty() && !singleton_emits_attrs(node_ref) {
+                                continue;
+                            }
+                        }
+                        self.indent(depth);
+                        self.out.push('<');
+                        self.out.push_str(kind.tag());
+                        self.write_attrs(inst, node_ref, childclass, frame.as_deref())?;
+                    }
                     if children.is_empty() {
                         self.out.push_str("/>");
                         self.newline();
@@ -157,12 +301,43 @@ impl<'a> Writer<'a> {
                     }
                     self.out.push('>');
                     self.newline();
-                    stack.push(Step::Exit { tag: kind.tag(), depth });
-                    let child_cc = childclass || sets_childclass(node);
-                    for c in children.into_iter().rev() {
-                        stack.push(Step::Enter { node: c, depth: depth + 1, childclass: child_cc });
-                    }
+                    let tag = if node_ref.attached().is_some() { "body" } else { kind.tag() };
+                    stack.push(Step::Exit { tag, depth });
+                    children.reverse();
+                    stack.extend(children);
                 }
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes an owned subtree of singletons (a merged settings section).
+    fn write_owned(&mut self, inst: usize, node: &Node, depth: usize) -> Result<(), WriteError> {
+        let mut stack: Vec<(Node, usize, bool)> = vec![(node.clone(), depth, false)];
+        while let Some((n, d, close)) = stack.pop() {
+            if close {
+                self.indent(d);
+                self.out.push_str("</");
+                self.out.push_str(n.kind().tag());
+                self.out.push('>');
+                self.newline();
+                continue;
+            }
+            self.indent(d);
+            self.out.push('<');
+            self.out.push_str(n.kind().tag());
+            self.write_attrs(inst, &n, false, None)?;
+            let children: Vec<Node> = n.children().iter().filter(|c| emits(c)).cloned().collect();
+            if children.is_empty() {
+                self.out.push_str("/>");
+                self.newline();
+                continue;
+            }
+            self.out.push('>');
+            self.newline();
+            stack.push((n.clone(), d, true));
+            for c in children.into_iter().rev() {
+                stack.push((c, d + 1, false));
             }
         }
         Ok(())
@@ -182,18 +357,41 @@ impl<'a> Writer<'a> {
         }
     }
 
+    /// A frame's attributes (copied from its site), then `name` last; the frame counts
+    /// as a body of its model for auto names.
+    fn write_frame_attrs(&mut self, inst: usize, frame: &Node, name: &str) {
+        *self.insts[inst].counters.entry(Namespace::Body).or_insert(0) += 1;
+        let kind = frame.kind();
+        for (i, v) in frame.attrs() {
+            self.value.clear();
+            v.write_plain(&mut self.value, self.style);
+            self.emit_attr(kind.tag(), kind.attr(*i as usize).name);
+        }
+        self.value.clear();
+        self.value.push_str(name);
+        self.emit_attr(kind.tag(), "name");
+    }
+
     /// Writes ` name="value"` for every attribute, in schema order, including the
-    /// auto name and the implicit default class.
-    fn write_attrs(&mut self, node: &Node, childclass: bool) -> Result<(), WriteError> {
+    /// auto name and the implicit default class. `frame` is set for the joints of an
+    /// attachment frame, which are named after it.
+    fn write_attrs(
+        &mut self,
+        inst: usize,
+        node: &Node,
+        childclass: bool,
+        frame: Option<&str>,
+    ) -> Result<(), WriteError> {
         let kind = node.kind();
         let is_default = kind.tag() == "default";
-        // Identifier slot: an auto name when unset (default classes render their own).
+        // Identifier slot: an auto name when unset (default classes and frame joints
+        // render their own).
         let auto_name = match (kind.identifier(), kind.namespace()) {
             (Some(i), Some(ns)) => {
-                let n = self.counters.entry(ns).or_insert(0);
+                let n = self.insts[inst].counters.entry(ns).or_insert(0);
                 let index = *n;
                 *n += 1;
-                (node.attr(i).is_none() || is_default).then_some((i, ns, index))
+                (node.attr(i).is_none() || is_default || frame.is_some()).then_some((i, ns, index))
             }
             _ => None,
         };
@@ -218,24 +416,31 @@ impl<'a> Writer<'a> {
             if take_virtual {
                 let i = virt.next().unwrap_or_default();
                 if Some(i) == auto_name.map(|a| a.0) {
-                    // Skip the stored value at the same slot, if any (default classes).
+                    // Skip the stored value at the same slot, if any.
                     if next_set == Some(i) {
                         set.next();
                     }
-                    if is_default {
-                        self.default_class_name(node.identifier());
+                    if let Some(f) = frame {
+                        self.value.push_str(f);
+                        if let Some(n) = node.identifier() {
+                            self.value.push_str(n);
+                            self.value.push('/');
+                        }
+                    } else if is_default {
+                        self.default_class_name(inst, node.identifier());
                     } else if let Some((_, ns, index)) = auto_name {
-                        self.auto_name(ns, index);
+                        self.auto_name(inst, ns, index);
                     }
                 } else {
                     // Implicit class: the model's root class.
-                    self.default_class_name(self.root_class_name());
+                    let root_class = self.root_class_name(inst);
+                    self.default_class_name(inst, root_class);
                 }
                 self.emit_attr(kind.tag(), kind.attr(i).name);
             } else if let Some((i, v)) = set.next() {
                 let i = *i as usize;
                 let spec = kind.attr(i);
-                if self.value_text(node, i, v)? {
+                if self.value_text(inst, node, i, v)? {
                     self.emit_attr(kind.tag(), spec.name);
                 }
             }
@@ -243,35 +448,52 @@ impl<'a> Writer<'a> {
         Ok(())
     }
 
-    fn root_class_name(&self) -> Option<&'a str> {
-        let kind = ElementKind::ROOT.child("default")?;
-        self.model.root.child_of_kind(kind)?.identifier()
+    fn root_class_name(&self, inst: usize) -> Option<&'a str> {
+        section_of(self.insts[inst].model, "default")?.identifier()
     }
 
     /// Writes `P + name`, or `/` when both are empty, into `self.value`.
-    fn default_class_name(&mut self, name: Option<&str>) {
+    fn default_class_name(&mut self, inst: usize, name: Option<&str>) {
+        let prefix = &self.insts[inst].prefix;
         let name = name.unwrap_or("");
-        if name.is_empty() {
+        if name.is_empty() && prefix.is_empty() {
             self.value.push('/');
         } else {
+            self.value.push_str(prefix);
             self.value.push_str(name);
         }
     }
 
-    /// Writes `//unnamed_<ns>_<index>` into `self.value`.
-    fn auto_name(&mut self, ns: Namespace, index: usize) {
-        let _ = write!(self.value, "//unnamed_{}_{}", ns.as_str(), index);
+    /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`.
+    fn auto_name(&mut self, inst: usize, ns: Namespace, index: usize) {
+        let prefix = &self.insts[inst].prefix;
+        let p = if prefix.is_empty() { "/" } else { prefix.as_str() };
+        let _ = write!(self.value, "{p}/unnamed_{}_{}", ns.as_str(), index);
     }
 
     /// Writes the text of attribute `i` into `self.value`; `false` if it is not written.
-    fn value_text(&mut self, node: &Node, i: usize, v: &Value) -> Result<bool, WriteError> {
+    fn value_text(&mut self, inst: usize, node: &Node, i: usize, v: &Value) -> Result<bool, WriteError> {
         match v {
             Value::Basepath(_) => Ok(false),
             Value::File(f) => {
                 self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
                 Ok(true)
             }
-            Value::Reference(Reference::Element(target)) => self.reference_text(node, i, *target),
+            Value::Reference(Reference::Element(target)) => self.reference_text(inst, node, i, *target),
+            Value::Identifier(n) => {
+                self.value.push_str(&self.insts[inst].prefix);
+                self.value.push_str(n);
+                Ok(true)
+            }
+            Value::Reference(Reference::Name(n)) => {
+                // The one world body is `world` in every scope.
+                let to_body = matches!(node.kind().attr(i).ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
+                if !(to_body && n == "world") {
+                    self.value.push_str(&self.insts[inst].prefix);
+                }
+                self.value.push_str(n);
+                Ok(true)
+            }
             _ => {
                 v.write_plain(&mut self.value, self.style);
                 Ok(true)
@@ -279,49 +501,67 @@ impl<'a> Writer<'a> {
         }
     }
 
-    fn reference_text(&mut self, node: &Node, i: usize, target: ElementId) -> Result<bool, WriteError> {
+    fn reference_text(&mut self, inst: usize, node: &Node, i: usize, target: ElementId) -> Result<bool, WriteError> {
         let kind = node.kind();
-        let Some(entry) = self.model.index.elems.get(&target) else {
+        let model = self.insts[inst].model;
+        let Some(entry) = model.index.elems.get(&target) else {
             let spec = kind.attr(i);
             if spec.required {
                 return Err(WriteError::MissingRequired {
                     tag: kind.tag(),
                     attribute: spec.name,
-                    path: self.model.path_of(node.id()).map(|p| self.model.describe(&p)).unwrap_or_default(),
+                    path: model.path_of(node.id()).map(|p| model.describe(&p)).unwrap_or_default(),
                 });
             }
             return Ok(false);
         };
         if entry.kind.tag() == "default" {
             let name = entry.name.clone();
-            self.default_class_name(name.as_deref());
+            self.default_class_name(inst, name.as_deref());
+            return Ok(true);
+        }
+        // A frame, or a joint of a frame.
+        if let Some(&(scope, _)) = self.insts[inst].frames.get(&target) {
+            let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
+            return Ok(true);
+        }
+        if let Some(&(scope, _)) = entry.parent.and_then(|p| self.insts[inst].frames.get(&p)) {
+            let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
+            if let Some(n) = &entry.name {
+                let _ = write!(self.value, "{n}/");
+            }
             return Ok(true);
         }
         match (&entry.name, entry.kind.namespace()) {
-            (Some(n), _) => self.value.push_str(n),
+            (Some(n), _) => {
+                let prefix = &self.insts[inst].prefix;
+                self.value.push_str(prefix);
+                self.value.push_str(n);
+            }
             (None, Some(ns)) => {
-                let index = self.auto_index_of(target);
-                self.auto_name(ns, index);
+                let index = self.auto_index_of(inst, target);
+                self.auto_name(inst, ns, index);
             }
             (None, None) => return Ok(false),
         }
         Ok(true)
     }
 
-    fn auto_index_of(&mut self, id: ElementId) -> usize {
-        if self.auto_index.is_none() {
+    fn auto_index_of(&mut self, inst: usize, id: ElementId) -> usize {
+        let it = &mut self.insts[inst];
+        if it.auto_index.is_none() {
             let mut counts: HashMap<Namespace, usize> = HashMap::new();
             let mut map = HashMap::new();
-            for n in self.model.root.descendants() {
+            for n in it.model.root.descendants() {
                 if let Some(ns) = n.kind().namespace() {
                     let c = counts.entry(ns).or_insert(0);
                     map.insert(n.id(), *c);
                     *c += 1;
                 }
             }
-            self.auto_index = Some(map);
+            it.auto_index = Some(map);
         }
-        self.auto_index.as_ref().and_then(|m| m.get(&id).copied()).unwrap_or(0)
+        it.auto_index.as_ref().and_then(|m| m.get(&id).copied()).unwrap_or(0)
     }
 
     /// Appends ` name="<escaped self.value>"`.
@@ -334,6 +574,16 @@ impl<'a> Writer<'a> {
         }
         self.out.push('"');
     }
+}
+
+/// Whether a container section writes attributes of its own.
+fn singleton_emits_attrs(node: &Node) -> bool {
+    let kind = node.kind();
+    node.attrs().iter().any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
+}
+
+fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
+    model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
 }
 
 fn sets_childclass(node: &Node) -> bool {

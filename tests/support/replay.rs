@@ -12,7 +12,7 @@ use mjcf::{
     Attrs, EditError, Element, ErrorKind, Loc, Model, ReadError, ReadOptions, ValueError, WriteError, WriteOptions,
 };
 
-use super::case::{self, AttrValue, Case, Op, OpKind};
+use super::case::{self, AttachSite, AttrValue, Case, Op, OpKind};
 use super::compare;
 
 /// The result of one case.
@@ -59,6 +59,10 @@ pub fn category(kind: &ErrorKind) -> &'static str {
         ErrorKind::NotFound => "not_found",
         ErrorKind::AttributeConflict { .. } => "attribute_conflict",
         ErrorKind::CopyConflict { .. } => "copy_conflict",
+        ErrorKind::InvalidParent(_) => "invalid_parent",
+        ErrorKind::NotAttached(_) => "not_attached",
+        ErrorKind::AffectsAttachments => "affects_attachments",
+        ErrorKind::SourceHasAttachments => "source_has_attachments",
         _ => "unknown",
     }
 }
@@ -84,11 +88,21 @@ fn write_err(e: WriteError) -> OpError {
     }
 }
 
+/// Where a variable's model is: its own value, or a place inside another model.
+#[derive(Clone, Debug)]
+enum Var {
+    /// A model value that is not attached.
+    Own(Model),
+    /// Attached: the scope path (scope names, outermost first) inside the root
+    /// variable's model.
+    Placed { root: String, path: Vec<String> },
+}
+
 /// The replay state: variables and handles.
 struct State<'c> {
     case: &'c Case,
-    models: HashMap<String, Model>,
-    /// Handle name → (variable, element).
+    vars: HashMap<String, Var>,
+    /// Handle name → (variable, element in that variable's own model).
     handles: HashMap<String, (String, Loc)>,
     actual_dir: Option<&'c Path>,
 }
@@ -96,7 +110,7 @@ struct State<'c> {
 /// Runs one case. With `actual_dir`, every output is also written to
 /// `actual_dir/<case>/<file>`.
 pub fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
-    let mut st = State { case, models: HashMap::new(), handles: HashMap::new(), actual_dir };
+    let mut st = State { case, vars: HashMap::new(), handles: HashMap::new(), actual_dir };
     let mut deviations: Vec<String> = Vec::new();
     for op in &case.ops {
         let marked = !op.deviation.is_empty();
@@ -151,11 +165,52 @@ fn numbers(v: &AttrValue) -> Option<mjcf::AttrInput> {
     })
 }
 
+fn unknown(var: &str) -> OpError {
+    OpError::new("unknown", format!("no model variable {var:?}"))
+}
+
 impl State<'_> {
-    fn model(&self, var: &str) -> Result<&Model, OpError> {
-        self.models.get(var).ok_or_else(|| OpError::new("unknown", format!("no model variable {var:?}")))
+    /// The root variable and scope path of `var`'s place.
+    fn place(&self, var: &str) -> Result<(String, String), OpError> {
+        match self.vars.get(var).ok_or_else(|| unknown(var))? {
+            Var::Own(_) => Ok((var.to_string(), String::new())),
+            Var::Placed { root, path } => Ok((root.clone(), path.join("/"))),
+        }
     }
 
+    fn root_model(&self, root: &str) -> Result<&Model, OpError> {
+        match self.vars.get(root) {
+            Some(Var::Own(m)) => Ok(m),
+            _ => Err(unknown(root)),
+        }
+    }
+
+    /// `var`'s model as it is now (taken from its place if attached).
+    fn model(&self, var: &str) -> Result<&Model, OpError> {
+        let (root, path) = self.place(var)?;
+        let m = self.root_model(&root)?;
+        if path.is_empty() {
+            return Ok(m);
+        }
+        m.attached(&path).ok_or_else(|| OpError::new("unknown", format!("{var} lost its place {path}")))
+    }
+
+    fn set_root(&mut self, root: &str, m: Model) {
+        self.vars.insert(root.to_string(), Var::Own(m));
+    }
+
+    /// A locator in the root model of `root` for an element of the model at `path`.
+    fn lift(&self, root: &str, path: &str, inner: &Loc) -> Result<Loc, OpError> {
+        if path.is_empty() {
+            return Ok(inner.clone());
+        }
+        self.root_model(root)?
+            .locate_in(path, inner)
+            .ok_or_else(|| OpError::new("not_found", format!("no attachment {path}")))
+    }
+
+    /// Resolves a locator evaluated in `var`'s model: (root variable, locator in the
+    /// root's model).
     fn resolve(&self, var: &str, loc: &case::Loc) -> Result<(String, Loc), OpError> {
         match loc {
             case::Loc::Section(path) => {
@@ -169,27 +224,70 @@ impl State<'_> {
                         .map(|c| c.loc())
                         .ok_or_else(|| OpError::new("not_found", format!("no {tag} in {first}")))?;
                 }
-                Ok((var.to_string(), l))
+                let (root, scope) = self.place(var)?;
+                let l = self.lift(&root, &scope, &l)?;
+                Ok((root, l))
             }
             case::Loc::Find { namespace, identifier } => {
-                let m = self.model(var)?;
                 let ns = mjcf::Namespace::from_name(namespace)
                     .ok_or_else(|| OpError::new("invalid_namespace", format!("{namespace:?} is not a namespace")))?;
-                let l = m
-                    .find(ns, identifier)
+                let (root, scope) = self.place(var)?;
+                let full = if scope.is_empty() { identifier.clone() } else { format!("{scope}/{identifier}") };
+                let l = self
+                    .root_model(&root)?
+                    .find(ns, &full)
                     .ok_or_else(|| OpError::new("not_found", format!("no {namespace} named {identifier:?}")))?;
-                Ok((var.to_string(), l))
+                Ok((root, l))
             }
             case::Loc::Handle(h) => {
                 let (v, l) = self.handles.get(h).ok_or_else(|| OpError::new("not_found", format!("no handle {h}")))?;
-                let m = self.model(v)?;
-                if m.element(l).is_none() {
+                let (root, scope) = self.place(v)?;
+                let l = self.lift(&root, &scope, l)?;
+                if self.root_model(&root)?.element(&l).is_none() {
                     return Err(OpError::new("not_found", format!("handle {h} names a removed element")));
                 }
-                Ok((v.clone(), l.clone()))
+                Ok((root, l))
             }
-            case::Loc::FrameOf(v) => Err(OpError::new("not_attached", format!("{v} is not attached"))),
+            case::Loc::FrameOf(v) => {
+                let (root, scope) = self.place(v)?;
+                if scope.is_empty() {
+                    return Err(OpError::new("not_attached", format!("{v} is not attached")));
+                }
+                let l = self
+                    .root_model(&root)?
+                    .frame(&scope)
+                    .ok_or_else(|| OpError::new("not_attached", format!("{v} is not attached")))?;
+                Ok((root, l))
+            }
         }
+    }
+
+    /// Saves a handle to `loc` (a locator in `root`'s model) as seen from the model
+    /// that holds the element.
+    fn save_handle(&mut self, name: &str, root: &str, loc: &Loc) -> Result<(), OpError> {
+        let m = self.root_model(root)?;
+        let inner = m.element(loc).map(|e| e.loc()).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
+        // The variable whose model holds it: the deepest variable placed along the
+        // locator's scope, found by trying each variable rooted here.
+        let mut best: Option<(usize, String)> = None;
+        for (var, v) in &self.vars {
+            let (r, path) = match v {
+                Var::Own(_) => (var.clone(), Vec::new()),
+                Var::Placed { root, path } => (root.clone(), path.clone()),
+            };
+            if r != root {
+                continue;
+            }
+            let scope = path.join("/");
+            if self.lift(root, &scope, &inner).ok().as_ref() == Some(loc)
+                && best.as_ref().is_none_or(|b| b.0 < path.len())
+            {
+                best = Some((path.len(), var.clone()));
+            }
+        }
+        let (_, var) = best.ok_or_else(|| OpError::new("unknown", "no variable holds the new element"))?;
+        self.handles.insert(name.to_string(), (var, inner));
+        Ok(())
     }
 
     fn apply(&mut self, op: &Op, skip_compare: bool) -> Result<(), OpError> {
@@ -197,14 +295,14 @@ impl State<'_> {
         match &op.kind {
             OpKind::Load { name, file } => {
                 let m = ReadOptions::new().read_path(dir.join(file)).map_err(read_err)?;
-                self.models.insert(name.clone(), m);
+                self.vars.insert(name.clone(), Var::Own(m));
             }
             OpKind::New { name, model } => {
                 let m = Model::new(model.as_deref().unwrap_or("")).with_base_dir(dir);
-                self.models.insert(name.clone(), m);
+                self.vars.insert(name.clone(), Var::Own(m));
             }
             OpKind::Add { model, parent, tag, attrs, as_handle } => {
-                let (var, loc) = self.resolve(model, parent)?;
+                let (root, loc) = self.resolve(model, parent)?;
                 let mut el = Element::new(tag);
                 for (k, v) in attrs {
                     match numbers(v) {
@@ -212,14 +310,14 @@ impl State<'_> {
                         None => return Err(OpError::new("unknown", "null in add")),
                     }
                 }
-                let (m, new) = self.model(&var)?.add(&loc, el).map_err(edit_err)?;
-                self.models.insert(var.clone(), m);
+                let (m, new) = self.root_model(&root)?.add(&loc, el).map_err(edit_err)?;
+                self.set_root(&root, m);
                 if let Some(h) = as_handle {
-                    self.handles.insert(h.clone(), (var, new));
+                    self.save_handle(h, &root, &new)?;
                 }
             }
             OpKind::Set { model, target, attrs } => {
-                let (var, loc) = self.resolve(model, target)?;
+                let (root, loc) = self.resolve(model, target)?;
                 let mut a = Attrs::new();
                 for (k, v) in attrs {
                     a = match numbers(v) {
@@ -227,25 +325,139 @@ impl State<'_> {
                         None => a.clear(k),
                     };
                 }
-                let m = self.model(&var)?.set(&loc, a).map_err(edit_err)?;
-                self.models.insert(var, m);
+                let m = self.root_model(&root)?.set(&loc, a).map_err(edit_err)?;
+                self.set_root(&root, m);
             }
-            OpKind::Remove { model, target, affect_attachments: _ } => {
-                let (var, loc) = self.resolve(model, target)?;
-                let m = self.model(&var)?.remove(&loc).map_err(edit_err)?;
-                self.models.insert(var, m);
+            OpKind::Remove { model, target, affect_attachments } => {
+                let (root, loc) = self.resolve(model, target)?;
+                let m = self.root_model(&root)?;
+                let m = if *affect_attachments { m.remove_with_attachments(&loc) } else { m.remove(&loc) }
+                    .map_err(edit_err)?;
+                // Models whose frames went with the removed element are standalone
+                // again, with the value they had (and models inside them move along).
+                let mut gone: Vec<(String, Vec<String>, Model)> = Vec::new();
+                for (var, v) in &self.vars {
+                    if let Var::Placed { root: r, path } = v {
+                        if *r == root && m.attached(&path.join("/")).is_none() {
+                            gone.push((var.clone(), path.clone(), self.model(var)?.clone()));
+                        }
+                    }
+                }
+                self.set_root(&root, m);
+                for (var, path, value) in &gone {
+                    let outer = gone.iter().filter(|(_, p, _)| path.starts_with(p)).min_by_key(|(_, p, _)| p.len());
+                    let new = match outer {
+                        Some((o, p, _)) if o != var => Var::Placed { root: o.clone(), path: path[p.len()..].to_vec() },
+                        _ => Var::Own(value.clone()),
+                    };
+                    self.vars.insert(var.clone(), new);
+                }
             }
             OpKind::Rename { model, to } => {
-                let m = self.model(model)?.with_name(to);
-                self.models.insert(model.clone(), m);
+                let (root, scope) = self.place(model)?;
+                if scope.is_empty() {
+                    let m = self.root_model(&root)?.with_name(to);
+                    self.set_root(&root, m);
+                } else {
+                    let m = self.root_model(&root)?;
+                    let m = m.rename_scope(&scope, to).map_err(edit_err)?;
+                    let m = m.edit_attached(&scope_renamed(&scope, to), |c| Ok(c.with_name(to))).map_err(edit_err)?;
+                    self.set_root(&root, m);
+                    let depth = scope.split('/').count();
+                    for v in self.vars.values_mut() {
+                        if let Var::Placed { root: r, path } = v {
+                            if *r == root && path.len() >= depth && path[..depth].join("/") == scope {
+                                path[depth - 1] = to.clone();
+                            }
+                        }
+                    }
+                }
             }
             OpKind::IncludeCopy { parent, child, override_attributes } => {
                 let src = self.model(child)?.clone();
-                let m = self.model(parent)?.include_copy(&src, *override_attributes).map_err(edit_err)?;
-                self.models.insert(parent.clone(), m);
+                let (root, scope) = self.place(parent)?;
+                let m = self.root_model(&root)?;
+                let m = if scope.is_empty() {
+                    m.include_copy(&src, *override_attributes)
+                } else {
+                    m.edit_attached(&scope, |c| c.include_copy(&src, *override_attributes))
+                }
+                .map_err(edit_err)?;
+                self.set_root(&root, m);
             }
-            OpKind::Attach { .. } | OpKind::Detach { .. } => {
-                return Err(OpError::new("unsupported", "composition is not implemented yet"));
+            OpKind::Attach { parent, site, child, as_handle } => {
+                let (root, loc) = match site {
+                    AttachSite::World => {
+                        let (root, scope) = self.place(parent)?;
+                        let wb = self.model(parent)?.worldbody();
+                        let l = self.lift(&root, &scope, &wb)?;
+                        (root, l)
+                    }
+                    AttachSite::Name(name) => {
+                        self.resolve(parent, &case::Loc::Find { namespace: "site".into(), identifier: name.clone() })?
+                    }
+                    AttachSite::Loc(l) => self.resolve(parent, l)?,
+                };
+                // The reference checks the site, then the child's state.
+                let tag = self.root_model(&root)?.element(&loc).map(|e| e.tag()).unwrap_or("");
+                if tag != "site" && tag != "worldbody" {
+                    return Err(OpError::new("invalid_parent", format!("cannot attach at a <{tag}>")));
+                }
+                let child_model = match self.vars.get(child) {
+                    Some(Var::Own(m)) => m.clone(),
+                    Some(Var::Placed { .. }) => {
+                        return Err(OpError::new("already_attached", format!("{child} is attached")));
+                    }
+                    None => return Err(unknown(child)),
+                };
+                if root == *child {
+                    return Err(OpError::new("attach_to_self", "a model attached into itself"));
+                }
+                let (m, frame) = self.root_model(&root)?.attach(&loc, &child_model).map_err(edit_err)?;
+                // The scope path of the new attachment: the frame's holder, then its scope.
+                let scope =
+                    m.scope_of_frame(&frame).ok_or_else(|| OpError::new("unknown", "the new frame has no scope"))?;
+                self.set_root(&root, m);
+                let child_path: Vec<String> = scope.split('/').map(String::from).collect();
+                // The child and every variable placed inside it move under the root.
+                for (var, v) in self.vars.iter_mut() {
+                    match v {
+                        Var::Own(_) if var == child => {
+                            *v = Var::Placed { root: root.clone(), path: child_path.clone() };
+                        }
+                        Var::Placed { root: r, path } if r == child => {
+                            let mut p = child_path.clone();
+                            p.append(path);
+                            *v = Var::Placed { root: root.clone(), path: p };
+                        }
+                        _ => {}
+                    }
+                }
+                if let Some(h) = as_handle {
+                    self.save_handle(h, &root, &frame)?;
+                }
+            }
+            OpKind::Detach { child } => {
+                let (root, scope) = self.place(child)?;
+                if scope.is_empty() {
+                    return Err(OpError::new("not_attached", format!("{child} is not attached")));
+                }
+                let m = self.root_model(&root)?;
+                let value = m.attached(&scope).cloned().ok_or_else(|| OpError::new("not_attached", scope.clone()))?;
+                let m = m.detach(&scope).map_err(edit_err)?;
+                self.set_root(&root, m);
+                let depth = scope.split('/').count();
+                for (var, v) in self.vars.iter_mut() {
+                    if let Var::Placed { root: r, path } = v {
+                        if *r == root && path.len() >= depth && path[..depth].join("/") == scope {
+                            *v = if var == child {
+                                Var::Own(value.clone())
+                            } else {
+                                Var::Placed { root: child.clone(), path: path[depth..].to_vec() }
+                            };
+                        }
+                    }
+                }
             }
             OpKind::Output { model, file, options } => {
                 let opts = WriteOptions {
@@ -273,6 +485,14 @@ impl State<'_> {
             }
         }
         Ok(())
+    }
+}
+
+/// `a/b/c` with its last segment replaced by `to`.
+fn scope_renamed(scope: &str, to: &str) -> String {
+    match scope.rsplit_once('/') {
+        Some((outer, _)) => format!("{outer}/{to}"),
+        None => to.to_string(),
     }
 }
 

@@ -1,0 +1,337 @@
+//! `attach`, `detach`, scope renames, and edits that reach into attachments.
+//!
+//! An attachment is a frame node in the parent's body tree that holds the child
+//! `Model` value itself (shared, never copied or rewritten) and its scope name. Every
+//! position-dependent thing (prefixes, merged settings, default-class names, auto
+//! names) is derived by the writer, so detaching is removing that node: the parent
+//! comes back exactly as it was before the attach.
+
+use std::sync::Arc;
+
+use smol_str::SmolStr;
+
+use crate::error::ValueError;
+use crate::error::{EditError, ErrorKind};
+use crate::model::{Loc, Model};
+use crate::schema::{ElementKind, Namespace};
+use crate::tree::{Attached, Attr, ElementId, Node};
+
+use super::settings;
+
+/// The site attributes an attachment frame copies (reference §3.3).
+pub(crate) const FRAME_ATTRS: [&str; 7] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user"];
+
+/// The attributes a frame accepts after the attach (the copied ones and `mocap`).
+pub(crate) const FRAME_SETTABLE: [&str; 8] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user", "mocap"];
+
+impl Model {
+    /// Attaches `child` at `at`, a site (of this model or of a model attached to it) or
+    /// a worldbody, and returns the new model and a locator of the attachment frame.
+    ///
+    /// The frame copies `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`, `euler` and
+    /// `user` from the site, and sits right after it (after frames attached there
+    /// before), or at the end of the worldbody. The child's names get the scope prefix
+    /// `name/` when written, where `name` is the child's model name, or `name_1`,
+    /// `name_2`, ... if the model that receives it already has an attachment of that
+    /// name. The child value is shared, not copied: attaching costs O(depth · log
+    /// width) whatever its size, and one value can be attached any number of times.
+    ///
+    /// # Errors
+    /// Leaving `self` unchanged: `at` is neither a site nor a worldbody
+    /// ([`ErrorKind::InvalidParent`]), it does not exist ([`ErrorKind::NotFound`]), the
+    /// child's name holds a `/`, or a global setting conflicts
+    /// ([`ErrorKind::AttributeConflict`]).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Element, Model, Namespace};
+    /// let arena = Model::new("arena");
+    /// let (arena, _) = arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn")).unwrap();
+    /// let robot = Model::new("robot");
+    /// let (robot, _) = robot.add(&robot.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
+    /// let spawn = arena.find(Namespace::Site, "spawn").unwrap();
+    /// let (scene, _frame) = arena.attach(&spawn, &robot).unwrap();
+    /// assert!(scene.find(Namespace::Body, "robot/torso").is_some());
+    /// assert_eq!(scene.detach("robot").unwrap(), arena);
+    /// ```
+    pub fn attach(&self, at: &Loc, child: &Model) -> Result<(Model, Loc), EditError> {
+        let (new, frame) =
+            self.in_scope(at.scope(), &mut |m: &Model| m.attach_here(at.id(), child).map(|(m, f)| (m, Loc::new(f))))?;
+        settings::check(&new).map_err(|k| EditError::new(k, String::new()))?;
+        Ok((new, frame.within(at.scope())))
+    }
+
+    /// Attaches `child` at the end of the worldbody (see [`Model::attach`]).
+    pub fn attach_to_world(&self, child: &Model) -> Result<(Model, Loc), EditError> {
+        self.attach(&self.worldbody(), child)
+    }
+
+    fn attach_here(&self, at: ElementId, child: &Model) -> Result<(Model, ElementId), EditError> {
+        let path = self.path_of(at).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{at:?}")))?;
+        let where_ = self.describe(&path);
+        let err = |k: ErrorKind| EditError::new(k, where_.clone());
+        let node = self.node_at(&path).ok_or_else(|| err(ErrorKind::NotFound))?;
+        let base = child.name();
+        if base.contains('/') {
+            return Err(err(ErrorKind::InvalidValue {
+                tag: "mujoco",
+                attribute: "model",
+                value: base.to_string(),
+                error: ValueError::SlashInIdentifier,
+            }));
+        }
+        let scope = self.free_scope(base);
+        let tag = node.kind().tag();
+        let (parent_path, position, body_kind, attrs) = match tag {
+            "worldbody" => {
+                let kind = node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                (path.clone(), node.children().len(), kind, Vec::new())
+            }
+            "site" if !path.is_empty() => {
+                let (last, parent_path) = path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
+                let parent = self.node_at(&parent_path).ok_or_else(|| err(ErrorKind::NotFound))?;
+                let kind = parent.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                // Right after the site, after the frames already attached there.
+                let mut pos = last + 1;
+                while parent.children().get(pos).is_some_and(|c| c.attached().is_some()) {
+                    pos += 1;
+                }
+                (parent_path, pos, kind, frame_attrs(node, kind))
+            }
+            _ => return Err(err(ErrorKind::InvalidParent(tag))),
+        };
+        let id = ElementId::fresh();
+        let frame = Node::frame(id, body_kind, attrs, Attached { scope: scope.clone(), model: child.clone() });
+        let parent_id = self.node_at(&parent_path).map(Node::id);
+        let mut index = self.index.clone();
+        // A new frame has no identifier, so indexing it cannot find a duplicate.
+        let _ = index.insert_subtree(parent_id, &frame);
+        index.scopes.push_back((scope, id));
+        let root = self.root.update_path(&parent_path, |p| {
+            let mut children = p.children().clone();
+            children.insert(position.min(children.len()), frame);
+            Ok::<_, EditError>(p.with_children(children))
+        })?;
+        Ok((Model { root, index, files: self.files.clone() }, id))
+    }
+
+    /// `base`, or `base_1`, `base_2`, ... : the first scope name not taken here.
+    fn free_scope(&self, base: &str) -> SmolStr {
+        if self.index.frame_of(base).is_none() {
+            return base.into();
+        }
+        (1..)
+            .map(|n| SmolStr::from(format!("{base}_{n}")))
+            .find(|s| self.index.frame_of(s).is_none())
+            .unwrap_or_else(|| base.into())
+    }
+
+    /// The model without the attachment at `scope` (`robot`, or `arena/robot` for one
+    /// attached inside an attachment). `detach` of a fresh attach gives back exactly
+    /// the model it was attached to.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotAttached`] if no attachment has that scope path.
+    pub fn detach(&self, scope: &str) -> Result<Model, EditError> {
+        let (outer, last) = split_scope(scope);
+        let frames = self.scope_frames(outer)?;
+        let (m, ()) = self.in_scope(&frames, &mut |m: &Model| {
+            let frame = m.index.frame_of(last).ok_or_else(|| not_attached(scope))?;
+            let path = m.path_of(frame).ok_or_else(|| not_attached(scope))?;
+            let (pos, parent_path) = path.split_last().ok_or_else(|| not_attached(scope))?;
+            let node = m.node_at(&path).ok_or_else(|| not_attached(scope))?;
+            let mut index = m.index.clone();
+            index.remove_subtree(node);
+            let root = m.root.update_path(parent_path, |p| {
+                let mut children = p.children().clone();
+                children.remove(*pos);
+                Ok::<_, EditError>(p.with_children(children))
+            })?;
+            Ok((Model { root, index, files: m.files.clone() }, ()))
+        })?;
+        Ok(m)
+    }
+
+    /// The model attached at `scope` (`robot`, `arena/robot`), as it is now.
+    pub fn attached(&self, scope: &str) -> Option<&Model> {
+        let mut m = self;
+        for s in scope.split('/') {
+            let frame = m.index.frame_of(s)?;
+            m = &m.node_by_id(frame)?.attached()?.model;
+        }
+        Some(m)
+    }
+
+    /// The scope names of this model's own attachments, in attach order.
+    pub fn scopes(&self) -> impl Iterator<Item = &str> {
+        self.index.scopes.iter().map(|(s, _)| s.as_str())
+    }
+
+    /// The attachment frame of the model attached at `scope`.
+    pub fn frame(&self, scope: &str) -> Option<Loc> {
+        let frames = self.scope_frames(scope).ok()?;
+        let (last, outer) = frames.split_last()?;
+        Some(Loc::new(*last).within(outer))
+    }
+
+    /// Renames the attachment at `scope` to `to` (the attached value keeps its own
+    /// model name).
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotAttached`] for an unknown scope; [`ErrorKind::DuplicateIdentifier`]
+    /// if an attachment of the same model already has that name (including this
+    /// one, as in the reference); an invalid identifier (`/`, or empty).
+    pub fn rename_scope(&self, scope: &str, to: &str) -> Result<Model, EditError> {
+        if to.contains('/') || to.is_empty() {
+            return Err(EditError::new(
+                ErrorKind::InvalidValue {
+                    tag: "mujoco",
+                    attribute: "model",
+                    value: to.to_string(),
+                    error: ValueError::SlashInIdentifier,
+                },
+                scope.to_string(),
+            ));
+        }
+        let (outer, last) = split_scope(scope);
+        let frames = self.scope_frames(outer)?;
+        let (m, ()) = self.in_scope(&frames, &mut |m: &Model| {
+            let frame = m.index.frame_of(last).ok_or_else(|| not_attached(scope))?;
+            // As in the reference, the name must be free: renaming to the scope's own
+            // name is refused too.
+            if m.index.frame_of(to).is_some() {
+                return Err(EditError::new(
+                    ErrorKind::DuplicateIdentifier { namespace: Namespace::AttachmentFrame, name: to.into() },
+                    scope.to_string(),
+                ));
+            }
+            let path = m.path_of(frame).ok_or_else(|| not_attached(scope))?;
+            let mut index = m.index.clone();
+            for entry in index.scopes.iter_mut() {
+                if entry.1 == frame {
+                    entry.0 = to.into();
+                }
+            }
+            let root = m.root.update_path(&path, |n| {
+                let a = n.attached().ok_or_else(|| not_attached(scope))?;
+                Ok::<_, EditError>(n.with_attached(Attached { scope: to.into(), model: a.model.clone() }))
+            })?;
+            Ok((Model { root, index, files: m.files.clone() }, ()))
+        })?;
+        Ok(m)
+    }
+
+    /// The scope path (`robot`, `arena/robot`) of the attachment whose frame is at
+    /// `frame`.
+    pub fn scope_of_frame(&self, frame: &Loc) -> Option<String> {
+        let mut m = self;
+        let mut path = String::new();
+        for f in frame.scope() {
+            path.push_str(m.index.scope_of(*f)?);
+            path.push('/');
+            m = &m.node_by_id(*f)?.attached()?.model;
+        }
+        path.push_str(m.index.scope_of(frame.id())?);
+        Some(path)
+    }
+
+    /// The locator, in this model, of the element `inner` of the model attached at
+    /// `scope` (`inner` taken from that model on its own, or from an earlier version).
+    pub fn locate_in(&self, scope: &str, inner: &Loc) -> Option<Loc> {
+        let frames = self.scope_frames(scope).ok()?;
+        Some(inner.clone().within(&frames))
+    }
+
+    /// Applies `edit` to the model attached at `scope` and puts the result back in
+    /// its place (path copying through the attachments): the way to rename it,
+    /// `include_copy` into it, or run any edit written for a standalone model.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotAttached`] for an unknown scope; whatever `edit` returns; a
+    /// conflict of global settings that the edit causes.
+    pub fn edit_attached(
+        &self,
+        scope: &str,
+        edit: impl FnOnce(&Model) -> Result<Model, EditError>,
+    ) -> Result<Model, EditError> {
+        let frames = self.scope_frames(scope)?;
+        let mut edit = Some(edit);
+        let (m, ()) = self.in_scope(&frames, &mut |m: &Model| match edit.take() {
+            Some(f) => f(m).map(|m| (m, ())),
+            None => Ok((m.clone(), ())),
+        })?;
+        settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        Ok(m)
+    }
+
+    /// The frame ids along a scope path (`a/b` → [frame of a, frame of b in a]).
+    pub(crate) fn scope_frames(&self, scope: &str) -> Result<Vec<ElementId>, EditError> {
+        let mut frames = Vec::new();
+        if scope.is_empty() {
+            return Ok(frames);
+        }
+        let mut m = self;
+        for s in scope.split('/') {
+            let frame = m.index.frame_of(s).ok_or_else(|| not_attached(scope))?;
+            frames.push(frame);
+            m = &m.node_by_id(frame).and_then(Node::attached).ok_or_else(|| not_attached(scope))?.model;
+        }
+        Ok(frames)
+    }
+
+    /// Applies `f` to the model attached along `frames` (this model if empty) and puts
+    /// the result back by path copying through each frame.
+    pub(crate) fn in_scope<R>(&self, frames: &[ElementId], f: &mut ScopedEdit<'_, R>) -> Result<(Model, R), EditError> {
+        let Some((first, rest)) = frames.split_first() else { return f(self) };
+        let path = self.path_of(*first).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
+        let node = self.node_at(&path).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
+        let attached = node.attached().ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
+        let scope = attached.scope.clone();
+        let (child, r) = attached
+            .model
+            .in_scope(rest, f)
+            .map_err(|e| EditError::new(e.kind().clone(), scoped_path(&scope, e.path())))?;
+        let root =
+            self.root.update_path(&path, |n| Ok::<_, EditError>(n.with_attached(Attached { scope, model: child })))?;
+        Ok((Model { root, index: self.index.clone(), files: self.files.clone() }, r))
+    }
+}
+
+/// An edit of the model inside an attachment, returning the new model and a result.
+pub(crate) type ScopedEdit<'f, R> = dyn FnMut(&Model) -> Result<(Model, R), EditError> + 'f;
+
+fn scoped_path(scope: &str, path: &str) -> String {
+    if path.is_empty() { format!("<{scope}>") } else { format!("<{scope}>/{path}") }
+}
+
+fn split_scope(scope: &str) -> (&str, &str) {
+    scope.rsplit_once('/').unwrap_or(("", scope))
+}
+
+fn not_attached(scope: &str) -> EditError {
+    EditError::new(ErrorKind::NotAttached(scope.into()), scope.to_string())
+}
+
+/// The frame attributes copied from a site, as attributes of `body_kind`.
+fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
+    let site_kind = site.kind();
+    FRAME_ATTRS
+        .iter()
+        .filter_map(|name| {
+            let v = site.attr(site_kind.attr_index(name)?)?;
+            Some((u16::try_from(body_kind.attr_index(name)?).ok()?, v.clone()))
+        })
+        .collect()
+}
+
+impl Loc {
+    /// The same element, seen from a model `outer` levels of attachment further out.
+    pub(crate) fn within(self, outer: &[ElementId]) -> Loc {
+        if outer.is_empty() {
+            return self;
+        }
+        let mut scope: Vec<ElementId> = outer.to_vec();
+        scope.extend_from_slice(self.scope());
+        Loc::scoped(Arc::from(scope), self.id())
+    }
+}
