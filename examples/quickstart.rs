@@ -1,48 +1,61 @@
-//! Builds a small scene through the API and prints its MJCF.
+//! The seed scenario: an arena, two robots attached at its sites, the composed MJCF,
+//! and detach giving back the earlier value.
 //!
 //! ```text
 //! cargo run --example quickstart
 //! ```
 
-use mjcf::{Attrs, Element, Model, Namespace};
+use mjcf::{Element, Model, Namespace};
+
+/// A robot: a torso body with one geom, a slide joint along x and a motor on it.
+fn robot(geom: Element) -> Result<Model, mjcf::Error> {
+    let robot = Model::new("robot");
+    let (robot, _) = robot.add(
+        &robot.worldbody(),
+        Element::new("body")
+            .attr("name", "torso")
+            .child(Element::new("joint").attr("name", "slide_x").attr("type", "slide").attr("axis", [1.0, 0.0, 0.0]))
+            .child(geom.attr("name", "torso")),
+    )?;
+    let (robot, _) =
+        robot.add(&robot.actuator(), Element::new("motor").attr("name", "motor_x").attr("joint", "slide_x"))?;
+    Ok(robot)
+}
 
 fn main() -> Result<(), mjcf::Error> {
-    // An arena: a ground plane, a light and a spawn site.
+    // The arena: a ground plane and two spawn sites.
     let arena = Model::new("arena");
     let (arena, _) = arena.add(
         &arena.worldbody(),
-        Element::new("geom").attr("name", "floor").attr("type", "plane").attr("size", [5.0, 5.0, 0.1]),
+        Element::new("geom").attr("name", "ground").attr("type", "plane").attr("size", [5.0, 5.0, 0.1]),
     )?;
-    let (arena, _) =
-        arena.add(&arena.worldbody(), Element::new("light").attr("name", "top").attr("pos", [0.0, 0.0, 3.0]))?;
-    let (arena, _) =
+    let (arena, spawn) =
         arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn").attr("pos", [0.0, 0.0, 0.5]))?;
+    let (arena, spawn2) =
+        arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn2").attr("pos", [1.0, 0.0, 0.5]))?;
 
-    // A robot body with a box torso, a slide joint and a motor on it: one `add` per
-    // subtree, errors reported once, at the add.
-    let robot = Element::new("body")
-        .attr("name", "torso")
-        .attr("pos", [0.0, 0.0, 0.5])
-        .child(Element::new("joint").attr("name", "slide_x").attr("type", "slide").attr("axis", [1.0, 0.0, 0.0]))
-        .child(
-            Element::new("geom")
-                .attr("name", "torso")
-                .attr("type", "box")
-                .attr("size", [0.1, 0.1, 0.1])
-                .attr("mass", 1.0),
-        );
-    let (scene, torso) = arena.add(&arena.worldbody(), robot)?;
+    let boxy = robot(Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]).attr("mass", 1.0))?;
+    let ball = robot(Element::new("geom").attr("type", "sphere").attr("size", [0.1]).attr("mass", 0.5))?;
+
+    // Attach the first robot at `spawn` and give its frame a freejoint. The frame is
+    // then a moving body of its own, which MuJoCo wants to have some mass.
+    let (scene, frame) = arena.attach(&spawn, &boxy)?;
+    let (scene, _) = scene.add(&frame, Element::new("freejoint").attr("name", "root"))?;
     let (scene, _) = scene.add(
-        &scene.actuator(),
-        Element::new("motor").attr("name", "motor_x").attr("joint", "slide_x").attr("gear", 10),
+        &frame,
+        Element::new("inertial").attr("pos", [0.0, 0.0, 0.0]).attr("mass", 0.1).attr("diaginertia", [1e-3; 3]),
     )?;
+    // The second robot is also named `robot`: its scope becomes `robot_1`.
+    let (with_two, _) = scene.attach(&spawn2, &ball)?;
 
-    // Every edit is a new value; the old one stays as it was.
-    let moved = scene.set(&torso, Attrs::new().set("pos", [0.0, 0.0, 0.6]))?;
-    assert!(scene.find(Namespace::Body, "torso").is_some());
-    assert_ne!(moved, scene);
-    assert!(arena.find(Namespace::Body, "torso").is_none());
+    assert!(with_two.find(Namespace::Body, "robot/torso").is_some());
+    assert!(with_two.find(Namespace::Body, "robot_1/torso").is_some());
+    print!("{}", with_two.to_xml_string()?);
 
-    print!("{}", moved.to_xml_string()?);
+    // Detaching gives back exactly the earlier value; the robot values never changed.
+    assert_eq!(with_two.detach("robot_1")?, scene);
+    assert_eq!(scene.detach("robot")?.to_xml_string()?, arena.to_xml_string()?);
+    assert_eq!(boxy.name(), "robot");
+    eprintln!("detach(\"robot_1\") gives back the one-robot scene; the arena and robots are unchanged.");
     Ok(())
 }
