@@ -27,8 +27,6 @@ struct Copier<'a> {
     override_attributes: bool,
     /// Source id → id in the result.
     ids: HashMap<ElementId, ElementId>,
-    /// Roots of the copied subtrees (their new ids).
-    copied: HashSet<ElementId>,
 }
 
 impl Model {
@@ -52,7 +50,7 @@ impl Model {
         if !other.index.scopes.is_empty() {
             return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
         }
-        let mut c = Copier { dest: self, override_attributes, ids: HashMap::new(), copied: HashSet::new() };
+        let mut c = Copier { dest: self, override_attributes, ids: HashMap::new() };
         let mut path = String::new();
         let root = c.merge(&self.root, &other.root, 0, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
         // References anywhere (in copied and in merged elements, such as an included
@@ -115,13 +113,11 @@ impl Copier<'_> {
 
     /// Copies a subtree with fresh ids (iteratively).
     fn copy(&mut self, src: &Node) -> Node {
-        let copy = src.rebuild(|n, children| {
+        src.rebuild(|n, children| {
             let id = ElementId::fresh();
             self.ids.insert(n.id(), id);
             Node::new(id, n.kind(), n.attrs().to_vec(), children)
-        });
-        self.copied.insert(copy.id());
-        copy
+        })
     }
 }
 
