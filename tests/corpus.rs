@@ -18,6 +18,9 @@
 //! must read or fail with a positioned `invalid value` error whose value has a `/`
 //! (or, for hashed asset file names, with `FileNotFound`) — never a panic.
 
+#[path = "support/text.rs"]
+mod text;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -179,37 +182,6 @@ fn file_assets(model: &Model, options: &WriteOptions) -> BTreeMap<String, Vec<u8
     out
 }
 
-/// The text with the top-level `<default>…</default>` block (two-space indented, as
-/// pretty printing writes it) replaced by what reading and writing it again gives:
-/// the written root class `<default class="R">` is read as a class nested in an
-/// unnamed root class, which is written as `<default class="/">`.
-fn rewrapped_root_default(text: &str) -> String {
-    let mut out = String::new();
-    let mut inside = false;
-    for line in text.lines() {
-        match (inside, line) {
-            (false, "  <default>") => {
-                inside = true;
-                out.push_str("  <default>\n    <default class=\"/\">\n");
-            }
-            (true, "  </default>") => {
-                inside = false;
-                out.push_str("    </default>\n  </default>\n");
-            }
-            (true, l) => {
-                out.push_str("  ");
-                out.push_str(l);
-                out.push('\n');
-            }
-            (false, l) => {
-                out.push_str(l);
-                out.push('\n');
-            }
-        }
-    }
-    out
-}
-
 #[derive(Debug, Default)]
 struct Counts {
     inputs: usize,
@@ -352,7 +324,7 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
         match read.read_str(&w1) {
             Ok(m2) => {
                 let w2 = m2.to_xml_string_with(&options).unwrap();
-                assert_eq!(w2, rewrapped_root_default(&w1), "{name}: write(read(write(m))) differs");
+                assert_eq!(w2, text::rewrapped_root_default(&w1), "{name}: write(read(write(m))) differs");
                 c.rewritten_after_naming_root_class += 1;
             }
             Err(e) => {

@@ -13,6 +13,9 @@
 //! differential check: reading that text gives the same output as building the model
 //! through the API.
 
+#[path = "support/text.rs"]
+mod text;
+
 use std::collections::{HashMap, HashSet};
 
 use mjcf::{
@@ -437,7 +440,7 @@ fn write_read_write_is_a_fixed_point() {
             if root.is_none() {
                 prop_assert_eq!(w2, w1);
             } else {
-                prop_assert_eq!(&w2, &rewrapped_root_default(&w1));
+                prop_assert_eq!(&w2, &text::rewrapped_root_default(&w1));
                 let w3 = write(&Model::from_xml_str(&w2).map_err(|e| TestCaseError::fail(format!("{e}\n{w2}")))?);
                 prop_assert_eq!(w3, w2);
             }
@@ -455,31 +458,8 @@ fn written_empty_models_read_back_unchanged() {
     let m = m.set_attr(&m.default_class(), "class", "main").unwrap();
     let w = write(&m);
     let again = write(&Model::from_xml_str(&w).unwrap());
-    assert_eq!(again, rewrapped_root_default(&w));
+    assert_eq!(again, text::rewrapped_root_default(&w));
     assert_eq!(write(&Model::from_xml_str(&again).unwrap()), again);
-}
-
-/// What reading `text` (a model with a named root class) and writing it again gives:
-/// the root class `<default class="R">` comes back as a class nested in an unnamed
-/// root class, so the defaults gain one level, `<default class="/">`.
-fn rewrapped_root_default(text: &str) -> String {
-    let mut out = String::new();
-    let mut inside = false;
-    for line in text.lines() {
-        match (inside, line) {
-            (false, "  <default>") => {
-                inside = true;
-                out.push_str("  <default>\n    <default class=\"/\">\n");
-            }
-            (true, "  </default>") => {
-                inside = false;
-                out.push_str("    </default>\n  </default>\n");
-            }
-            (true, l) => out.push_str(&format!("  {l}\n")),
-            (false, l) => out.push_str(&format!("{l}\n")),
-        }
-    }
-    out
 }
 
 // ---------------------------------------------------------------------------------

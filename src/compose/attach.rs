@@ -21,8 +21,11 @@ use super::settings;
 /// The site attributes an attachment frame copies (reference §3.3).
 pub(crate) const FRAME_ATTRS: [&str; 7] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user"];
 
-/// The attributes a frame accepts after the attach (the copied ones and `mocap`).
-pub(crate) const FRAME_SETTABLE: [&str; 8] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user", "mocap"];
+/// Whether a frame accepts attribute `name` after the attach: the copied ones and
+/// `mocap`.
+pub(crate) fn frame_settable(name: &str) -> bool {
+    name == "mocap" || FRAME_ATTRS.contains(&name)
+}
 
 impl Model {
     /// Attaches `child` at `at`, a site (of this model or of a model attached to it) or
@@ -154,12 +157,7 @@ impl Model {
 
     /// The model attached at `scope` (`robot`, `arena/robot`), as it is now.
     pub fn attached(&self, scope: &str) -> Option<&Model> {
-        let mut m = self;
-        for s in scope.split('/') {
-            let frame = m.index.frame_of(s)?;
-            m = &m.node_by_id(frame)?.attached()?.model;
-        }
-        Some(m)
+        self.scoped_model(&self.scope_frames(scope).ok()?)
     }
 
     /// The scope names of this model's own attachments, in attach order.
@@ -221,18 +219,24 @@ impl Model {
         Ok(m)
     }
 
+    /// The scope path (`""`, `robot`, `arena/robot`) of the model that holds the
+    /// element at `loc`.
+    pub fn scope_path(&self, loc: &Loc) -> Option<String> {
+        let mut m = self;
+        let mut path: Vec<&str> = Vec::new();
+        for f in loc.scope() {
+            path.push(m.index.scope_of(*f)?);
+            m = &m.node_by_id(*f)?.attached()?.model;
+        }
+        Some(path.join("/"))
+    }
+
     /// The scope path (`robot`, `arena/robot`) of the attachment whose frame is at
     /// `frame`.
     pub fn scope_of_frame(&self, frame: &Loc) -> Option<String> {
-        let mut m = self;
-        let mut path = String::new();
-        for f in frame.scope() {
-            path.push_str(m.index.scope_of(*f)?);
-            path.push('/');
-            m = &m.node_by_id(*f)?.attached()?.model;
-        }
-        path.push_str(m.index.scope_of(frame.id())?);
-        Some(path)
+        let outer = self.scope_path(frame)?;
+        let scope = self.scoped_model(frame.scope())?.index.scope_of(frame.id())?;
+        Some(if outer.is_empty() { scope.to_string() } else { format!("{outer}/{scope}") })
     }
 
     /// The locator, in this model, of the element `inner` of the model attached at
@@ -283,9 +287,9 @@ impl Model {
     /// the result back by path copying through each frame.
     pub(crate) fn in_scope<R>(&self, frames: &[ElementId], f: &mut ScopedEdit<'_, R>) -> Result<(Model, R), EditError> {
         let Some((first, rest)) = frames.split_first() else { return f(self) };
-        let path = self.path_of(*first).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
-        let node = self.node_at(&path).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
-        let attached = node.attached().ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{first:?}")))?;
+        let missing = || EditError::new(ErrorKind::NotFound, format!("{first:?}"));
+        let path = self.path_of(*first).ok_or_else(missing)?;
+        let attached = self.node_at(&path).and_then(Node::attached).ok_or_else(missing)?;
         let scope = attached.scope.clone();
         let (child, r) = attached
             .model

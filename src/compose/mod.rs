@@ -4,4 +4,4 @@ mod attach;
 mod include;
 pub(crate) mod settings;
 
-pub(crate) use attach::FRAME_SETTABLE;
+pub(crate) use attach::frame_settable;

@@ -473,9 +473,19 @@ impl Model {
     pub fn set(&self, loc: &Loc, attrs: Attrs) -> Result<Model, EditError> {
         let inner = Loc::new(loc.id());
         let (m, ()) = self.in_scope(loc.scope(), &mut |m: &Model| m.set_here(&inner, &attrs).map(|m| (m, ())))?;
-        // An edit of a setting on either side of an attachment may conflict.
-        crate::compose::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        // An edit of a global setting, on either side of an attachment, may conflict;
+        // no other edit takes part in the merge.
+        if self.in_settings_section(loc) {
+            crate::compose::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        }
         Ok(m)
+    }
+
+    /// Whether the element lies in a global settings section (`option`, ...).
+    fn in_settings_section(&self, loc: &Loc) -> bool {
+        let Some(m) = self.scoped_model(loc.scope()) else { return false };
+        let Some(section) = m.path_of(loc.id).and_then(|p| p.first().copied()) else { return false };
+        m.root.children().get(section).is_some_and(|n| crate::compose::settings::is_settings_section(n.kind()))
     }
 
     fn set_here(&self, loc: &Loc, attrs: &Attrs) -> Result<Model, EditError> {
@@ -487,7 +497,7 @@ impl Model {
         let mut basepaths = self.basepaths();
         let mut changes = Vec::with_capacity(attrs.len());
         for (name, input) in attrs.items() {
-            if node.attached().is_some() && !crate::compose::FRAME_SETTABLE.contains(&name.as_str()) {
+            if node.attached().is_some() && !crate::compose::frame_settable(name) {
                 return Err(err(ErrorKind::UnknownAttribute { tag: "body", attribute: name.clone() }));
             }
             let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };

@@ -74,8 +74,18 @@ impl Model {
     /// sibling classes (`robot/`), its section elements follow the parent's own, and
     /// the global settings are merged.
     pub fn to_xml_string_with(&self, options: &WriteOptions) -> Result<String, WriteError> {
+        // The merged global settings, folded before anything is written.
+        let mut merged = Vec::new();
+        for section in self.root.children() {
+            if settings::is_settings_section(section.kind()) {
+                let m =
+                    settings::merged_section(self, section.kind()).map_err(|k| WriteError::Conflict(k.to_string()))?;
+                merged.extend(m);
+            }
+        }
         let mut w = Writer {
             insts: instances(self),
+            merged: &merged,
             out: String::with_capacity(4096),
             style: FloatStyle { precision: options.precision, zero_threshold: options.zero_threshold },
             options,
@@ -106,18 +116,17 @@ struct Inst<'a> {
 /// Every model of the composition, depth first in attach order (the root first).
 fn instances(model: &Model) -> Vec<Inst<'_>> {
     let mut insts: Vec<Inst<'_>> = Vec::new();
-    // (model, prefix, (parent instance, frame id))
-    type Pending<'m> = (&'m Model, String, Option<(usize, ElementId)>);
+    // (model, prefix, (parent instance, frame id, scope name))
+    type Pending<'m> = (&'m Model, String, Option<(usize, ElementId, &'m str)>);
     let mut stack: Vec<Pending<'_>> = vec![(model, String::new(), None)];
     while let Some((m, prefix, parent)) = stack.pop() {
         let i = insts.len();
-        if let Some((p, frame)) = parent {
-            let scope = insts[p].model.index.scope_of(frame).map(|s| s.as_str()).unwrap_or("");
+        if let Some((p, frame, scope)) = parent {
             insts[p].frames.insert(frame, (scope, i));
         }
         for (scope, frame) in m.index.scopes.iter().rev() {
             if let Some(a) = m.node_by_id(*frame).and_then(Node::attached) {
-                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, *frame))));
+                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, *frame, scope.as_str()))));
             }
         }
         insts.push(Inst { model: m, prefix, counters: HashMap::new(), auto_index: None, frames: HashMap::new() });
@@ -127,6 +136,9 @@ fn instances(model: &Model) -> Vec<Inst<'_>> {
 
 struct Writer<'a> {
     insts: Vec<Inst<'a>>,
+    /// The merged settings sections (`compiler`, `option`, ...), written in place of
+    /// the root model's own.
+    merged: &'a [Node],
     out: String,
     style: FloatStyle,
     options: &'a WriteOptions,
@@ -176,12 +188,19 @@ impl<'a> Writer<'a> {
         self.newline();
         for section in root.children() {
             let kind = section.kind();
-            if settings::is_settings_section(kind) {
-                let merged = settings::merged_section(model, kind).map_err(|k| WriteError::Conflict(k.to_string()))?;
-                if let Some(m) = merged.filter(emits) {
-                    self.write_owned(0, &m, 1)?;
+            // Containers are walked even when empty: attachments may fill them (the
+            // walk leaves out a section that ends up empty).
+            let (section, walk) = if settings::is_settings_section(kind) {
+                match self.merged.iter().find(|m| m.kind() == kind) {
+                    Some(m) => (m, emits(m)),
+                    None => continue,
                 }
-            } else if kind.tag() != "worldbody" || emits(section) {
+            } else if kind.tag() == "worldbody" {
+                (section, emits(section))
+            } else {
+                (section, true)
+            };
+            if walk {
                 self.walk(Step::Enter { inst: 0, node: section, depth: 1, childclass: false, frame: None })?;
             }
         }
@@ -269,7 +288,11 @@ impl<'a> Writer<'a> {
                                 });
                             }
                         }
-                        if top_section && !is_root_default && kind.tag() != "worldbody" {
+                        if top_section
+                            && !is_root_default
+                            && kind.tag() != "worldbody"
+                            && !settings::is_settings_section(kind)
+                        {
                             // Each attachment's part of the section, in attach order.
                             for j in 1..self.insts.len() {
                                 let Some(sec) = self.insts[j].model.root.child_of_kind(kind) else { continue };
@@ -306,38 +329,6 @@ impl<'a> Writer<'a> {
                     children.reverse();
                     stack.extend(children);
                 }
-            }
-        }
-        Ok(())
-    }
-
-    /// Writes an owned subtree of singletons (a merged settings section).
-    fn write_owned(&mut self, inst: usize, node: &Node, depth: usize) -> Result<(), WriteError> {
-        let mut stack: Vec<(Node, usize, bool)> = vec![(node.clone(), depth, false)];
-        while let Some((n, d, close)) = stack.pop() {
-            if close {
-                self.indent(d);
-                self.out.push_str("</");
-                self.out.push_str(n.kind().tag());
-                self.out.push('>');
-                self.newline();
-                continue;
-            }
-            self.indent(d);
-            self.out.push('<');
-            self.out.push_str(n.kind().tag());
-            self.write_attrs(inst, &n, false, None)?;
-            let children: Vec<Node> = n.children().iter().filter(|c| emits(c)).cloned().collect();
-            if children.is_empty() {
-                self.out.push_str("/>");
-                self.newline();
-                continue;
-            }
-            self.out.push('>');
-            self.newline();
-            stack.push((n.clone(), d, true));
-            for c in children.into_iter().rev() {
-                stack.push((c, d + 1, false));
             }
         }
         Ok(())

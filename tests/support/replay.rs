@@ -267,25 +267,14 @@ impl State<'_> {
     fn save_handle(&mut self, name: &str, root: &str, loc: &Loc) -> Result<(), OpError> {
         let m = self.root_model(root)?;
         let inner = m.element(loc).map(|e| e.loc()).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
-        // The variable whose model holds it: the deepest variable placed along the
-        // locator's scope, found by trying each variable rooted here.
-        let mut best: Option<(usize, String)> = None;
-        for (var, v) in &self.vars {
-            let (r, path) = match v {
-                Var::Own(_) => (var.clone(), Vec::new()),
-                Var::Placed { root, path } => (root.clone(), path.clone()),
-            };
-            if r != root {
-                continue;
-            }
-            let scope = path.join("/");
-            if self.lift(root, &scope, &inner).ok().as_ref() == Some(loc)
-                && best.as_ref().is_none_or(|b| b.0 < path.len())
-            {
-                best = Some((path.len(), var.clone()));
-            }
-        }
-        let (_, var) = best.ok_or_else(|| OpError::new("unknown", "no variable holds the new element"))?;
+        // The variable whose model holds it: the one placed at the element's scope.
+        let scope = m.scope_path(loc).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
+        let var = self
+            .vars
+            .keys()
+            .find(|v| self.place(v).is_ok_and(|(r, p)| r == root && p == scope))
+            .cloned()
+            .ok_or_else(|| OpError::new("unknown", "no variable holds the new element"))?;
         self.handles.insert(name.to_string(), (var, inner));
         Ok(())
     }
