@@ -65,7 +65,7 @@ pub(crate) struct NodeData {
 }
 
 /// What an attachment frame holds besides its own attributes and children.
-#[derive(Clone, PartialEq)]
+#[derive(Clone)]
 pub(crate) struct Attached {
     /// The scope name (`robot`, `robot_1`), chosen at attach time.
     pub(crate) scope: SmolStr,
@@ -253,8 +253,9 @@ impl fmt::Debug for Node {
 }
 
 impl PartialEq for Node {
-    /// Structural equality (same ids, kinds, attributes and children), with a
-    /// shortcut for shared nodes. Iterative.
+    /// Structural equality (same ids, kinds, attributes and children, and equal
+    /// attachments), with a shortcut for shared nodes. Iterative, through attached
+    /// models too.
     fn eq(&self, other: &Node) -> bool {
         let mut stack = vec![(self, other)];
         while let Some((a, b)) = stack.pop() {
@@ -265,9 +266,18 @@ impl PartialEq for Node {
                 || a.kind() != b.kind()
                 || a.attrs() != b.attrs()
                 || a.children().len() != b.children().len()
-                || a.attached() != b.attached()
             {
                 return false;
+            }
+            match (a.attached(), b.attached()) {
+                (None, None) => {}
+                (Some(x), Some(y)) => {
+                    if x.scope != y.scope || x.model.name() != y.model.name() {
+                        return false;
+                    }
+                    stack.push((&x.model.root, &y.model.root));
+                }
+                _ => return false,
             }
             stack.extend(a.children().iter().zip(b.children().iter()));
         }
@@ -275,16 +285,30 @@ impl PartialEq for Node {
     }
 }
 
+impl PartialEq for Attached {
+    fn eq(&self, other: &Attached) -> bool {
+        self.scope == other.scope && self.model == other.model
+    }
+}
+
 impl Drop for NodeData {
-    /// Drops the subtree iteratively, so that a very deep tree cannot overflow the stack.
+    /// Drops the subtree iteratively, attached models included, so that a very deep
+    /// tree or a very deep nesting of attachments cannot overflow the stack.
     fn drop(&mut self) {
-        if self.children.is_empty() {
+        if self.children.is_empty() && self.attached.is_none() {
             return;
         }
         let mut stack: Vec<Node> = std::mem::take(&mut self.children).into_iter().collect();
-        while let Some(node) = stack.pop() {
+        let mut attached = self.attached.take();
+        loop {
+            // The last owner of an attachment hands its model's tree to the loop.
+            if let Some(a) = attached.take().and_then(|a| Arc::try_unwrap(a).ok()) {
+                stack.push(a.model.root.clone());
+            }
+            let Some(node) = stack.pop() else { break };
             if let Ok(mut data) = Arc::try_unwrap(node.0) {
                 stack.extend(std::mem::take(&mut data.children));
+                attached = data.attached.take();
             }
         }
     }

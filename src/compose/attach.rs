@@ -284,20 +284,35 @@ impl Model {
     }
 
     /// Applies `f` to the model attached along `frames` (this model if empty) and puts
-    /// the result back by path copying through each frame.
+    /// the result back by path copying through each frame. Iterative, so attachments
+    /// nested any number of levels deep cannot overflow the stack.
     pub(crate) fn in_scope<R>(&self, frames: &[ElementId], f: &mut ScopedEdit<'_, R>) -> Result<(Model, R), EditError> {
-        let Some((first, rest)) = frames.split_first() else { return f(self) };
-        let missing = || EditError::new(ErrorKind::NotFound, format!("{first:?}"));
-        let path = self.path_of(*first).ok_or_else(missing)?;
-        let attached = self.node_at(&path).and_then(Node::attached).ok_or_else(missing)?;
-        let scope = attached.scope.clone();
-        let (child, r) = attached
-            .model
-            .in_scope(rest, f)
-            .map_err(|e| EditError::new(e.kind().clone(), scoped_path(&scope, e.path())))?;
-        let root =
-            self.root.update_path(&path, |n| Ok::<_, EditError>(n.with_attached(Attached { scope, model: child })))?;
-        Ok((Model { root, index: self.index.clone(), files: self.files.clone() }, r))
+        // Down: each model along the way, the path to its frame and the scope name.
+        let mut chain: Vec<(&Model, Vec<usize>, SmolStr)> = Vec::with_capacity(frames.len());
+        // An error inside names its path with the scopes it is in, outermost first.
+        let wrap = |e: EditError, chain: &[(&Model, Vec<usize>, SmolStr)]| {
+            let path = chain.iter().rev().fold(e.path().to_string(), |p, (_, _, scope)| scoped_path(scope, &p));
+            EditError::new(e.kind().clone(), path)
+        };
+        let mut m = self;
+        for frame in frames {
+            let missing = || EditError::new(ErrorKind::NotFound, format!("{frame:?}"));
+            let path = m.path_of(*frame).ok_or_else(|| wrap(missing(), &chain))?;
+            let Some(attached) = m.node_at(&path).and_then(Node::attached) else {
+                return Err(wrap(missing(), &chain));
+            };
+            chain.push((m, path, attached.scope.clone()));
+            m = &attached.model;
+        }
+        let (mut inner, r) = f(m).map_err(|e| wrap(e, &chain))?;
+        // Up: put each new model back into its frame.
+        for (outer, path, scope) in chain.into_iter().rev() {
+            let root = outer
+                .root
+                .update_path(&path, |n| Ok::<_, EditError>(n.with_attached(Attached { scope, model: inner })))?;
+            inner = Model { root, index: outer.index.clone(), files: outer.files.clone() };
+        }
+        Ok((inner, r))
     }
 }
 

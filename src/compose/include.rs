@@ -19,9 +19,6 @@ use crate::schema::{ElementKind, Merge, Multiplicity};
 use crate::tree::{Attr, ElementId, Node};
 use crate::value::{Reference, Value, number};
 
-/// Deepest nesting of merged (not copied) elements followed.
-const MAX_MERGE_DEPTH: usize = 10_000;
-
 struct Copier<'a> {
     dest: &'a Model,
     override_attributes: bool,
@@ -52,7 +49,7 @@ impl Model {
         }
         let mut c = Copier { dest: self, override_attributes, ids: HashMap::new() };
         let mut path = String::new();
-        let root = c.merge(&self.root, &other.root, 0, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
+        let root = c.merge(&self.root, &other.root, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
         // References anywhere (in copied and in merged elements, such as an included
         // default class naming an included material) follow the copies.
         let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
@@ -70,32 +67,69 @@ impl Model {
 }
 
 impl Copier<'_> {
-    /// Merges `src` into `dest` (same kind).
-    fn merge(&mut self, dest: &Node, src: &Node, depth: usize, path: &mut String) -> Result<Node, ErrorKind> {
-        if depth > MAX_MERGE_DEPTH {
-            return Err(ErrorKind::TooDeep(MAX_MERGE_DEPTH));
+    /// Merges `src` into `dest` (same kind), iteratively: merged children are followed
+    /// with an explicit stack, so merging chains of any depth cannot overflow it.
+    fn merge(&mut self, dest: &Node, src: &Node, path: &mut String) -> Result<Node, ErrorKind> {
+        /// An element being merged.
+        struct Merging<'s> {
+            dest: Node,
+            src: &'s Node,
+            attrs: Vec<Attr>,
+            children: Vector<Node>,
+            /// The next of `src`'s children.
+            next: usize,
+            /// The position in the parent's children this merge replaces.
+            slot: usize,
+            path_len: usize,
         }
-        self.ids.insert(src.id(), dest.id());
-        let attrs = merge_attrs(dest, src, self.override_attributes)?;
-        let mut children = dest.children().clone();
-        for s in src.children() {
-            let kind = s.kind();
-            let existing = match kind.multiplicity() {
-                Multiplicity::Singleton | Multiplicity::OnDemand => children.iter().position(|c| c.kind() == kind),
-                Multiplicity::Repeated => self.override_target(&children, s)?,
-            };
-            match existing {
-                Some(p) => {
-                    let len = path.len();
-                    crate::model::push_path(path, kind.tag(), s.identifier());
-                    let merged = self.merge(&children[p], s, depth + 1, path)?;
-                    path.truncate(len);
-                    children.set(p, merged);
+        fn start<'s>(
+            c: &mut Copier<'_>,
+            dest: &Node,
+            src: &'s Node,
+            slot: usize,
+            path_len: usize,
+        ) -> Result<Merging<'s>, ErrorKind> {
+            c.ids.insert(src.id(), dest.id());
+            let attrs = merge_attrs(dest, src, c.override_attributes)?;
+            Ok(Merging { dest: dest.clone(), src, attrs, children: dest.children().clone(), next: 0, slot, path_len })
+        }
+        let mut stack = vec![start(self, dest, src, 0, path.len())?];
+        while let Some(top) = stack.last_mut() {
+            if let Some(s) = top.src.children().get(top.next) {
+                top.next += 1;
+                let kind = s.kind();
+                let existing = match kind.multiplicity() {
+                    Multiplicity::Singleton | Multiplicity::OnDemand => {
+                        top.children.iter().position(|c| c.kind() == kind)
+                    }
+                    Multiplicity::Repeated => self.override_target(&top.children, s)?,
+                };
+                match existing {
+                    Some(p) => {
+                        let path_len = path.len();
+                        crate::model::push_path(path, kind.tag(), s.identifier());
+                        let d = top.children[p].clone();
+                        stack.push(start(self, &d, s, p, path_len)?);
+                    }
+                    None => {
+                        let copy = self.copy(s);
+                        top.children.push_back(copy);
+                    }
                 }
-                None => children.push_back(self.copy(s)),
+                continue;
+            }
+            let Some(done) = stack.pop() else { break };
+            let node = done.dest.with_parts(done.attrs, done.children);
+            path.truncate(done.path_len);
+            match stack.last_mut() {
+                Some(parent) => {
+                    parent.children.set(done.slot, node);
+                }
+                None => return Ok(node),
             }
         }
-        Ok(dest.with_parts(attrs, children))
+        // The loop returns when the outermost element is merged.
+        Ok(dest.clone())
     }
 
     /// With `override_attributes`, the position of the same-named child of `dest`.

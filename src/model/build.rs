@@ -76,43 +76,106 @@ impl Attrs {
 /// let (m, torso) = m.add(&m.worldbody(), body).unwrap();
 /// assert_eq!(m.find(mjcf::Namespace::Body, "torso"), Some(torso));
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+// The element and its descendants are kept flat (an arena with child indices), not as
+// nested values: cloning, comparing and dropping never recurse, so an element nested
+// any number of levels deep cannot overflow the stack.
+#[derive(Clone)]
 pub struct Element {
-    tag: SmolStr,
-    attrs: Attrs,
-    children: Vec<Element>,
+    parts: Vec<Part>,
+    /// The index of this element's own part; every index in `parts` is valid.
+    root: usize,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Part {
+    pub(crate) tag: SmolStr,
+    pub(crate) attrs: Attrs,
+    pub(crate) children: Vec<usize>,
 }
 
 impl Element {
     /// An element with this tag and nothing else.
     pub fn new(tag: &str) -> Element {
-        Element { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }
+        Element { parts: vec![Part { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }], root: 0 }
     }
 
     /// Sets an attribute (checked when the element is added).
     #[must_use]
     pub fn attr(mut self, name: &str, value: impl Into<AttrInput>) -> Element {
-        self.attrs = self.attrs.set(name, value);
+        let root = self.root;
+        let part = &mut self.parts[root];
+        part.attrs = std::mem::take(&mut part.attrs).set(name, value);
         self
     }
 
     /// Sets several attributes.
     #[must_use]
     pub fn attrs(mut self, attrs: Attrs) -> Element {
-        self.attrs.items.extend(attrs.items);
+        let root = self.root;
+        self.parts[root].attrs.items.extend(attrs.items);
         self
     }
 
     /// Appends a child element.
+    ///
+    /// Time: O(size of the smaller of the two), so building a chain of any depth
+    /// either way round costs O(n log n).
     #[must_use]
-    pub fn child(mut self, child: Element) -> Element {
-        self.children.push(child);
-        self
+    pub fn child(self, child: Element) -> Element {
+        // Move the smaller arena into the larger one.
+        let (mut big, small, parent_is_big) =
+            if self.parts.len() >= child.parts.len() { (self, child, true) } else { (child, self, false) };
+        let offset = big.parts.len();
+        big.parts.extend(small.parts.into_iter().map(|mut p| {
+            p.children.iter_mut().for_each(|c| *c += offset);
+            p
+        }));
+        let (parent, child) =
+            if parent_is_big { (big.root, small.root + offset) } else { (small.root + offset, big.root) };
+        big.parts[parent].children.push(child);
+        big.root = parent;
+        big
     }
 
     /// The tag.
     pub fn tag(&self) -> &str {
-        &self.tag
+        &self.parts[self.root].tag
+    }
+
+    /// This element's own part.
+    pub(crate) fn root_part(&self) -> &Part {
+        &self.parts[self.root]
+    }
+
+    /// The part at `index` (an index taken from another part's children).
+    pub(crate) fn part(&self, index: usize) -> &Part {
+        &self.parts[index]
+    }
+}
+
+impl PartialEq for Element {
+    /// Structural equality: same tags, attributes and children (iterative).
+    fn eq(&self, other: &Element) -> bool {
+        let mut stack = vec![(self.root_part(), other.root_part())];
+        while let Some((a, b)) = stack.pop() {
+            if a.tag != b.tag || a.attrs != b.attrs || a.children.len() != b.children.len() {
+                return false;
+            }
+            stack.extend(a.children.iter().zip(&b.children).map(|(x, y)| (self.part(*x), other.part(*y))));
+        }
+        true
+    }
+}
+
+impl std::fmt::Debug for Element {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let root = self.root_part();
+        f.debug_struct("Element")
+            .field("tag", &root.tag)
+            .field("attrs", &root.attrs)
+            .field("children", &root.children.len())
+            .field("descendants", &(self.parts.len() - 1))
+            .finish()
     }
 }
 
@@ -297,58 +360,96 @@ pub(crate) fn build(
     el: &Element,
     path: &mut String,
 ) -> Result<Node, ErrorKind> {
-    let kind =
-        parent.child(&el.tag).ok_or_else(|| ErrorKind::InvalidChild { parent: parent.tag(), tag: el.tag.clone() })?;
+    let root = el.root_part();
+    let kind = parent
+        .child(&root.tag)
+        .ok_or_else(|| ErrorKind::InvalidChild { parent: parent.tag(), tag: root.tag.clone() })?;
     if kind.multiplicity() == Multiplicity::Singleton {
         return Err(ErrorKind::DuplicateChild(kind.tag()));
     }
     push_segment(path, kind.tag(), None);
-    let node = fill(ctx, empty_node(kind), el, path)?;
-    Ok(node)
+    fill(ctx, empty_node(kind), el, path)
 }
 
-/// Applies `el`'s attributes and children to `node` (of the same kind).
-fn fill(ctx: &ValueCtx<'_>, node: Node, el: &Element, path: &mut String) -> Result<Node, ErrorKind> {
-    let kind = node.kind();
-    let mut changes = Vec::with_capacity(el.attrs.items.len());
-    for (name, input) in &el.attrs.items {
-        changes.push(ctx.attr(kind, name, input.as_ref())?);
-    }
-    let mut attrs = node.attrs().to_vec();
-    apply_attrs(kind, &mut attrs, changes)?;
-    name_from_file(kind, &mut attrs);
-    check_required(kind, &attrs)?;
-    let mut children = node.children().clone();
-    for child in &el.children {
-        let Some(child_kind) = kind.child(&child.tag) else {
-            return Err(ErrorKind::InvalidChild { parent: kind.tag(), tag: child.tag.clone() });
-        };
-        let depth = path.len();
-        match child_kind.multiplicity() {
-            Multiplicity::Singleton => {
-                push_segment(path, child_kind.tag(), None);
-                let pos = children.iter().position(|c| c.kind() == child_kind);
-                let existing = pos.map(|p| children[p].clone()).unwrap_or_else(|| empty_node(child_kind));
-                let filled = fill(ctx, existing, child, path)?;
-                match pos {
-                    Some(p) => {
-                        children.set(p, filled);
-                    }
-                    None => children.push_back(filled),
-                }
-            }
-            Multiplicity::OnDemand if children.iter().any(|c| c.kind() == child_kind) => {
-                return Err(ErrorKind::DuplicateChild(child_kind.tag()));
-            }
-            _ => {
-                push_segment(path, child_kind.tag(), None);
-                let built = fill(ctx, empty_node(child_kind), child, path)?;
-                children.push_back(built);
-            }
+/// A node being filled from a part of an [`Element`].
+struct Filling<'e> {
+    id: ElementId,
+    kind: ElementKind,
+    attrs: Vec<Attr>,
+    children: Vector<Node>,
+    part: &'e Part,
+    /// The next of `part`'s children to fill.
+    next: usize,
+    /// The length of the error path before this element's segment.
+    path_len: usize,
+    /// Where the finished node goes among its parent's children: replacing the
+    /// singleton at this position, or (`None`) appended.
+    slot: Option<usize>,
+}
+
+impl<'e> Filling<'e> {
+    /// Applies `part`'s attributes to `node` (of the same kind).
+    fn start(
+        ctx: &ValueCtx<'_>,
+        node: &Node,
+        part: &'e Part,
+        slot: Option<usize>,
+        path_len: usize,
+    ) -> Result<Filling<'e>, ErrorKind> {
+        let kind = node.kind();
+        let mut changes = Vec::with_capacity(part.attrs.items.len());
+        for (name, input) in &part.attrs.items {
+            changes.push(ctx.attr(kind, name, input.as_ref())?);
         }
-        path.truncate(depth);
+        let mut attrs = node.attrs().to_vec();
+        apply_attrs(kind, &mut attrs, changes)?;
+        name_from_file(kind, &mut attrs);
+        check_required(kind, &attrs)?;
+        Ok(Filling { id: node.id(), kind, attrs, children: node.children().clone(), part, next: 0, path_len, slot })
     }
-    Ok(Node::new(node.id(), kind, attrs, children))
+}
+
+/// Applies `el`'s attributes and children to `node` (of the same kind), iteratively.
+fn fill(ctx: &ValueCtx<'_>, node: Node, el: &Element, path: &mut String) -> Result<Node, ErrorKind> {
+    let mut stack = vec![Filling::start(ctx, &node, el.root_part(), None, path.len())?];
+    while let Some(top) = stack.last_mut() {
+        if let Some(&index) = top.part.children.get(top.next) {
+            top.next += 1;
+            let child = el.part(index);
+            let Some(child_kind) = top.kind.child(&child.tag) else {
+                return Err(ErrorKind::InvalidChild { parent: top.kind.tag(), tag: child.tag.clone() });
+            };
+            let path_len = path.len();
+            let (existing, slot) = match child_kind.multiplicity() {
+                Multiplicity::Singleton => {
+                    let pos = top.children.iter().position(|c| c.kind() == child_kind);
+                    (pos.map(|p| top.children[p].clone()), pos)
+                }
+                Multiplicity::OnDemand if top.children.iter().any(|c| c.kind() == child_kind) => {
+                    return Err(ErrorKind::DuplicateChild(child_kind.tag()));
+                }
+                _ => (None, None),
+            };
+            push_segment(path, child_kind.tag(), None);
+            let existing = existing.unwrap_or_else(|| empty_node(child_kind));
+            stack.push(Filling::start(ctx, &existing, child, slot, path_len)?);
+            continue;
+        }
+        let Some(done) = stack.pop() else { break };
+        let node = Node::new(done.id, done.kind, done.attrs, done.children);
+        path.truncate(done.path_len);
+        match stack.last_mut() {
+            Some(parent) => match done.slot {
+                Some(p) => {
+                    parent.children.set(p, node);
+                }
+                None => parent.children.push_back(node),
+            },
+            None => return Ok(node),
+        }
+    }
+    // The loop returns when the outermost element is finished.
+    Ok(node)
 }
 
 /// Appends `/tag` or `/tag[name=x]` to an element path.

@@ -516,7 +516,13 @@ impl Model {
         let new_name = new_node.identifier();
         if old_name != new_name {
             if let (Some(ns), Some(name)) = (kind.namespace(), new_name) {
-                if index.names.contains_key(&(ns, SmolStr::from(name))) {
+                // A frame's joints have a namespace of their own: that frame's joints.
+                let frame = path.split_last().and_then(|(_, p)| self.node_at(p)).filter(|p| p.attached().is_some());
+                let taken = match frame {
+                    Some(f) => f.children().iter().any(|c| c.id() != node.id() && c.identifier() == Some(name)),
+                    None => index.names.contains_key(&(ns, SmolStr::from(name))),
+                };
+                if taken {
                     return Err(err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() }));
                 }
             }
@@ -531,6 +537,12 @@ impl Model {
     fn check_frame_child(&self, path: &[usize], frame: &Node, child: &Node) -> Result<(), ErrorKind> {
         let tag = child.kind().tag();
         let invalid = || ErrorKind::InvalidChild { parent: "body", tag: tag.into() };
+        // The frame's joints have a namespace of their own.
+        if let (Some(ns), Some(name)) = (child.kind().namespace(), child.identifier()) {
+            if frame.children().iter().any(|c| c.identifier() == Some(name)) {
+                return Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() });
+            }
+        }
         match tag {
             "joint" => Ok(()),
             "inertial" | "freejoint" => {

@@ -34,6 +34,9 @@ use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of
 use crate::tree::{Attr, ElementId, Node};
 use crate::value::{self, FileAsset, Reference, Value};
 
+/// How many `<include>`s may nest inside each other.
+pub(crate) const MAX_INCLUDE_DEPTH: usize = 100;
+
 /// How to read MJCF.
 ///
 /// # Examples
@@ -107,7 +110,8 @@ impl ReadOptions {
     /// Reads a model from MJCF text.
     pub fn read_str(&self, text: &str) -> Result<Model, ReadError> {
         let ctx = self.context(self.base_dir.clone());
-        read_document(text, None, ctx, self.max_depth, &mut Vec::new())
+        // The main text takes the first place in the include stack, as a file does.
+        read_document(text, None, ctx, self.max_depth, &mut vec![PathBuf::from("<main text>")])
     }
 
     /// Reads a model from MJCF bytes (which must be UTF-8).
@@ -176,6 +180,9 @@ struct Pending {
     id: ElementId,
     attrs: Vec<Attr>,
     children: Vec<usize>,
+    /// The singleton and on-demand children read so far (few), found without
+    /// scanning `children`, which may be long.
+    unique: Vec<(ElementKind, usize)>,
     offset: usize,
 }
 
@@ -326,6 +333,7 @@ fn read_document(
                 id: ElementId::fresh(),
                 attrs: Vec::new(),
                 children: Vec::new(),
+                unique: Vec::new(),
                 offset,
             });
             if !empty {
@@ -366,7 +374,10 @@ fn read_document(
         if stack.len() >= max_depth {
             return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
         }
-        let existing = r.arena[parent].children.iter().copied().find(|c| r.arena[*c].kind == kind);
+        let existing = match kind.multiplicity() {
+            Multiplicity::Repeated => None,
+            _ => r.arena[parent].unique.iter().find(|(k, _)| *k == kind).map(|(_, i)| *i),
+        };
         let index = match (kind.multiplicity(), existing) {
             (Multiplicity::Singleton, Some(e)) => {
                 let mut attrs = std::mem::take(&mut r.arena[e].attrs);
@@ -386,8 +397,18 @@ fn read_document(
                     check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
                 }
                 let i = r.arena.len();
-                r.arena.push(Pending { kind, id: ElementId::fresh(), attrs, children: Vec::new(), offset });
+                r.arena.push(Pending {
+                    kind,
+                    id: ElementId::fresh(),
+                    attrs,
+                    children: Vec::new(),
+                    unique: Vec::new(),
+                    offset,
+                });
                 r.arena[parent].children.push(i);
+                if m != Multiplicity::Repeated {
+                    r.arena[parent].unique.push((kind, i));
+                }
                 i
             }
         };
@@ -436,8 +457,9 @@ fn read_include(
     let Some(file) = file else {
         return Err(r.err(ErrorKind::MissingRequired { tag: "include", attribute: "file" }, offset));
     };
-    if include_stack.len() >= 100 {
-        return Err(r.err(ErrorKind::TooDeep(100), offset));
+    // The stack holds the main file and the includes above this one.
+    if include_stack.len() > MAX_INCLUDE_DEPTH {
+        return Err(r.err(ErrorKind::TooDeep(MAX_INCLUDE_DEPTH), offset));
     }
     // From the in-memory files first (then relative to nothing), else from disk.
     if let Some(bytes) = r.ctx.assets.as_ref().and_then(|a| a.get(&file)).cloned() {
@@ -500,7 +522,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         let mut children: Vector<Node> = Vector::new();
         for k in p.kind.spec().children {
             if k.multiplicity() == Multiplicity::Singleton {
-                let found = p.children.iter().copied().find(|c| built[*c].as_ref().is_some_and(|n| n.kind() == *k));
+                let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
                 match found.and_then(|c| built[c].take()) {
                     Some(n) => children.push_back(n),
                     None => children.push_back(empty_node(*k)),

@@ -26,6 +26,9 @@ use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::tree::{ElementId, Node};
 use crate::value::{FloatStyle, Reference, Value};
 
+/// The deepest indentation, in levels (deeper elements are indented as much).
+const MAX_INDENT: usize = 100;
+
 /// Options for [`Model::to_xml_string_with`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct WriteOptions {
@@ -36,7 +39,8 @@ pub struct WriteOptions {
     /// Floats whose magnitude is below this print as `0`.
     pub zero_threshold: f64,
     /// Indent with two spaces per level and end with a newline (default `true`);
-    /// otherwise one line.
+    /// otherwise one line. Indentation stops growing at 100 levels, so that the output
+    /// of a very deep model stays linear in its size.
     pub pretty_print: bool,
     /// Name files `stem-<sha1>.ext` (default `true`) or `stem.ext`.
     pub filename_with_hash: bool,
@@ -336,7 +340,7 @@ impl<'a> Writer<'a> {
 
     fn indent(&mut self, depth: usize) {
         if self.options.pretty_print {
-            for _ in 0..depth {
+            for _ in 0..depth.min(MAX_INDENT) {
                 self.out.push_str("  ");
             }
         }

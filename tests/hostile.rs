@@ -1,0 +1,441 @@
+//! Hostile input: each test feeds something an attacker or a fuzzer could produce and
+//! expects a typed error (or the correct result), never a panic, a stack overflow or a
+//! hang. The limits these tests check are listed in README "Guarantees and limits".
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use mjcf::{Element, ErrorKind, Model, Namespace, ReadOptions, Value};
+
+/// A fresh empty folder under the system's temp folder.
+fn temp_dir(tag: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "mjcf-hostile-{}-{}-{}",
+        std::process::id(),
+        tag,
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    if let Some(parent) = p.parent() {
+        std::fs::create_dir_all(parent).unwrap();
+    }
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn kind_of(r: Result<Model, mjcf::ReadError>) -> ErrorKind {
+    r.expect_err("expected an error").kind().clone()
+}
+
+// ---- includes -----------------------------------------------------------------------
+
+#[test]
+fn include_cycle_a_b_a_is_an_error_on_disk() {
+    let dir = temp_dir("cycle");
+    let a = write(&dir, "a.xml", r#"<mujoco><include file="b.xml"/><worldbody/></mujoco>"#);
+    write(&dir, "b.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    let err = Model::from_path(&a).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::IncludeCycle(p) if p.ends_with("a.xml")), "{err}");
+    // Reported in b.xml, at the include that closes the cycle.
+    assert!(err.file().is_some_and(|f| f.ends_with("b.xml")), "{err}");
+    assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((1, 9)));
+}
+
+#[test]
+fn include_cycle_a_b_a_is_an_error_in_memory() {
+    let err = ReadOptions::new()
+        .asset("a.xml", br#"<mujoco><include file="b.xml"/></mujoco>"#.to_vec())
+        .asset("b.xml", br#"<mujoco><include file="a.xml"/></mujoco>"#.to_vec())
+        .read_str(r#"<mujoco><include file="a.xml"/></mujoco>"#)
+        .unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::IncludeCycle(p) if p.ends_with("a.xml")), "{err}");
+}
+
+#[test]
+fn a_file_included_twice_without_a_cycle_is_fine() {
+    let dir = temp_dir("diamond");
+    let main = write(&dir, "main.xml", r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#);
+    write(&dir, "x.xml", r#"<mujoco><include file="common.xml"/><worldbody><body name="x"/></worldbody></mujoco>"#);
+    write(&dir, "y.xml", r#"<mujoco><include file="common.xml"/><worldbody><body name="y"/></worldbody></mujoco>"#);
+    write(&dir, "common.xml", r#"<mujoco><compiler angle="radian"/></mujoco>"#);
+    let m = Model::from_path(&main).unwrap();
+    assert!(m.find(Namespace::Body, "x").is_some() && m.find(Namespace::Body, "y").is_some());
+}
+
+/// A chain main → inc1 → … → incN, each adding one body.
+fn include_chain(dir: &Path, n: usize) -> PathBuf {
+    for i in 1..=n {
+        let next = if i < n { format!(r#"<include file="inc{}.xml"/>"#, i + 1) } else { String::new() };
+        write(
+            dir,
+            &format!("inc{i}.xml"),
+            &format!(r#"<mujoco>{next}<worldbody><body name="b{i}"/></worldbody></mujoco>"#),
+        );
+    }
+    write(dir, "main.xml", r#"<mujoco><include file="inc1.xml"/><worldbody/></mujoco>"#)
+}
+
+#[test]
+fn includes_nest_100_deep_and_no_deeper() {
+    let dir = temp_dir("depth100");
+    let m = Model::from_path(include_chain(&dir, 100)).unwrap();
+    assert_eq!(m.find_all(Namespace::Body).len(), 100);
+    assert!(m.find(Namespace::Body, "b100").is_some());
+
+    let dir = temp_dir("depth101");
+    let err = Model::from_path(include_chain(&dir, 101)).unwrap_err();
+    assert_eq!(err.kind(), &ErrorKind::TooDeep(100), "{err}");
+    assert!(err.file().is_some_and(|f| f.ends_with("inc100.xml")), "{err}");
+}
+
+#[test]
+fn include_depth_counts_the_same_from_a_string() {
+    let dir = temp_dir("depthstr");
+    include_chain(&dir, 100);
+    let m = ReadOptions::new().base_dir(&dir).read_str(r#"<mujoco><include file="inc1.xml"/></mujoco>"#).unwrap();
+    assert_eq!(m.find_all(Namespace::Body).len(), 100);
+}
+
+// ---- file confinement -----------------------------------------------------------------
+
+#[test]
+fn paths_leaving_the_model_folder_are_allowed_by_default_and_refused_when_confined() {
+    let dir = temp_dir("confine");
+    write(&dir, "shared/box.stl", "solid box\nendsolid box\n");
+    write(&dir, "shared/part.xml", r#"<mujoco><worldbody><body name="part"/></worldbody></mujoco>"#);
+    let main = write(
+        &dir,
+        "model/main.xml",
+        r#"<mujoco>
+  <include file="../shared/part.xml"/>
+  <asset><mesh file="../shared/box.stl"/></asset>
+</mujoco>"#,
+    );
+    // The default: MJCF models commonly share assets through `../`.
+    let m = Model::from_path(&main).unwrap();
+    assert!(m.find(Namespace::Body, "part").is_some());
+    assert!(m.find(Namespace::Mesh, "box").is_some());
+
+    let confined = ReadOptions::new().confine_to_base_dir(true);
+    let err = confined.read_path(&main).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(p) if p.ends_with("../shared/part.xml")), "{err}");
+    assert_eq!(err.pos().map(|p| p.line), Some(2));
+
+    // The mesh alone, without the include.
+    let main2 = write(&dir, "model/mesh.xml", r#"<mujoco><asset><mesh file="../shared/box.stl"/></asset></mujoco>"#);
+    let err = confined.read_path(&main2).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(_)), "{err}");
+
+    // Absolute paths leave the folder too.
+    let abs = dir.join("shared/box.stl");
+    let text = format!(r#"<mujoco><asset><mesh file="{}"/></asset></mujoco>"#, abs.display());
+    let err = confined.clone().base_dir(dir.join("model")).read_str(&text).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(_)), "{err}");
+
+    // Inside the folder is fine, `..` included as long as it stays inside.
+    write(&dir, "model/meshes/box.stl", "solid box\nendsolid box\n");
+    let main3 =
+        write(&dir, "model/in.xml", r#"<mujoco><asset><mesh file="meshes/../meshes/box.stl"/></asset></mujoco>"#);
+    assert!(confined.read_path(&main3).unwrap().find(Namespace::Mesh, "box").is_some());
+}
+
+#[test]
+fn confinement_also_applies_to_files_set_by_edits() {
+    let dir = temp_dir("confine-edit");
+    write(&dir, "box.stl", "solid box\nendsolid box\n");
+    let model_dir = dir.join("model");
+    std::fs::create_dir_all(&model_dir).unwrap();
+    let m = ReadOptions::new().confine_to_base_dir(true).base_dir(&model_dir).read_str("<mujoco/>").unwrap();
+    let err = m.add(&m.asset(), Element::new("mesh").attr("file", "../box.stl")).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(_)), "{err}");
+}
+
+// ---- nesting and width ------------------------------------------------------------------
+
+#[test]
+fn nesting_100_000_deep_reads_writes_and_edits_without_overflow() {
+    let depth = 100_000;
+    let mut text = String::from("<mujoco><worldbody>");
+    for _ in 0..depth {
+        text.push_str("<body>");
+    }
+    text.push_str(r#"<geom name="deepest" size="1"/>"#);
+    for _ in 0..depth {
+        text.push_str("</body>");
+    }
+    text.push_str("</worldbody></mujoco>");
+    let m = Model::from_xml_str(&text).unwrap();
+    let deepest = m.find(Namespace::Geom, "deepest").unwrap();
+    let m2 = m.set_attr(&deepest, "size", [2.0]).unwrap();
+    assert_eq!(m2.element(&deepest).unwrap().attr("size").and_then(Value::as_floats), Some(&[2.0][..]));
+    assert_ne!(m, m2);
+    let out = m2.to_xml_string().unwrap();
+    assert_eq!(out.matches("<body name=\"//unnamed_body_").count(), depth);
+    // Indentation stops growing at 100 levels, so the output stays linear in size.
+    assert!(out.len() < 500 * depth, "{} bytes", out.len());
+    let back = Model::from_xml_str(&out).unwrap();
+    assert_eq!(back.to_xml_string().unwrap(), out);
+    let m3 = m2.remove(&deepest).unwrap();
+    assert!(m3.find(Namespace::Geom, "deepest").is_none());
+    // A copy of the deep model into another one.
+    let merged = Model::new("other").include_copy(&m2, false).unwrap();
+    assert!(merged.find(Namespace::Geom, "deepest").is_some());
+    drop((m, m2, m3, back, merged));
+}
+
+#[test]
+fn max_depth_refuses_deeper_input_with_its_own_error() {
+    let text = "<mujoco><worldbody><body><body><body/></body></body></worldbody></mujoco>";
+    let err = ReadOptions::new().max_depth(3).read_str(text).unwrap_err();
+    assert_eq!(err.kind(), &ErrorKind::TooDeep(3));
+    // Levels count from the root: mujoco, worldbody, body; the second body is refused.
+    assert_eq!(err.pos().map(|p| p.column), Some(26));
+    assert!(ReadOptions::new().max_depth(5).read_str(text).is_ok());
+}
+
+#[test]
+fn an_element_built_100_000_deep_adds_compares_and_drops_without_overflow() {
+    let mut body = Element::new("body").child(Element::new("geom").attr("name", "deepest").attr("size", [1.0]));
+    for _ in 1..100_000 {
+        body = Element::new("body").child(body);
+    }
+    let copy = body.clone();
+    assert_eq!(copy, body);
+    assert_ne!(copy.clone().attr("name", "x"), body);
+    let m = Model::new("m");
+    let (m, _) = m.add(&m.worldbody(), body).unwrap();
+    assert!(m.find(Namespace::Geom, "deepest").is_some());
+    // Built the other way round (parent first) gives an equal element.
+    let mut top = Element::new("body");
+    let mut chain = Vec::new();
+    for _ in 0..3 {
+        chain.push(Element::new("body"));
+    }
+    for c in chain {
+        top = top.child(c);
+    }
+    assert_eq!(
+        top,
+        Element::new("body").child(Element::new("body")).child(Element::new("body")).child(Element::new("body"))
+    );
+    drop(copy);
+}
+
+#[test]
+fn attachments_nested_1000_deep_write_and_drop_without_overflow() {
+    let mut m = Model::new("leaf");
+    let (leaf, _) = m.add(&m.worldbody(), Element::new("geom").attr("name", "g").attr("size", [1.0])).unwrap();
+    m = leaf;
+    for i in 0..1000 {
+        let outer = Model::new(&format!("m{i}"));
+        m = outer.attach_to_world(&m).unwrap().0;
+    }
+    let xml = m.to_xml_string().unwrap();
+    let scoped: String = (0..999).rev().map(|i| format!("m{i}/")).collect::<String>() + "leaf/g";
+    assert!(m.find(Namespace::Geom, &scoped).is_some(), "{scoped}");
+    assert!(xml.contains(&format!(r#"name="{scoped}""#)));
+    drop(m);
+}
+
+#[test]
+fn a_million_siblings_read_write_and_edit() {
+    let n = 1_000_000;
+    let mut text = String::with_capacity(n * 8 + 64);
+    text.push_str("<mujoco><worldbody>");
+    for _ in 0..n {
+        text.push_str("<site/>");
+    }
+    text.push_str(r#"<site name="last"/></worldbody></mujoco>"#);
+    let m = Model::from_xml_str(&text).unwrap();
+    let last = m.find(Namespace::Site, "last").unwrap();
+    let m2 = m.set_attr(&last, "pos", [1.0, 2.0, 3.0]).unwrap();
+    let (m3, _) = m2.insert(&m2.worldbody(), 500_000, Element::new("site").attr("name", "middle")).unwrap();
+    let out = m3.to_xml_string().unwrap();
+    assert_eq!(out.matches("<site").count(), n + 2);
+    // Auto names count every site in document order, so `middle` takes index 500000.
+    assert!(out.contains(r#"<site name="//unnamed_site_499999" class="/"/>"#));
+    assert!(!out.contains(r#""//unnamed_site_500000""#));
+    assert!(out.contains(r#"<site name="//unnamed_site_500001" class="/"/>"#));
+    assert!(out.contains(r#"<site name="middle" class="/"/>"#));
+    assert!(out.contains(r#"<site name="last" class="/" pos="1 2 3"/>"#));
+}
+
+// ---- DOCTYPE and entities ---------------------------------------------------------------
+
+#[test]
+fn a_doctype_is_skipped_and_entities_are_never_expanded() {
+    // A DOCTYPE alone is dropped.
+    let m = Model::from_xml_str(r#"<?xml version="1.0"?><!DOCTYPE mujoco><mujoco model="m"/>"#).unwrap();
+    assert_eq!(m.name(), "m");
+    // The billion laughs: declared entities are not expanded; using one is an error.
+    let mut bomb = String::from("<?xml version=\"1.0\"?>\n<!DOCTYPE mujoco [\n  <!ENTITY lol \"lol\">\n");
+    for i in 1..10 {
+        let prev = if i == 1 { "lol".to_string() } else { format!("lol{}", i - 1) };
+        bomb.push_str(&format!("  <!ENTITY lol{i} \"{}\">\n", format!("&{prev};").repeat(10)));
+    }
+    bomb.push_str("]>\n<mujoco model=\"&lol9;\"/>\n");
+    let err = Model::from_xml_str(&bomb).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::Syntax(s) if s.contains("lol9")), "{err}");
+    assert_eq!(err.pos().map(|p| p.line), Some(14));
+    // A declared-but-unused bomb reads fine and leaves no trace.
+    let unused = bomb.replace("&lol9;", "m");
+    assert_eq!(Model::from_xml_str(&unused).unwrap().name(), "m");
+    // External entities (XXE) are not fetched either.
+    let xxe = "<!DOCTYPE mujoco [<!ENTITY x SYSTEM \"file:///etc/passwd\">]><mujoco model=\"&x;\"/>";
+    assert!(matches!(kind_of(Model::from_xml_str(xxe)), ErrorKind::Syntax(_)));
+    // Entities in element content (text is dropped) and in attribute values.
+    let in_geom = "<!DOCTYPE m [<!ENTITY e \"1\">]><mujoco><worldbody><geom size=\"&e;\"/></worldbody></mujoco>";
+    assert!(matches!(kind_of(Model::from_xml_str(in_geom)), ErrorKind::Syntax(_)));
+    // XML's own five and character references are fine.
+    let m = Model::from_xml_str(r#"<mujoco model="a&amp;b&#x41;&#66;&lt;"/>"#).unwrap();
+    assert_eq!(m.name(), "a&bAB<");
+}
+
+// ---- big and odd values -----------------------------------------------------------------
+
+#[test]
+fn a_100_mb_attribute_value_reads_and_writes() {
+    let big = "x".repeat(100 * 1024 * 1024);
+    let text = format!(r#"<mujoco><worldbody><geom name="{big}" size="1"/></worldbody></mujoco>"#);
+    let m = Model::from_xml_str(&text).unwrap();
+    assert!(m.find(Namespace::Geom, &big).is_some());
+    let out = m.to_xml_string().unwrap();
+    assert!(out.len() > big.len());
+    // The same size as a number list is refused (too many numbers), with a short message.
+    let numbers = "1 ".repeat(1024 * 1024);
+    let text = format!(r#"<mujoco><worldbody><geom size="{numbers}"/></worldbody></mujoco>"#);
+    let err = Model::from_xml_str(&text).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "size", .. }), "{err}");
+    assert!(err.to_string().len() < 1000, "the message repeats the whole value");
+}
+
+#[test]
+fn nan_inf_overflow_and_negative_zero_follow_the_reference() {
+    let m = Model::from_xml_str(
+        r#"<mujoco><worldbody><geom name="g" size="nan inf -inf"/><geom name="h" size="1e400 -0 -1e400"/><geom name="k" size="0.1" mass="-0"/></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let g = m.element(&m.find(Namespace::Geom, "g").unwrap()).unwrap();
+    let xs = g.attr("size").and_then(Value::as_floats).unwrap();
+    assert!(xs[0].is_nan() && xs[1] == f64::INFINITY && xs[2] == f64::NEG_INFINITY);
+    let h = m.element(&m.find(Namespace::Geom, "h").unwrap()).unwrap();
+    let xs = h.attr("size").and_then(Value::as_floats).unwrap();
+    // 1e400 overflows to infinity, as Python's float() does.
+    assert_eq!(xs[0], f64::INFINITY);
+    assert!(xs[1] == 0.0 && xs[1].is_sign_negative());
+    assert_eq!(xs[2], f64::NEG_INFINITY);
+    let out = m.to_xml_string().unwrap();
+    assert!(out.contains(r#"size="nan inf -inf""#), "{out}");
+    assert!(out.contains(r#"size="inf -0 -inf""#), "{out}");
+    assert!(out.contains(r#"mass="-0""#), "{out}");
+    // The same through edits.
+    let g = m.find(Namespace::Geom, "g").unwrap();
+    let m2 = m.set_attr(&g, "pos", [f64::NAN, -0.0, f64::INFINITY]).unwrap();
+    assert!(m2.to_xml_string().unwrap().contains(r#"pos="nan -0 inf""#));
+    // Integers do not overflow silently.
+    let err = Model::from_xml_str(r#"<mujoco><option><flag/></option><size nconmax="99999999999999999999"/></mujoco>"#)
+        .unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "nconmax", .. }), "{err}");
+}
+
+#[test]
+fn arrays_longer_or_shorter_than_allowed_are_refused_with_a_position() {
+    let err =
+        Model::from_xml_str("<mujoco>\n<worldbody>\n  <body pos=\"1 2 3 4\"/>\n</worldbody></mujoco>").unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "pos", .. }), "{err}");
+    assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((3, 3)));
+    let err = Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0 0 0"/></worldbody></mujoco>"#).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "quat", .. }), "{err}");
+    // Shorter arrays are accepted, as in the reference (MuJoCo decides what they mean).
+    assert!(Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0"/></worldbody></mujoco>"#).is_ok());
+    let m = Model::new("m");
+    let err = m.add(&m.worldbody(), Element::new("geom").attr("rgba", [1.0; 5])).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "rgba", .. }), "{err}");
+    assert_eq!(err.path(), "worldbody/geom");
+}
+
+#[test]
+fn invalid_utf8_is_an_error_with_a_position() {
+    let mut bytes = b"<mujoco>\n  <worldbody><geom name=\"ab".to_vec();
+    bytes.extend_from_slice(&[0xff, 0xfe]);
+    bytes.extend_from_slice(b"\"/></worldbody></mujoco>");
+    let err = ReadOptions::new().read_bytes(&bytes).unwrap_err();
+    assert_eq!(err.kind(), &ErrorKind::InvalidUtf8);
+    assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((2, 28)));
+    // Also in an included file.
+    let err = ReadOptions::new()
+        .asset("bad.xml", vec![b'<', 0xc3, 0x28])
+        .read_str(r#"<mujoco><include file="bad.xml"/></mujoco>"#)
+        .unwrap_err();
+    assert_eq!(err.kind(), &ErrorKind::InvalidUtf8);
+    assert!(err.file().is_some_and(|f| f.ends_with("bad.xml")));
+}
+
+#[test]
+fn slashes_in_names_are_refused_everywhere_they_could_confuse_scopes() {
+    // `/` separates scopes, so no identifier may hold one: not when read, not when
+    // set, not as a model name that becomes a scope, not as a new scope name. (The
+    // reference refuses it only once the model is attached.)
+    let err = Model::from_xml_str(r#"<mujoco><worldbody><body name="robot/torso"/></worldbody></mujoco>"#).unwrap_err();
+    assert!(
+        matches!(
+            err.kind(),
+            ErrorKind::InvalidValue { attribute: "name", error: mjcf::ValueError::SlashInIdentifier, .. }
+        ),
+        "{err}"
+    );
+    assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((1, 20)));
+    let m = Model::new("m");
+    let err = m.add(&m.worldbody(), Element::new("site").attr("name", "a/b")).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }));
+    let err = m.add(&m.default_class(), Element::new("default").attr("class", "x/")).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }));
+
+    let robot = Model::new("robot");
+    let (robot, _) = robot.add(&robot.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
+    let err = Model::new("p").attach_to_world(&robot.with_name("a/b")).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }), "{err}");
+    let (p, _) = Model::new("p").attach_to_world(&robot).unwrap();
+    let err = p.rename_scope("robot", "x/y").unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }), "{err}");
+    // Scoped lookups of names that do not exist are simply absent.
+    assert!(p.find(Namespace::Body, "robot/torso").is_some());
+    assert!(p.find(Namespace::Body, "robot//torso").is_none());
+    assert!(p.find(Namespace::Body, "/robot/torso").is_none());
+    assert!(p.find(Namespace::Body, "robot/").is_none());
+    assert!(p.find(Namespace::Body, "/").is_none());
+}
+
+#[test]
+fn include_copy_merges_a_20_000_deep_chain_without_overflow() {
+    // With override, same-named bodies merge level by level, as deep as they go.
+    let chain = |depth: usize, attr: &str| {
+        let mut text = String::from("<mujoco><worldbody>");
+        for i in 0..depth {
+            text.push_str(&format!(r#"<body name="b{i}" {attr}>"#));
+        }
+        for _ in 0..depth {
+            text.push_str("</body>");
+        }
+        text.push_str("</worldbody></mujoco>");
+        Model::from_xml_str(&text).unwrap()
+    };
+    let deep = chain(20_000, "");
+    let moved = chain(20_000, r#"pos="1 0 0""#);
+    let merged = deep.include_copy(&moved, true).unwrap();
+    assert_eq!(merged.find_all(Namespace::Body).len(), 20_000);
+    let last = merged.element(&merged.find(Namespace::Body, "b19999").unwrap()).unwrap();
+    assert_eq!(last.attr("pos").and_then(Value::as_floats), Some(&[1.0, 0.0, 0.0][..]));
+    // Without override the bodies clash by name; with other names they are copied.
+    let err = deep.include_copy(&moved, false).unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::DuplicateIdentifier { .. }), "{err}");
+    let copied = Model::new("m").include_copy(&deep, false).unwrap();
+    assert_eq!(copied.find_all(Namespace::Body).len(), 20_000);
+}
