@@ -301,3 +301,40 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn merged_settings_follow_edits_inside_nested_attachments() {
+    // Versions share their folded settings; every edit that can change the fold must
+    // show in the output of the new version and leave the old one as it was.
+    let inner = Model::new("inner");
+    let mid = Model::new("mid").attach_to_world(&inner).unwrap().0;
+    let top = Model::new("top").attach_to_world(&mid).unwrap().0;
+    let before = top.to_xml_string().unwrap();
+    assert!(!before.contains("timestep"));
+    let option = top.locate_in("mid/inner", &inner.section("option").unwrap()).unwrap();
+    let edited = top.set_attr(&option, "timestep", 0.005).unwrap();
+    assert!(edited.to_xml_string().unwrap().contains(r#"timestep="0.005""#));
+    assert_eq!(top.to_xml_string().unwrap(), before);
+    // The middle model, taken out of the new version, folds the edit too.
+    assert!(edited.attached("mid").unwrap().to_xml_string().unwrap().contains(r#"timestep="0.005""#));
+    // A conflicting setting at the top is refused, one that agrees is accepted.
+    let compiler = top.locate_in("mid/inner", &inner.section("compiler").unwrap()).unwrap();
+    let edited = edited.set_attr(&compiler, "angle", "radian").unwrap();
+    let top_compiler = edited.section("compiler").unwrap();
+    let err = edited.set_attr(&top_compiler, "angle", "degree").unwrap_err();
+    assert!(matches!(err.kind(), ErrorKind::AttributeConflict { attribute: "angle", .. }), "{err}");
+    assert!(edited.set_attr(&top_compiler, "angle", "radian").is_ok());
+    // Detaching the middle model takes its settings with it.
+    let back = edited.detach("mid").unwrap();
+    assert!(!back.to_xml_string().unwrap().contains("timestep"));
+    assert!(back.set_attr(&back.section("compiler").unwrap(), "angle", "degree").is_ok());
+    // Removing the attachments with a body that holds their frame does too.
+    let (arena, site) =
+        Model::new("arena").add(&Model::new("arena").worldbody(), Element::new("body").attr("name", "b")).unwrap();
+    let (arena, s) = arena.add(&site, Element::new("site").attr("name", "s")).unwrap();
+    let (scene, _) = arena.attach(&s, edited.attached("mid").unwrap()).unwrap();
+    assert!(scene.to_xml_string().unwrap().contains(r#"timestep="0.005""#));
+    let body = scene.find(Namespace::Body, "b").unwrap();
+    let cleared = scene.remove_with_attachments(&body).unwrap();
+    assert!(!cleared.to_xml_string().unwrap().contains("timestep"));
+}

@@ -12,7 +12,7 @@ use smol_str::SmolStr;
 
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
-use crate::model::{Loc, Model};
+use crate::model::{Loc, MergedCache, Model};
 use crate::schema::{ElementKind, Namespace};
 use crate::tree::{Attached, Attr, ElementId, Node};
 
@@ -83,7 +83,8 @@ impl Model {
                 error: ValueError::SlashInIdentifier,
             }));
         }
-        let scope = self.free_scope(base);
+        let mut index = self.index.clone();
+        let scope = index.scopes.free_name(base);
         let tag = node.kind().tag();
         let (parent_path, position, body_kind, attrs) = match tag {
             "worldbody" => {
@@ -106,27 +107,19 @@ impl Model {
         let id = ElementId::fresh();
         let frame = Node::frame(id, body_kind, attrs, Attached { scope: scope.clone(), model: child.clone() });
         let parent_id = self.node_at(&parent_path).map(Node::id);
-        let mut index = self.index.clone();
         // A new frame has no identifier, so indexing it cannot find a duplicate.
         let _ = index.insert_subtree(parent_id, &frame);
-        index.scopes.push_back((scope, id));
+        index.scopes.push(scope, id);
+        // The merged settings: the child's folded into ours (each cached, so O(1)).
+        let mut sections = settings::merged(self).map_err(err)?.to_vec();
+        settings::fold_sections(&mut sections, &settings::merged(child).map_err(err)?).map_err(err)?;
+        index.merged = MergedCache::known(sections.into());
         let root = self.root.update_path(&parent_path, |p| {
             let mut children = p.children().clone();
             children.insert(position.min(children.len()), frame);
             Ok::<_, EditError>(p.with_children(children))
         })?;
         Ok((Model { root, index, files: self.files.clone() }, id))
-    }
-
-    /// `base`, or `base_1`, `base_2`, ... : the first scope name not taken here.
-    fn free_scope(&self, base: &str) -> SmolStr {
-        if self.index.frame_of(base).is_none() {
-            return base.into();
-        }
-        (1..)
-            .map(|n| SmolStr::from(format!("{base}_{n}")))
-            .find(|s| self.index.frame_of(s).is_none())
-            .unwrap_or_else(|| base.into())
     }
 
     /// The model without the attachment at `scope` (`robot`, or `arena/robot` for one
@@ -145,6 +138,7 @@ impl Model {
             let node = m.node_at(&path).ok_or_else(|| not_attached(scope))?;
             let mut index = m.index.clone();
             index.remove_subtree(node);
+            index.merged = MergedCache::default();
             let root = m.root.update_path(parent_path, |p| {
                 let mut children = p.children().clone();
                 children.remove(*pos);
@@ -205,11 +199,7 @@ impl Model {
             }
             let path = m.path_of(frame).ok_or_else(|| not_attached(scope))?;
             let mut index = m.index.clone();
-            for entry in index.scopes.iter_mut() {
-                if entry.1 == frame {
-                    entry.0 = to.into();
-                }
-            }
+            index.scopes.rename(frame, to.into());
             let root = m.root.update_path(&path, |n| {
                 let a = n.attached().ok_or_else(|| not_attached(scope))?;
                 Ok::<_, EditError>(n.with_attached(Attached { scope: to.into(), model: a.model.clone() }))
@@ -307,10 +297,16 @@ impl Model {
         let (mut inner, r) = f(m).map_err(|e| wrap(e, &chain))?;
         // Up: put each new model back into its frame.
         for (outer, path, scope) in chain.into_iter().rev() {
+            let mut index = outer.index.clone();
+            // The outer fold can only stay if the inner one did.
+            let before = outer.node_at(&path).and_then(Node::attached).map(|a| &a.model.index.merged);
+            if !before.is_some_and(|b| b.same(&inner.index.merged)) {
+                index.merged = MergedCache::default();
+            }
             let root = outer
                 .root
                 .update_path(&path, |n| Ok::<_, EditError>(n.with_attached(Attached { scope, model: inner })))?;
-            inner = Model { root, index: outer.index.clone(), files: outer.files.clone() };
+            inner = Model { root, index, files: outer.files.clone() };
         }
         Ok((inner, r))
     }

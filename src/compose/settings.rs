@@ -6,9 +6,12 @@
 //! take part; `min`, `max` and `max_bytes` combine, `replace` attributes (the compiler's
 //! folders) are never taken from an attachment, and every other attribute must agree.
 //!
-//! Nothing of this is stored: the writer folds when it writes, and every operation
-//! that can change the fold (attach, an edit of a setting on either side) folds once
-//! to refuse a conflict before it returns the new value.
+//! The fold is derived, never edited: each model value caches its result (shared by
+//! the versions that cannot differ in it), every operation that can change the fold
+//! (attach, an edit of a setting on either side) folds to refuse a conflict before it
+//! returns the new value, and the writer writes the folded sections.
+
+use std::sync::Arc;
 
 use crate::error::ErrorKind;
 use crate::model::Model;
@@ -72,44 +75,56 @@ pub(crate) fn fold(ours: &Node, theirs: &Node) -> Result<Node, ErrorKind> {
     Ok(if changed { ours.with_parts(attrs, children) } else { ours.clone() })
 }
 
-/// The merged section `kind` of `model`: its own, folded with each attachment's merged
-/// section in attach order. Iterative over the attachment tree.
-pub(crate) fn merged_section(model: &Model, kind: ElementKind) -> Result<Option<Node>, ErrorKind> {
-    let Some(own) = model.root.child_of_kind(kind) else { return Ok(None) };
-    if model.index.scopes.is_empty() {
-        return Ok(Some(own.clone()));
+/// The merged settings sections of `model` (root order): its own, each folded with
+/// every attachment's merged sections in attach order. Cached in the model's index:
+/// only models whose cache is empty are folded (iteratively, post-order over the
+/// attachment tree), so a fold after an attach costs O(1) folds.
+pub(crate) fn merged(model: &Model) -> Result<Arc<[Node]>, ErrorKind> {
+    if let Some(known) = model.index.merged.get() {
+        return Ok(known.clone());
     }
-    // Post-order over the attachment tree: each model's result is its own section
-    // folded with its attachments' results, in attach order.
     enum Step<'a> {
         Enter(&'a Model),
         Fold(&'a Model, usize),
     }
     let mut stack = vec![Step::Enter(model)];
-    let mut results: Vec<Node> = Vec::new();
+    let mut results: Vec<Arc<[Node]>> = Vec::new();
     while let Some(step) = stack.pop() {
         match step {
-            Step::Enter(m) => {
-                let children = attachments(m);
-                stack.push(Step::Fold(m, children.len()));
-                for c in children.into_iter().rev() {
-                    stack.push(Step::Enter(c));
+            Step::Enter(m) => match m.index.merged.get() {
+                Some(known) => results.push(known.clone()),
+                None => {
+                    let children = attachments(m);
+                    stack.push(Step::Fold(m, children.len()));
+                    stack.extend(children.into_iter().rev().map(Step::Enter));
                 }
-            }
+            },
             Step::Fold(m, n) => {
-                let theirs = results.split_off(results.len() - n);
-                let mut acc = match m.root.child_of_kind(kind) {
-                    Some(s) => s.clone(),
-                    None => continue,
-                };
+                let theirs = results.split_off(results.len().saturating_sub(n));
+                let mut acc = own_sections(m);
                 for t in &theirs {
-                    acc = fold(&acc, t)?;
+                    fold_sections(&mut acc, t)?;
                 }
-                results.push(acc);
+                results.push(m.index.merged.fill(acc.into()));
             }
         }
     }
-    Ok(results.pop())
+    Ok(results.pop().unwrap_or_else(|| own_sections(model).into()))
+}
+
+/// The model's own settings sections, in root order.
+pub(crate) fn own_sections(model: &Model) -> Vec<Node> {
+    model.root.children().iter().filter(|c| is_settings_section(c.kind())).cloned().collect()
+}
+
+/// Folds `theirs` (merged sections) into `ours`, section by section.
+pub(crate) fn fold_sections(ours: &mut [Node], theirs: &[Node]) -> Result<(), ErrorKind> {
+    for o in ours.iter_mut() {
+        if let Some(t) = theirs.iter().find(|t| t.kind() == o.kind()) {
+            *o = fold(o, t)?;
+        }
+    }
+    Ok(())
 }
 
 /// The models attached to `model` itself, in attach order.
@@ -118,19 +133,11 @@ pub(crate) fn attachments(model: &Model) -> Vec<&Model> {
         .index
         .scopes
         .iter()
-        .filter_map(|(_, frame)| model.node_by_id(*frame).and_then(|n| n.attached()).map(|a| &a.model))
+        .filter_map(|(_, frame)| model.node_by_id(frame).and_then(|n| n.attached()).map(|a| &a.model))
         .collect()
 }
 
 /// Refuses a model whose settings cannot be merged (reports the first conflict).
 pub(crate) fn check(model: &Model) -> Result<(), ErrorKind> {
-    if model.index.scopes.is_empty() {
-        return Ok(());
-    }
-    for c in model.root.children() {
-        if is_settings_section(c.kind()) {
-            merged_section(model, c.kind())?;
-        }
-    }
-    Ok(())
+    merged(model).map(|_| ())
 }

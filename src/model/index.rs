@@ -8,7 +8,9 @@
 //!
 //! The index of an attached child lives in the child value, never in the parent's.
 
-use imbl::{HashMap, Vector};
+use std::sync::{Arc, OnceLock};
+
+use imbl::{HashMap, OrdMap};
 use smol_str::SmolStr;
 
 use crate::schema::{ElementKind, Namespace};
@@ -26,12 +28,47 @@ pub(crate) struct Entry {
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
     pub(crate) elems: HashMap<ElementId, Entry>,
-    /// The model's attachments in attach order: (scope name, frame id).
-    pub(crate) scopes: Vector<(SmolStr, ElementId)>,
+    /// The model's own attachments: scope names and frames, in attach order.
+    pub(crate) scopes: Scopes,
     /// The model's name where it differs from its `model` attribute: `include_copy`
     /// replaces the attribute (as the reference does) but not the name that scopes
     /// the model when it is attached.
     pub(crate) own_name: Option<SmolStr>,
+    /// The merged global settings of the model with its attachments, once known.
+    /// Shared by the versions whose settings and attachments are the same; every
+    /// edit that can change them starts a new, empty one.
+    pub(crate) merged: MergedCache,
+}
+
+/// A lazily computed, shared value of the merged settings sections (root order).
+#[derive(Clone, Default)]
+pub(crate) struct MergedCache(Arc<OnceLock<Arc<[Node]>>>);
+
+impl MergedCache {
+    /// A cache holding `sections`.
+    pub(crate) fn known(sections: Arc<[Node]>) -> MergedCache {
+        MergedCache(Arc::new(OnceLock::from(sections)))
+    }
+
+    pub(crate) fn get(&self) -> Option<&Arc<[Node]>> {
+        self.0.get()
+    }
+
+    /// Stores `sections` (computed for this cache's model) and returns what it holds.
+    pub(crate) fn fill(&self, sections: Arc<[Node]>) -> Arc<[Node]> {
+        self.0.get_or_init(|| sections).clone()
+    }
+
+    /// Whether two versions share one cache (their merged settings are the same).
+    pub(crate) fn same(&self, other: &MergedCache) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl std::fmt::Debug for MergedCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.get().is_some() { "MergedCache(known)" } else { "MergedCache(empty)" })
+    }
 }
 
 /// A name already taken, found while indexing.
@@ -83,7 +120,7 @@ impl Index {
                 }
             }
             if n.attached().is_some() {
-                self.scopes.retain(|(_, f)| *f != n.id());
+                self.scopes.remove(n.id());
             }
         }
     }
@@ -105,12 +142,12 @@ impl Index {
 
     /// The scope name of the attachment whose frame is `frame`.
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.scopes.iter().find(|(_, f)| *f == frame).map(|(s, _)| s)
+        self.scopes.scope_of(frame)
     }
 
     /// The frame of the attachment named `scope`.
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.scopes.iter().find(|(s, _)| s == scope).map(|(_, f)| *f)
+        self.scopes.frame_of(scope)
     }
 
     /// The ids from the root down to `id`, inclusive.
@@ -123,5 +160,86 @@ impl Index {
         }
         chain.reverse();
         Some(chain)
+    }
+}
+
+/// A model's own attachments: (scope name, frame) in attach order, found by name and
+/// by frame in O(log n). Persistent, like the rest of the index.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scopes {
+    /// Attach sequence number → (scope, frame).
+    order: OrdMap<u64, (SmolStr, ElementId)>,
+    by_name: HashMap<SmolStr, (u64, ElementId)>,
+    by_frame: HashMap<ElementId, u64>,
+    next: u64,
+    /// Per base name, a suffix below which every `base_n` is taken (a hint for the
+    /// suffix rule; cleared whenever a scope name is freed).
+    free_from: HashMap<SmolStr, u64>,
+}
+
+impl Scopes {
+    pub(crate) fn is_empty(&self) -> bool {
+        self.order.is_empty()
+    }
+
+    /// (scope, frame) in attach order.
+    pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
+        self.order.values().map(|(s, f)| (s, *f))
+    }
+
+    pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
+        let seq = self.by_frame.get(&frame)?;
+        self.order.get(seq).map(|(s, _)| s)
+    }
+
+    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
+        self.by_name.get(scope).map(|(_, f)| *f)
+    }
+
+    /// Adds an attachment (its scope name is free).
+    pub(crate) fn push(&mut self, scope: SmolStr, frame: ElementId) {
+        let seq = self.next;
+        self.next += 1;
+        self.order.insert(seq, (scope.clone(), frame));
+        self.by_name.insert(scope, (seq, frame));
+        self.by_frame.insert(frame, seq);
+    }
+
+    /// Removes the attachment whose frame is `frame`, if any.
+    pub(crate) fn remove(&mut self, frame: ElementId) {
+        if let Some(seq) = self.by_frame.remove(&frame) {
+            if let Some((scope, _)) = self.order.remove(&seq) {
+                self.by_name.remove(&scope);
+            }
+            self.free_from = HashMap::new();
+        }
+    }
+
+    /// Renames the attachment whose frame is `frame` (to a free name).
+    pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
+        let Some(&seq) = self.by_frame.get(&frame) else { return };
+        if let Some((old, _)) = self.order.insert(seq, (to.clone(), frame)) {
+            self.by_name.remove(&old);
+        }
+        self.by_name.insert(to, (seq, frame));
+        self.free_from = HashMap::new();
+    }
+
+    /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
+    /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
+    /// are only added.
+    pub(crate) fn free_name(&mut self, base: &str) -> SmolStr {
+        if !self.by_name.contains_key(base) {
+            return base.into();
+        }
+        let mut n = self.free_from.get(base).copied().unwrap_or(1);
+        loop {
+            let name = SmolStr::from(format!("{base}_{n}"));
+            if !self.by_name.contains_key(&name) {
+                self.free_from.insert(base.into(), n + 1);
+                return name;
+            }
+            n += 1;
+        }
     }
 }

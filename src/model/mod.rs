@@ -22,7 +22,7 @@ use crate::value::{AttrInput, Value};
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
 pub(crate) use build::{Basepaths, ValueCtx, apply_attrs, check_required, cut, empty_node, name_from_file};
-pub(crate) use index::Index;
+pub(crate) use index::{Index, MergedCache};
 
 /// An MJCF model: a `<mujoco>` tree as a persistent value.
 ///
@@ -314,9 +314,9 @@ impl Model {
                     // Each attachment's same section (its elements, then its own
                     // attachments' sections), in attach order.
                     for (_, frame) in m.index.scopes.iter().rev() {
-                        let Some(a) = m.node_by_id(*frame).and_then(Node::attached) else { continue };
+                        let Some(a) = m.node_by_id(frame).and_then(Node::attached) else { continue };
                         let mut inner: Vec<ElementId> = scope.to_vec();
-                        inner.push(*frame);
+                        inner.push(frame);
                         let inner: Arc<[ElementId]> = inner.into();
                         if let Some(sec) = a.model.root.child_of_kind(kind) {
                             stack.push(Step::Sections(&a.model, inner.clone(), kind));
@@ -453,6 +453,9 @@ impl Model {
                 where_,
             ));
         }
+        if self.may_change_settings(&path) {
+            index_.merged = MergedCache::default();
+        }
         let id = node.id();
         let root = self.root.update_path(&path, |p| -> Result<Node, EditError> {
             let mut children = p.children().clone();
@@ -482,6 +485,17 @@ impl Model {
     }
 
     /// Whether the element lies in a global settings section (`option`, ...).
+    /// Whether an edit at `path` can change the merged settings: an edit of the root
+    /// or inside a settings section.
+    fn may_change_settings(&self, path: &[usize]) -> bool {
+        match path.first() {
+            None => true,
+            Some(i) => {
+                self.root.children().get(*i).is_some_and(|n| crate::compose::settings::is_settings_section(n.kind()))
+            }
+        }
+    }
+
     fn in_settings_section(&self, loc: &Loc) -> bool {
         let Some(m) = self.scoped_model(loc.scope()) else { return false };
         let Some(section) = m.path_of(loc.id).and_then(|p| p.first().copied()) else { return false };
@@ -527,6 +541,9 @@ impl Model {
                 }
             }
             index.rename(node.id(), new_name.map(SmolStr::from));
+        }
+        if self.may_change_settings(&path) {
+            index.merged = MergedCache::default();
         }
         let root = self.root.update_path(&path, |_| Ok::<_, EditError>(new_node))?;
         Ok(Model { root, index, files: self.files.clone() })
@@ -618,6 +635,9 @@ impl Model {
         }
         let mut index = self.index.clone();
         index.remove_subtree(&node);
+        if holds_frame || self.may_change_settings(&path) {
+            index.merged = MergedCache::default();
+        }
         let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {
             let parent_id = self.index.elems.get(&node.id()).and_then(|e| e.parent);
             let fresh = Node::new(node.id(), node.kind(), Vec::new(), empty_node(node.kind()).children().clone());

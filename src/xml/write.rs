@@ -79,14 +79,7 @@ impl Model {
     /// the global settings are merged.
     pub fn to_xml_string_with(&self, options: &WriteOptions) -> Result<String, WriteError> {
         // The merged global settings, folded before anything is written.
-        let mut merged = Vec::new();
-        for section in self.root.children() {
-            if settings::is_settings_section(section.kind()) {
-                let m =
-                    settings::merged_section(self, section.kind()).map_err(|k| WriteError::Conflict(k.to_string()))?;
-                merged.extend(m);
-            }
-        }
+        let merged = settings::merged(self).map_err(|k| WriteError::Conflict(k.to_string()))?;
         let mut w = Writer {
             insts: instances(self),
             merged: &merged,
@@ -129,8 +122,8 @@ fn instances(model: &Model) -> Vec<Inst<'_>> {
             insts[p].frames.insert(frame, (scope, i));
         }
         for (scope, frame) in m.index.scopes.iter().rev() {
-            if let Some(a) = m.node_by_id(*frame).and_then(Node::attached) {
-                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, *frame, scope.as_str()))));
+            if let Some(a) = m.node_by_id(frame).and_then(Node::attached) {
+                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, frame, scope.as_str()))));
             }
         }
         insts.push(Inst { model: m, prefix, counters: HashMap::new(), auto_index: None, frames: HashMap::new() });
