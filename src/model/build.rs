@@ -331,6 +331,16 @@ pub(crate) fn check_required(kind: ElementKind, attrs: &[Attr]) -> Result<(), Er
     Ok(())
 }
 
+/// Checks that a nested default class has a name: only the root class may be unnamed
+/// (MuJoCo refuses an empty class name, and the output would hold two classes `/`).
+pub(crate) fn check_class_named(parent: ElementKind, kind: ElementKind, attrs: &[Attr]) -> Result<(), ErrorKind> {
+    if kind.tag() != "default" || parent.tag() != "default" {
+        return Ok(());
+    }
+    let named = kind.identifier().is_some_and(|i| attrs.binary_search_by_key(&(i as u16), |(k, _)| *k).is_ok());
+    if named { Ok(()) } else { Err(ErrorKind::MissingRequired { tag: "default", attribute: "class" }) }
+}
+
 /// Gives a nameless `mesh`, `hfield` or `texture` with a file the file's stem as name,
 /// as the reference does.
 pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
@@ -368,7 +378,7 @@ pub(crate) fn build(
         return Err(ErrorKind::DuplicateChild(kind.tag()));
     }
     push_segment(path, kind.tag(), None);
-    fill(ctx, empty_node(kind), el, path)
+    fill(ctx, parent, empty_node(kind), el, path)
 }
 
 /// A node being filled from a part of an [`Element`].
@@ -391,6 +401,7 @@ impl<'e> Filling<'e> {
     /// Applies `part`'s attributes to `node` (of the same kind).
     fn start(
         ctx: &ValueCtx<'_>,
+        parent: ElementKind,
         node: &Node,
         part: &'e Part,
         slot: Option<usize>,
@@ -405,13 +416,20 @@ impl<'e> Filling<'e> {
         apply_attrs(kind, &mut attrs, changes)?;
         name_from_file(kind, &mut attrs);
         check_required(kind, &attrs)?;
+        check_class_named(parent, kind, &attrs)?;
         Ok(Filling { id: node.id(), kind, attrs, children: node.children().clone(), part, next: 0, path_len, slot })
     }
 }
 
 /// Applies `el`'s attributes and children to `node` (of the same kind), iteratively.
-fn fill(ctx: &ValueCtx<'_>, node: Node, el: &Element, path: &mut String) -> Result<Node, ErrorKind> {
-    let mut stack = vec![Filling::start(ctx, &node, el.root_part(), None, path.len())?];
+fn fill(
+    ctx: &ValueCtx<'_>,
+    parent: ElementKind,
+    node: Node,
+    el: &Element,
+    path: &mut String,
+) -> Result<Node, ErrorKind> {
+    let mut stack = vec![Filling::start(ctx, parent, &node, el.root_part(), None, path.len())?];
     while let Some(top) = stack.last_mut() {
         if let Some(&index) = top.part.children.get(top.next) {
             top.next += 1;
@@ -432,7 +450,8 @@ fn fill(ctx: &ValueCtx<'_>, node: Node, el: &Element, path: &mut String) -> Resu
             };
             push_segment(path, child_kind.tag(), None);
             let existing = existing.unwrap_or_else(|| empty_node(child_kind));
-            stack.push(Filling::start(ctx, &existing, child, slot, path_len)?);
+            let parent = top.kind;
+            stack.push(Filling::start(ctx, parent, &existing, child, slot, path_len)?);
             continue;
         }
         let Some(done) = stack.pop() else { break };

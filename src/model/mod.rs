@@ -21,7 +21,9 @@ use crate::value::{AttrInput, Value};
 
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
-pub(crate) use build::{Basepaths, ValueCtx, apply_attrs, check_required, cut, empty_node, name_from_file};
+pub(crate) use build::{
+    Basepaths, ValueCtx, apply_attrs, check_class_named, check_required, cut, empty_node, name_from_file,
+};
 pub(crate) use index::{Index, MergedCache};
 
 /// An MJCF model: a `<mujoco>` tree as a persistent value.
@@ -110,6 +112,9 @@ fn template() -> &'static (Node, Index) {
     })
 }
 
+/// The name of a model without one, as in the reference.
+pub(crate) const UNNAMED: &str = "unnamed_model";
+
 impl Model {
     /// A new, empty model. An empty name becomes `unnamed_model`, as in the reference.
     ///
@@ -117,32 +122,31 @@ impl Model {
     pub fn new(name: &str) -> Model {
         let (root, index) = template().clone();
         let m = Model { root, index, files: Arc::new(FileContext::default()) };
-        m.with_name(if name.is_empty() { "unnamed_model" } else { name })
+        m.with_name(name)
     }
 
     pub(crate) fn from_parts(root: Node, index: Index, files: FileContext) -> Model {
         Model { root, index, files: Arc::new(files) }
     }
 
-    /// The model's name: its `model` attribute (empty if it has none), unless
-    /// `include_copy` replaced that attribute, which does not rename the model.
+    /// The model's name: its `model` attribute (`unnamed_model` if it has none, as in
+    /// the reference), unless `include_copy` replaced that attribute, which does not
+    /// rename the model.
     pub fn name(&self) -> &str {
         match &self.index.own_name {
             Some(n) => n,
-            None => self.root_attr("model").and_then(Value::as_str).unwrap_or(""),
+            None => self.root_attr("model").and_then(Value::as_str).filter(|n| !n.is_empty()).unwrap_or(UNNAMED),
         }
     }
 
-    /// The model with another name (its `model` attribute). An empty name removes the
-    /// attribute.
+    /// The model with another name (its `model` attribute). An empty name becomes
+    /// `unnamed_model`.
     #[must_use]
     pub fn with_name(&self, name: &str) -> Model {
         let Some(i) = ElementKind::ROOT.attr_index("model") else { return self.clone() };
         let mut attrs = self.root.attrs().to_vec();
         attrs.retain(|(k, _)| *k as usize != i);
-        if !name.is_empty() {
-            attrs.push((i as u16, Value::String(name.into())));
-        }
+        attrs.push((i as u16, Value::String(if name.is_empty() { UNNAMED } else { name }.into())));
         let mut index = self.index.clone();
         index.own_name = None;
         Model { root: self.root.with_attrs(attrs), index, files: self.files.clone() }
@@ -524,6 +528,9 @@ impl Model {
         }
         let mut new_attrs = node.attrs().to_vec();
         apply_attrs(kind, &mut new_attrs, changes).map_err(err)?;
+        if let Some(parent) = path.split_last().and_then(|(_, p)| self.node_at(p)) {
+            check_class_named(parent.kind(), kind, &new_attrs).map_err(err)?;
+        }
         let new_node = node.with_attrs(new_attrs);
         let mut index = self.index.clone();
         let old_name = node.identifier();

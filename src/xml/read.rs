@@ -29,7 +29,7 @@ use smol_str::SmolStr;
 
 use crate::error::{ErrorKind, ReadError, TextPos, ValueError};
 use crate::files::{self, FileContext};
-use crate::model::{Basepaths, Index, Model, check_required, cut, empty_node, name_from_file};
+use crate::model::{Basepaths, Index, Model, check_class_named, check_required, cut, empty_node, name_from_file};
 use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of_objtype};
 use crate::tree::{Attr, ElementId, Node};
 use crate::value::{self, FileAsset, Reference, Value};
@@ -395,6 +395,7 @@ fn read_document(
                 if m != Multiplicity::Singleton {
                     name_from_file(kind, &mut attrs);
                     check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
+                    check_class_named(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
                 }
                 let i = r.arena.len();
                 r.arena.push(Pending {

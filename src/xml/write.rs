@@ -175,6 +175,12 @@ impl<'a> Writer<'a> {
         let model = self.insts[0].model;
         let root = &model.root;
         self.out.push_str("<mujoco");
+        // A model without a name is written with the one the reader gives it.
+        if ElementKind::ROOT.attr_index("model").is_some_and(|i| root.attr(i).is_none()) {
+            self.out.push_str(" model=\"");
+            self.out.push_str(crate::model::UNNAMED);
+            self.out.push('"');
+        }
         self.write_attrs(0, root, false, None)?;
         if root.children().is_empty() {
             self.out.push_str("/>");
@@ -245,7 +251,7 @@ impl<'a> Writer<'a> {
                     };
                     // The children to write, each with its instance and frame name.
                     let mut children: Vec<Step<'a>> = Vec::new();
-                    let child_cc = childclass || sets_childclass(node);
+                    let child_cc = childclass || sets_childclass(self.insts[inst].model, node);
                     let node_ref: &'a Node = node;
                     if let Some(&(scope, child_inst)) = self.insts[inst].frames.get(&node_ref.id()) {
                         let name: Rc<str> = format!("{}{}/", self.insts[inst].prefix, scope).into();
@@ -384,7 +390,7 @@ impl<'a> Writer<'a> {
             _ => None,
         };
         let implicit_class = match kind.class_attr() {
-            Some(c) if node.attr(c).is_none() && !childclass => Some(c),
+            Some(c) if !has_live(self.insts[inst].model, node, c) && !childclass => Some(c),
             _ => None,
         };
         let mut set = node.attrs().iter().peekable();
@@ -574,8 +580,18 @@ fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
     model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
 }
 
-fn sets_childclass(node: &Node) -> bool {
-    node.kind().attr_index("childclass").and_then(|i| node.attr(i)).is_some()
+fn sets_childclass(model: &Model, node: &Node) -> bool {
+    node.kind().attr_index("childclass").is_some_and(|i| has_live(model, node, i))
+}
+
+/// Whether attribute `i` of `node` is set and will be written: a reference to an
+/// element that was removed is not (an optional reference; a required one fails).
+fn has_live(model: &Model, node: &Node, i: usize) -> bool {
+    match node.attr(i) {
+        None => false,
+        Some(Value::Reference(Reference::Element(id))) => model.index.elems.contains_key(id),
+        Some(_) => true,
+    }
 }
 
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
