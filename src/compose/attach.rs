@@ -71,8 +71,7 @@ impl Model {
 
     fn attach_here(&self, at: ElementId, child: &Model) -> Result<(Model, ElementId), EditError> {
         let path = self.path_of(at).ok_or_else(|| EditError::new(ErrorKind::NotFound, format!("{at:?}")))?;
-        let where_ = self.describe(&path);
-        let err = |k: ErrorKind| EditError::new(k, where_.clone());
+        let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
         let node = self.node_at(&path).ok_or_else(|| err(ErrorKind::NotFound))?;
         let base = child.name();
         if base.contains('/') {

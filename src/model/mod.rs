@@ -435,26 +435,35 @@ impl Model {
 
     fn insert_here(&self, parent: &Loc, index: Option<usize>, element: &Element) -> Result<(Model, Loc), EditError> {
         let path = self.locate(parent)?;
-        let mut where_ = self.describe(&path);
-        let parent_node =
-            self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, where_.clone()))?;
+        // The element path for errors, made only when there is one: the parent's path
+        // (O(width) to describe) and the new element's own part.
+        let mut sub = String::new();
+        let at = |sub: &str| -> String {
+            let outer = self.describe(&path);
+            match (outer.is_empty(), sub.is_empty()) {
+                (true, _) => sub.to_string(),
+                (false, true) => outer,
+                (false, false) => format!("{outer}/{sub}"),
+            }
+        };
+        let parent_node = self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, at("")))?;
         let basepaths = self.basepaths();
         let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
-        let node = build::build(&ctx, parent_node.kind(), element, &mut where_)
-            .map_err(|k| EditError::new(k, where_.clone()))?;
+        let node =
+            build::build(&ctx, parent_node.kind(), element, &mut sub).map_err(|k| EditError::new(k, at(&sub)))?;
         if parent_node.attached().is_some() {
-            self.check_frame_child(&path, &parent_node, &node).map_err(|k| EditError::new(k, where_.clone()))?;
+            self.check_frame_child(&path, &parent_node, &node).map_err(|k| EditError::new(k, at(&sub)))?;
         }
         if node.kind().multiplicity() == Multiplicity::OnDemand
             && parent_node.children().iter().any(|c| c.kind() == node.kind())
         {
-            return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), where_));
+            return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), at(&sub)));
         }
         let mut index_ = self.index.clone();
         if let Err(d) = index_.insert_subtree(Some(parent_node.id()), &node) {
             return Err(EditError::new(
                 ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
-                where_,
+                at(&sub),
             ));
         }
         if self.may_change_settings(&path) {
@@ -508,8 +517,7 @@ impl Model {
 
     fn set_here(&self, loc: &Loc, attrs: &Attrs) -> Result<Model, EditError> {
         let path = self.locate(loc)?;
-        let where_ = self.describe(&path);
-        let err = |k: ErrorKind| EditError::new(k, where_.clone());
+        let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
         let node = self.node_at(&path).ok_or_else(|| err(ErrorKind::NotFound))?;
         let kind = node.kind();
         let mut basepaths = self.basepaths();
