@@ -1,0 +1,259 @@
+//! The performance workloads W1–W5, shared by the divan benchmarks (`benches/perf.rs`)
+//! and the figures binary (`benches/figures.rs`, one JSON line per workload, which
+//! `tools/compare_perf.py` reads).
+//!
+//! - W1 fleet: an arena with N sites `spawn_i`; N attaches of one robot value, each at
+//!   its own site, with a freejoint on the attachment frame; then `to_xml_string`.
+//! - W2 undo: 1000 small edits of the 100-robot fleet, every version kept.
+//! - W3 read: a generated 10,000-body tree (100 chains of 100 nested bodies), the same
+//!   bodies as one 10,000-deep chain, and the CMU humanoid.
+//! - W4 detach: one robot out of the 1000-robot fleet.
+//! - W5 floor: quick-xml reading a document into events and writing them back.
+//!
+//! The models are in `benches/models` (see its README.md).
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use mjcf::{Element, Error, Model, Namespace};
+
+/// The global allocator of every binary that includes this module: `cap` keeps the
+/// live, total and peak heap bytes (read with [`live_bytes`], [`total_bytes`]), and
+/// divan's profiler inside it counts allocations per benchmark iteration.
+#[global_allocator]
+static ALLOC: cap::Cap<divan::AllocProfiler> = cap::Cap::new(divan::AllocProfiler::system(), usize::MAX);
+
+/// Heap bytes allocated and not yet freed, over the whole process.
+pub fn live_bytes() -> usize {
+    ALLOC.allocated()
+}
+
+/// Heap bytes allocated since the process started, including freed ones.
+pub fn total_bytes() -> usize {
+    ALLOC.total_allocated()
+}
+
+/// The fleet sizes of W1.
+pub const FLEET_SIZES: [usize; 4] = [1, 10, 100, 1000];
+/// W2: the fleet size and the number of edits (= extra versions).
+pub const UNDO_ROBOTS: usize = 100;
+pub const UNDO_EDITS: usize = 1000;
+/// W3: 100 chains of 100 bodies.
+pub const TREE_CHAINS: usize = 100;
+pub const TREE_DEPTH: usize = 100;
+/// W4: the fleet size.
+pub const DETACH_ROBOTS: usize = 1000;
+
+/// `benches/models`.
+pub fn models_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches").join("models")
+}
+
+/// The quadruped, read from `benches/models/quadruped_robot.xml` (with its includes).
+pub fn read_robot() -> Model {
+    Model::from_path(models_dir().join("quadruped_robot.xml")).expect("benches/models/quadruped_robot.xml reads")
+}
+
+/// The arena with `n` spawn sites: `benches/models/arena_{100,1000}.xml`, or generated
+/// the same way for other sizes.
+pub fn arena_xml(n: usize) -> String {
+    let file = models_dir().join(format!("arena_{n}.xml"));
+    if n == 100 || n == 1000 {
+        std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()))
+    } else {
+        generate_arena_xml(n)
+    }
+}
+
+/// An arena as in `benches/models`: a ground plane, a light and `n` sites `spawn_i` on
+/// a 2 m grid (ceil(sqrt(n)) per row) centred on the origin at z = 0.6.
+pub fn generate_arena_xml(n: usize) -> String {
+    use std::fmt::Write;
+    let side = (1..).find(|s| s * s >= n).unwrap_or(1);
+    let half = side as i64 - 1;
+    let mut s = String::from("<mujoco model=\"arena\">\n");
+    if n >= 1000 {
+        s.push_str("  <size memory=\"2G\"/>\n");
+    }
+    s.push_str("  <option timestep=\"0.005\"/>\n  <visual>\n    <map znear=\"0.005\" zfar=\"20\"/>\n  </visual>\n");
+    s.push_str("  <worldbody>\n    <light name=\"top\" pos=\"0 0 20\" directional=\"true\"/>\n");
+    s.push_str("    <geom name=\"floor\" type=\"plane\" size=\"0 0 0.1\" rgba=\".2 .3 .4 1\"/>\n");
+    for i in 0..n {
+        let x = 2 * (i % side) as i64 - half;
+        let y = 2 * (i / side) as i64 - half;
+        let _ = writeln!(s, "    <site name=\"spawn_{i}\" pos=\"{x} {y} 0.6\" size=\"0.05\"/>");
+    }
+    s.push_str("  </worldbody>\n</mujoco>\n");
+    s
+}
+
+/// The arena with `n` sites, read.
+pub fn read_arena(n: usize) -> Model {
+    Model::from_xml_str(&arena_xml(n)).expect("the arena reads")
+}
+
+/// W1: attaches `robot` at each of the `n` sites `spawn_i` of `arena` (found by name),
+/// each with a freejoint on its frame.
+pub fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Error> {
+    let mut m = arena.clone();
+    for i in 0..n {
+        let site = m.find(Namespace::Site, &format!("spawn_{i}")).expect("the arena has the site");
+        let (next, frame) = m.attach(&site, robot)?;
+        let (next, _) = next.add(&frame, Element::new("freejoint"))?;
+        m = next;
+    }
+    Ok(m)
+}
+
+/// The geoms and bodies of the quadruped that W2 edits.
+pub const ROBOT_GEOMS: [&str; 6] =
+    ["torso", "eye_r", "thigh_front_left", "shin_back_right", "foot_front_right", "toe_back_left"];
+pub const ROBOT_BODIES: [&str; 5] =
+    ["torso", "hip_front_left", "knee_back_right", "ankle_front_right", "toe_back_left"];
+
+/// W2, edit `k` of `m` (whose attachment scopes are `scopes`): even `k` sets the rgba of
+/// a geom inside some robot, odd `k` the pos of a body inside some robot, both found by
+/// scoped name.
+pub fn undo_edit(m: &Model, scopes: &[String], k: usize) -> Result<Model, Error> {
+    let scope = &scopes[(k * 37) % scopes.len()];
+    let t = k as f64 / UNDO_EDITS as f64;
+    if k % 2 == 0 {
+        let name = format!("{scope}/{}", ROBOT_GEOMS[(k / 2) % ROBOT_GEOMS.len()]);
+        let loc = m.find(Namespace::Geom, &name).expect("the geom exists");
+        Ok(m.set_attr(&loc, "rgba", [t, 1.0 - t, 0.5, 1.0])?)
+    } else {
+        let name = format!("{scope}/{}", ROBOT_BODIES[(k / 2) % ROBOT_BODIES.len()]);
+        let loc = m.find(Namespace::Body, &name).expect("the body exists");
+        Ok(m.set_attr(&loc, "pos", [0.1 * t, 0.0, 0.57 + 0.01 * t])?)
+    }
+}
+
+/// The attachment scope names of a model, in attach order.
+pub fn scopes_of(m: &Model) -> Vec<String> {
+    m.scopes().map(str::to_string).collect()
+}
+
+/// W2: `edits` edits of `fleet`, every version kept (`versions[0]` is `fleet`).
+pub fn undo_history(fleet: &Model, edits: usize) -> Result<Vec<Model>, Error> {
+    let scopes = scopes_of(fleet);
+    let mut versions = Vec::with_capacity(edits + 1);
+    versions.push(fleet.clone());
+    for k in 0..edits {
+        let next = undo_edit(&versions[k], &scopes, k)?;
+        versions.push(next);
+    }
+    Ok(versions)
+}
+
+/// W3: `chains` chains of `depth` nested bodies under the worldbody, each body with a
+/// hinge joint and a capsule geom. One element per line, no indentation (indenting a
+/// 10,000-deep chain would make the file mostly spaces).
+pub fn tree_xml(chains: usize, depth: usize) -> String {
+    use std::fmt::Write;
+    let mut s = String::with_capacity(chains * depth * 170 + 100);
+    s.push_str("<mujoco model=\"tree\">\n<worldbody>\n");
+    for c in 0..chains {
+        for d in 0..depth {
+            let _ = writeln!(
+                s,
+                "<body name=\"b{c}_{d}\" pos=\"0 0 0.1\">\n<joint name=\"j{c}_{d}\" type=\"hinge\" axis=\"0 1 0\"/>\n\
+                 <geom name=\"g{c}_{d}\" type=\"capsule\" size=\"0.02\" fromto=\"0 0 0 0 0 0.1\"/>"
+            );
+        }
+        for _ in 0..depth {
+            s.push_str("</body>\n");
+        }
+    }
+    s.push_str("</worldbody>\n</mujoco>\n");
+    s
+}
+
+/// W3: the 10,000-body tree.
+pub fn tree_10k_xml() -> String {
+    tree_xml(TREE_CHAINS, TREE_DEPTH)
+}
+
+/// W3: the same 10,000 bodies as one chain (names `b0_0` … `b0_9999`).
+pub fn chain_10k_xml() -> String {
+    tree_xml(1, TREE_CHAINS * TREE_DEPTH)
+}
+
+/// W3: the CMU humanoid (`benches/models/humanoid_CMU.xml`, from the conformance corpus).
+pub fn humanoid_xml() -> String {
+    std::fs::read_to_string(models_dir().join("humanoid_CMU.xml")).expect("benches/models/humanoid_CMU.xml")
+}
+
+/// W5: reads `xml` into quick-xml events and writes them back with `quick_xml::Writer`;
+/// returns the bytes written.
+pub fn quickxml_roundtrip(xml: &str) -> Vec<u8> {
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut writer = quick_xml::Writer::new(Vec::with_capacity(xml.len()));
+    loop {
+        match reader.read_event() {
+            Ok(quick_xml::events::Event::Eof) => break,
+            Ok(e) => writer.write_event(e).expect("writing to a Vec"),
+            Err(e) => panic!("quick-xml: {e}"),
+        }
+    }
+    writer.into_inner()
+}
+
+/// W5: quick-xml reading `xml` into events only; returns the number of events.
+pub fn quickxml_read(xml: &str) -> usize {
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut n = 0;
+    loop {
+        match reader.read_event() {
+            Ok(quick_xml::events::Event::Eof) => break,
+            Ok(e) => {
+                std::hint::black_box(e);
+                n += 1;
+            }
+            Err(e) => panic!("quick-xml: {e}"),
+        }
+    }
+    n
+}
+
+/// One measurement: the median time of `runs` runs of `f`, and the heap bytes the last
+/// run allocated in total and still holds (the value it returned, before it is dropped).
+#[derive(Clone, Debug)]
+pub struct Measured<T> {
+    pub value: T,
+    pub seconds: f64,
+    pub min_seconds: f64,
+    pub runs: usize,
+    pub allocated_bytes: usize,
+    pub live_bytes: isize,
+}
+
+/// Runs `f` repeatedly (at least `min_runs` times and until about `budget` has passed,
+/// at most `max_runs`), dropping each result except the last.
+pub fn measure<T>(min_runs: usize, max_runs: usize, budget: Duration, mut f: impl FnMut() -> T) -> Measured<T> {
+    let mut times = Vec::new();
+    let start = Instant::now();
+    let mut last = None;
+    let mut alloc = 0;
+    let mut live = 0;
+    while times.len() < min_runs.max(1) || (times.len() < max_runs && start.elapsed() < budget) {
+        drop(last.take());
+        let (live0, total0) = (live_bytes(), total_bytes());
+        let t = Instant::now();
+        let v = std::hint::black_box(f());
+        times.push(t.elapsed().as_secs_f64());
+        alloc = total_bytes() - total0;
+        live = live_bytes() as isize - live0 as isize;
+        last = Some(v);
+    }
+    let runs = times.len();
+    times.sort_by(f64::total_cmp);
+    Measured {
+        value: last.expect("ran at least once"),
+        seconds: times[runs / 2],
+        min_seconds: times[0],
+        runs,
+        allocated_bytes: alloc,
+        live_bytes: live,
+    }
+}
