@@ -90,6 +90,11 @@ fn error(key: &str, workload: &str, e: impl std::fmt::Display) {
 fn main() {
     let args = parse_args();
     let wants = |w: &str| args.only.as_ref().is_none_or(|o| o.iter().any(|x| x == w));
+    // Growth runs only when asked for (`--only growth`): it is not a workload of the
+    // comparison.
+    if args.only.as_ref().is_some_and(|o| o.iter().any(|x| x == "growth")) {
+        growth(args.budget);
+    }
 
     if let Some(dir) = &args.dump_dir {
         std::fs::create_dir_all(dir).expect("create the dump dir");
@@ -241,4 +246,52 @@ fn main() {
             emit(l);
         }
     }
+}
+
+/// Growth: one attach (with a freejoint on its frame) as the child grows at a fixed
+/// parent, and as the parent grows (its width: sites and frames in the worldbody)
+/// with a fixed child; and writing, as the output grows. One JSON line per point.
+fn growth(budget: Duration) {
+    let robot = read_robot();
+    // A fixed parent: 100 sites, 50 robots attached.
+    let parent = build_fleet(&read_arena(100), &robot, 50).expect("the fleet builds");
+    let site = parent.find(mjcf::Namespace::Site, "spawn_99").expect("the site");
+    for bodies in [10usize, 100, 1000, 10_000] {
+        let child = mjcf::Model::from_xml_str(&tree_xml(bodies.div_ceil(100), bodies.min(100)))
+            .expect("the child reads")
+            .with_name("child");
+        let m = measure(20, 100_000, budget, || attach_one(&parent, &site, &child));
+        let mut l =
+            line(&format!("growth_child_{bodies}"), &format!("attach a {bodies}-body child (parent: 50 robots)"), &m);
+        l["child_bodies"] = json!(bodies);
+        emit(l);
+    }
+    for width in [10usize, 100, 1000, 10_000] {
+        let arena = read_arena(width);
+        let half = build_fleet(&arena, &robot, width / 2).expect("the fleet builds");
+        let site = half.find(mjcf::Namespace::Site, &format!("spawn_{}", width - 1)).expect("the site");
+        let m = measure(20, 100_000, budget, || attach_one(&half, &site, &robot));
+        let mut l = line(
+            &format!("growth_width_{width}"),
+            &format!("attach the robot to a {width}-site arena holding {} robots", width / 2),
+            &m,
+        );
+        l["parent_width"] = json!(width + width / 2);
+        emit(l);
+    }
+    for n in [10usize, 100, 1000] {
+        let fleet = build_fleet(&read_arena(n), &robot, n).expect("the fleet builds");
+        let w = measure(2, 50, budget, || fleet.to_xml_string());
+        if let Ok(xml) = &w.value {
+            let mut l = line(&format!("growth_write_{n}"), &format!("write the {n}-robot fleet"), &w);
+            l["bytes"] = json!(xml.len());
+            l["ns_per_byte"] = json!(w.seconds * 1e9 / xml.len() as f64);
+            emit(l);
+        }
+    }
+}
+
+fn attach_one(parent: &mjcf::Model, site: &mjcf::Loc, child: &mjcf::Model) -> mjcf::Model {
+    let (m, frame) = parent.attach(site, child).expect("attach");
+    m.add(&frame, mjcf::Element::new("freejoint")).expect("freejoint").0
 }
