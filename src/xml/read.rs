@@ -283,6 +283,8 @@ fn read_document(
     let mut includes: Vec<(Model, usize)> = Vec::new();
     let mut model_name: Option<SmolStr> = None;
     let mut seen_root = false;
+    // The stack depth of the `<default class="/">` wrapper being read, if any.
+    let mut slash_wrapper: Option<usize> = None;
     let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
     loop {
         let offset = xml.buffer_position() as usize;
@@ -297,6 +299,9 @@ fn read_document(
             Event::Start(t) => (t, false),
             Event::Empty(t) => (t, true),
             Event::End(_) => {
+                if slash_wrapper == Some(stack.len()) {
+                    slash_wrapper = None;
+                }
                 stack.pop();
                 continue;
             }
@@ -361,9 +366,16 @@ fn read_document(
         // written by this crate and by dm_control: read its content into the root class.
         if name == "default" && parent_kind == root_default && parent_kind.spec().parent == Some(ElementKind::ROOT) {
             let slash = tag.attributes().flatten().any(|a| a.key.as_ref() == "class" && a.value.as_ref() == "/");
-            if slash && r.arena[parent].attrs.is_empty() && r.arena[parent].children.is_empty() {
+            // Once only: inside the wrapper, `class="/"` is a nested class's name (and
+            // refused, as `/` is in any identifier).
+            if slash
+                && slash_wrapper.is_none()
+                && r.arena[parent].attrs.is_empty()
+                && r.arena[parent].children.is_empty()
+            {
                 if !empty {
                     stack.push(parent);
+                    slash_wrapper = Some(stack.len());
                 }
                 continue;
             }

@@ -1,0 +1,17 @@
+#!/bin/sh
+# Regenerates the seed corpus of the `read_xml` target (fuzz/corpus is gitignored):
+# every *.xml file of the repository outside target/, fuzz/ and schema/ (the
+# conformance cases under tests/conformance/cases and any other model files), copied
+# into fuzz/corpus/read_xml/ under a name made from its path. schema/schema.xml is
+# left out: it is not MJCF, and at 216 KB it would raise libFuzzer's default -max_len.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(dirname "$here")
+out="$here/corpus/read_xml"
+mkdir -p "$out"
+cd "$repo"
+find . \( -path ./target -o -path ./fuzz -o -path ./schema -o -path ./.git \) -prune -o -type f -name '*.xml' -print | sort | while read -r f; do
+    name=$(printf '%s' "${f#./}" | tr '/' '_')
+    cat "$f" >"$out/$name"
+done
+echo "$(ls "$out" | wc -l) files in $out"

@@ -1,0 +1,177 @@
+//! Regression tests for what the fuzz targets in `fuzz/` (`read_xml`, `ops`; see
+//! `fuzz/README.md`) found: each test is the minimized reproducer of one finding,
+//! written against the public API, asserting the outcome the documentation (or
+//! MuJoCo, where the crate follows it) promises.
+
+use mjcf::{Element, ErrorKind, Model, Namespace};
+
+fn write(m: &Model) -> String {
+    m.to_xml_string().unwrap_or_else(|e| panic!("cannot write: {e}"))
+}
+
+fn read(xml: &str) -> Model {
+    Model::from_xml_str(xml).unwrap_or_else(|e| panic!("cannot read back: {e}\n{xml}"))
+}
+
+// ---------------------------------------------------------------------------------
+// Finding 1: a model without a `model` attribute.
+
+/// `ops`: `[WithName { name: "" }]`, and `[IncludeCopy, Remove { root }]`.
+///
+/// A model whose root has no `model` attribute (`with_name("")`, the attribute set
+/// to "" or cleared, the root removed) is written as `<mujoco>`, which reads back as
+/// `model="unnamed_model"` (as `Model::new("")` and the reader name a nameless
+/// model), so write∘read∘write ≠ write. Whatever the fix (never leave a model
+/// without a name, or write the name the reader will give it), the output must be a
+/// fixed point.
+#[test]
+fn ops_model_without_a_name_attribute_writes_a_fixed_point() {
+    let m = Model::new("m");
+    let mut cases = vec![("with_name(\"\")", m.with_name(""))];
+    // These edits may also be refused; if they succeed, the result must round-trip.
+    cases.extend(m.set_attr(&m.root(), "model", "").ok().map(|x| ("set model=\"\"", x)));
+    cases.extend(m.clear_attr(&m.root(), "model").ok().map(|x| ("clear model", x)));
+    cases.extend(m.remove(&m.root()).ok().map(|x| ("remove root", x)));
+    let copied = m.include_copy(&Model::new("other"), false).unwrap();
+    cases.extend(copied.remove(&copied.root()).ok().map(|x| ("include_copy, remove root", x)));
+    for (what, model) in cases {
+        let w1 = write(&model);
+        let w2 = write(&read(&w1));
+        assert_eq!(w2, w1, "{what}: write(read(w1)) differs from w1");
+    }
+}
+
+/// `ops` (found by reasoning from the finding above, then checked): attaching a model
+/// whose `name()` is empty uses the empty scope, so the composed output has a body
+/// named `/`, a second default class `/` (the parent's root class), and does not
+/// read back. The scope must not be empty (dm_control scopes a nameless model as
+/// `unnamed_model`), or the attach must be refused with a typed error.
+#[test]
+fn ops_model_without_a_name_attaches_under_a_nonempty_scope() {
+    let child = Model::new("robot");
+    let (child, _) = child.add(&child.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
+    let arena = Model::new("arena");
+    let mut cases = vec![("with_name(\"\")", child.with_name(""))];
+    cases.extend(child.clear_attr(&child.root(), "model").ok().map(|x| ("clear model", x)));
+    for (what, nameless) in cases {
+        // A model without a name is `unnamed_model`, as a read or new one is.
+        assert_eq!(nameless.name(), "unnamed_model", "{what}");
+        match arena.attach_to_world(&nameless) {
+            Ok((scene, frame)) => {
+                let scope = scene.scope_of_frame(&frame).unwrap();
+                assert!(!scope.is_empty() && !scope.contains('/'), "{what}: scope {scope:?}");
+                assert!(scene.find(Namespace::Body, &format!("{scope}/torso")).is_some(), "{what}");
+                let xml = write(&scene);
+                assert!(xml.contains(&format!(r#"<body name="{scope}/torso"/>"#)), "{what}:\n{xml}");
+                assert_eq!(xml.matches(r#"<default class="/""#).count(), 1, "{what}: two classes named /:\n{xml}");
+                assert!(!xml.contains(r#"name="/""#), "{what}:\n{xml}");
+                assert_eq!(scene.detach(&scope).unwrap(), arena, "{what}");
+            }
+            Err(e) => assert!(
+                matches!(e.kind(), ErrorKind::InvalidValue { tag: "mujoco", attribute: "model", .. }),
+                "{what}: refused, but not as an invalid model name: {e}"
+            ),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Finding 2: a nested default class without a class name.
+
+/// `ops`: `[Add { parent: <root default class>, element: DefaultClass { class: "" } }]`.
+///
+/// A nested `<default>` without `class` is written with the root class's name
+/// (`<default class="/"><default class="/">`), so the output has two classes named
+/// `/`, and reading it back silently merges the nested class into the root class.
+/// MuJoCo refuses such a class ("empty class name", `mjXReader::Default`): the edit
+/// must be refused, as a missing required attribute.
+#[test]
+fn ops_nested_default_class_without_a_name_is_refused() {
+    let m = Model::new("m");
+    let missing =
+        |e: &mjcf::EditError| matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" });
+    let e = m.add(&m.default_class(), Element::new("default")).unwrap_err();
+    assert!(missing(&e), "{e}");
+    let e = m.add(&m.default_class(), Element::new("default").attr("class", "")).unwrap_err();
+    assert!(missing(&e), "{e}");
+    let (named, class) = m.add(&m.default_class(), Element::new("default").attr("class", "c")).unwrap();
+    let e = named.clear_attr(&class, "class").unwrap_err();
+    assert!(missing(&e), "{e}");
+    // The root class itself may stay unnamed.
+    assert!(m.clear_attr(&m.default_class(), "class").is_ok());
+}
+
+/// `read_xml`, the same finding reached through the reader: the nested class is read,
+/// written as a second `/` class, and read back as part of the root class.
+#[test]
+fn read_xml_nested_default_class_without_a_name_is_refused() {
+    let e =
+        Model::from_xml_str(r#"<mujoco><default><default><geom size="1"/></default></default></mujoco>"#).unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" }), "{e}");
+    assert_eq!(e.pos().map(|p| (p.line, p.column)), Some((1, 18)), "{e}");
+}
+
+// ---------------------------------------------------------------------------------
+// Finding 3: a class reference to a removed default class.
+
+/// `ops`: `[IncludeCopy { <the read robot with childclass="leg"> }, Remove { <class
+/// leg> }, Add { .. }]`.
+///
+/// Removing a default class that an element's `class` or a body's `childclass`
+/// refers to leaves a dead reference, which is not written (as documented for
+/// optional references), but the writer still counts the attribute as set, so the
+/// element (or every element below the body) loses its implicit `class="/"`: the next
+/// round writes it, and write∘read∘write ≠ write.
+#[test]
+fn ops_removed_default_class_leaves_the_implicit_class() {
+    for (what, xml) in [
+        (
+            "class",
+            r#"<mujoco model="m"><default><default class="c"/></default><worldbody><geom class="c" size="1"/></worldbody></mujoco>"#,
+        ),
+        (
+            "childclass",
+            r#"<mujoco model="m"><default><default class="c"/></default><worldbody><body name="b" childclass="c"><geom size="1"/></body></worldbody></mujoco>"#,
+        ),
+    ] {
+        let m = read(xml);
+        let m = m.remove(&m.find(Namespace::Default, "c").unwrap()).unwrap();
+        let w1 = write(&m);
+        assert!(w1.contains(r#"<geom name="//unnamed_geom_0" class="/" size="1"/>"#), "{what}:\n{w1}");
+        assert_eq!(write(&read(&w1)), w1, "{what}");
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Finding 4 (reported by the fuzzing helper from reading the reader, not a crash): a
+// second `<default class="/">` inside the root-class wrapper.
+
+/// `<default><default class="/"><default class="/">…` merged the inner class into the
+/// root class. Only the outermost wrapper is the root class; inside it, `/` is a
+/// nested class's name and refused like `/` in any identifier.
+#[test]
+fn read_xml_nested_slash_class_inside_the_root_wrapper_is_refused() {
+    let e = Model::from_xml_str(
+        r#"<mujoco><default><default class="/"><default class="/"><geom size="1"/></default></default></default></mujoco>"#,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e.kind(),
+            ErrorKind::InvalidValue {
+                tag: "default",
+                attribute: "class",
+                error: mjcf::ValueError::SlashInIdentifier,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(e.pos().map(|p| (p.line, p.column)), Some((1, 37)), "{e}");
+    // The wrapper alone, and a named class inside it, still read.
+    let m = read(
+        r#"<mujoco><default><default class="/"><geom size="1"/><default class="c"/></default></default></mujoco>"#,
+    );
+    assert!(m.find(Namespace::Default, "c").is_some());
+    assert_eq!(write(&read(&write(&m))), write(&m));
+}
