@@ -153,8 +153,15 @@ impl Node {
     }
 
     /// The index of the child with this id.
-    pub(crate) fn child_position(&self, id: ElementId) -> Option<usize> {
-        self.0.children.iter().position(|c| c.id() == id)
+    /// The position of the child `id`, looked for first at `hint`, then after it
+    /// (where inserts before it move it), then before it. O(log width) when the hint
+    /// is right, O(distance) otherwise.
+    pub(crate) fn child_position_near(&self, id: ElementId, hint: usize) -> Option<usize> {
+        let children = &self.0.children;
+        let len = children.len();
+        let mut focus = children.focus();
+        let hint = hint.min(len);
+        (hint..len).chain((0..hint).rev()).find(|&i| focus.get(i).is_some_and(|c| c.id() == id))
     }
 
     /// The first child of this kind.

@@ -107,7 +107,8 @@ impl Model {
         let frame = Node::frame(id, body_kind, attrs, Attached { scope: scope.clone(), model: child.clone() });
         let parent_id = self.node_at(&parent_path).map(Node::id);
         // A new frame has no identifier, so indexing it cannot find a duplicate.
-        let _ = index.insert_subtree(parent_id, &frame);
+        let parent_len = self.node_at(&parent_path).map_or(0, |p| p.children().len());
+        let _ = index.insert_subtree(parent_id, &frame, position.min(parent_len));
         index.scopes.push(scope, id);
         // The merged settings: the child's folded into ours (each cached, so O(1)).
         let mut sections = settings::merged(self).map_err(err)?.to_vec();

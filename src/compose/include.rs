@@ -55,7 +55,7 @@ impl Model {
         let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
         let own_name = (self.name() != other_name(&root)).then(|| SmolStr::from(self.name()));
         let mut index = Index { scopes: self.index.scopes.clone(), own_name, ..Index::default() };
-        if let Err(d) = index.insert_subtree(None, &root) {
+        if let Err(d) = index.insert_subtree(None, &root, 0) {
             let where_ = Model { root: root.clone(), index: index.clone(), files: self.files.clone() };
             let path = where_.path_of(d.id).map(|p| where_.describe(&p)).unwrap_or_default();
             return Err(EditError::new(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, path));

@@ -22,6 +22,9 @@ pub(crate) struct Entry {
     pub(crate) parent: Option<ElementId>,
     pub(crate) kind: ElementKind,
     pub(crate) name: Option<SmolStr>,
+    /// The element's position among its parent's children when it was indexed: a
+    /// hint, checked before use (later inserts and removals before it shift it).
+    pub(crate) pos: usize,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -82,21 +85,26 @@ pub(crate) struct Duplicate {
 impl Index {
     /// Adds `node` and its whole subtree, under `parent`. On a duplicate name the index
     /// is left partly updated: callers work on a copy and drop it on error.
-    pub(crate) fn insert_subtree(&mut self, parent: Option<ElementId>, node: &Node) -> Result<(), Duplicate> {
+    pub(crate) fn insert_subtree(
+        &mut self,
+        parent: Option<ElementId>,
+        node: &Node,
+        at: usize,
+    ) -> Result<(), Duplicate> {
         let in_frame = parent.is_some_and(|p| self.scope_of(p).is_some());
-        let mut stack: Vec<(Option<ElementId>, &Node, bool)> = vec![(parent, node, in_frame)];
-        while let Some((parent, n, in_frame)) = stack.pop() {
-            self.insert_one(parent, n, !in_frame)?;
+        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize)> = vec![(parent, node, in_frame, at)];
+        while let Some((parent, n, in_frame, pos)) = stack.pop() {
+            self.insert_one(parent, n, !in_frame, pos)?;
             // Reversed, so that elements are indexed in document order and a duplicate
             // is reported at its second occurrence. A frame's joints are unique per
             // frame only, so their names are not registered.
             let frame = n.attached().is_some();
-            stack.extend(n.children().iter().rev().map(|c| (Some(n.id()), c, frame)));
+            stack.extend(n.children().iter().enumerate().rev().map(|(i, c)| (Some(n.id()), c, frame, i)));
         }
         Ok(())
     }
 
-    fn insert_one(&mut self, parent: Option<ElementId>, n: &Node, register: bool) -> Result<(), Duplicate> {
+    fn insert_one(&mut self, parent: Option<ElementId>, n: &Node, register: bool, pos: usize) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
             let key = (ns, name.clone());
@@ -105,7 +113,7 @@ impl Index {
             }
             self.names.insert(key, n.id());
         }
-        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name });
+        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos });
         Ok(())
     }
 
@@ -150,13 +158,13 @@ impl Index {
         self.scopes.frame_of(scope)
     }
 
-    /// The ids from the root down to `id`, inclusive.
-    pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<ElementId>> {
-        let mut chain = vec![id];
+    /// The ids from the root down to `id`, inclusive, each with its position hint.
+    pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize)>> {
         let mut cur = self.elems.get(&id)?;
+        let mut chain = vec![(id, cur.pos)];
         while let Some(p) = cur.parent {
-            chain.push(p);
             cur = self.elems.get(&p)?;
+            chain.push((p, cur.pos));
         }
         chain.reverse();
         Some(chain)

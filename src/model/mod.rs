@@ -107,7 +107,7 @@ fn template() -> &'static (Node, Index) {
         let root = empty_node(ElementKind::ROOT);
         let mut index = Index::default();
         // A fresh tree has no identifiers, so this cannot find a duplicate.
-        let _ = index.insert_subtree(None, &root);
+        let _ = index.insert_subtree(None, &root, 0);
         (root, index)
     })
 }
@@ -349,14 +349,15 @@ impl Model {
     pub(crate) fn path_of(&self, id: ElementId) -> Option<Vec<usize>> {
         let ids = self.index.ancestry(id)?;
         let mut node = &self.root;
-        if ids.first() != Some(&node.id()) {
+        let (first, rest) = ids.split_first()?;
+        if first.0 != node.id() {
             return None;
         }
         let mut path = Vec::with_capacity(ids.len());
-        for id in &ids[1..] {
-            let i = node.child_position(*id)?;
+        for (id, hint) in rest {
+            let i = node.child_position_near(*id, *hint)?;
             path.push(i);
-            node = &node.children()[i];
+            node = node.children().get(i)?;
         }
         Some(path)
     }
@@ -459,8 +460,14 @@ impl Model {
         {
             return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), at(&sub)));
         }
+        let children = parent_node.children();
+        let singletons = children.iter().take_while(|c| c.kind().multiplicity() == Multiplicity::Singleton).count();
+        let position = match index {
+            Some(i) => (singletons + i).min(children.len()),
+            None => children.len(),
+        };
         let mut index_ = self.index.clone();
-        if let Err(d) = index_.insert_subtree(Some(parent_node.id()), &node) {
+        if let Err(d) = index_.insert_subtree(Some(parent_node.id()), &node, position) {
             return Err(EditError::new(
                 ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
                 at(&sub),
@@ -472,12 +479,7 @@ impl Model {
         let id = node.id();
         let root = self.root.update_path(&path, |p| -> Result<Node, EditError> {
             let mut children = p.children().clone();
-            let singletons = children.iter().take_while(|c| c.kind().multiplicity() == Multiplicity::Singleton).count();
-            let at = match index {
-                Some(i) => (singletons + i).min(children.len()),
-                None => children.len(),
-            };
-            children.insert(at, node);
+            children.insert(position.min(children.len()), node);
             Ok(p.with_children(children))
         })?;
         Ok((Model { root, index: index_, files: self.files.clone() }, Loc::new(id)))
@@ -657,7 +659,7 @@ impl Model {
             let parent_id = self.index.elems.get(&node.id()).and_then(|e| e.parent);
             let fresh = Node::new(node.id(), node.kind(), Vec::new(), empty_node(node.kind()).children().clone());
             // The emptied element holds no identifiers, so this finds no duplicate.
-            let _ = index.insert_subtree(parent_id, &fresh);
+            let _ = index.insert_subtree(parent_id, &fresh, path.last().copied().unwrap_or(0));
             self.root.update_path(&path, |_| Ok::<_, EditError>(fresh))?
         } else {
             let (last, parent_path) = match path.split_last() {

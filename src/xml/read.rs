@@ -551,7 +551,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
     let mut index = Index::default();
-    if let Err(d) = index.insert_subtree(None, &root) {
+    if let Err(d) = index.insert_subtree(None, &root, 0) {
         let offset = r.arena.iter().find(|p| p.id == d.id).map_or(0, |p| p.offset);
         return Err(r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset));
     }
