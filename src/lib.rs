@@ -31,6 +31,7 @@ mod error;
 mod files;
 mod model;
 mod schema;
+mod seq;
 mod tree;
 mod value;
 mod xml;

@@ -17,7 +17,7 @@ use std::num::NonZeroU64;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use imbl::Vector;
+use crate::seq::Seq as Vector;
 use smol_str::SmolStr;
 
 use crate::schema::ElementKind;
@@ -158,10 +158,12 @@ impl Node {
     /// is right, O(distance) otherwise.
     pub(crate) fn child_position_near(&self, id: ElementId, hint: usize) -> Option<usize> {
         let children = &self.0.children;
-        let len = children.len();
-        let mut focus = children.focus();
-        let hint = hint.min(len);
-        (hint..len).chain((0..hint).rev()).find(|&i| focus.get(i).is_some_and(|c| c.id() == id))
+        let hint = hint.min(children.len());
+        if children.get(hint).is_some_and(|c| c.id() == id) {
+            return Some(hint);
+        }
+        let after = children.iter().skip(hint).position(|c| c.id() == id).map(|p| p + hint);
+        after.or_else(|| children.iter().take(hint).rposition(|c| c.id() == id))
     }
 
     /// The first child of this kind.
@@ -187,7 +189,9 @@ impl Node {
 
     /// A copy with the child at `index` replaced.
     pub(crate) fn with_child_at(&self, index: usize, child: Node) -> Node {
-        self.with_children(self.0.children.update(index, child))
+        let mut children = self.0.children.clone();
+        children.set(index, child);
+        self.with_children(children)
     }
 
     /// Rebuilds the path `path` (child indices from this node) with `f` applied to the

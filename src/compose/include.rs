@@ -10,7 +10,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use imbl::Vector;
+use crate::seq::Seq as Vector;
 use smol_str::SmolStr;
 
 use crate::error::{EditError, ErrorKind};
@@ -108,8 +108,10 @@ impl Copier<'_> {
                     Some(p) => {
                         let path_len = path.len();
                         crate::model::push_path(path, kind.tag(), s.identifier());
-                        let d = top.children[p].clone();
-                        stack.push(start(self, &d, s, p, path_len)?);
+                        // `p` is a position in these very children.
+                        if let Some(d) = top.children.get(p).cloned() {
+                            stack.push(start(self, &d, s, p, path_len)?);
+                        }
                     }
                     None => {
                         let copy = self.copy(s);

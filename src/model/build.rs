@@ -5,7 +5,7 @@
 //! model, where every problem becomes one [`EditError`](crate::EditError) naming the
 //! element's path. So builder calls chain without a `?` after each setter.
 
-use imbl::Vector;
+use crate::seq::Seq as Vector;
 use smol_str::SmolStr;
 
 use crate::error::{ErrorKind, ValueError};
@@ -441,7 +441,7 @@ fn fill(
             let (existing, slot) = match child_kind.multiplicity() {
                 Multiplicity::Singleton => {
                     let pos = top.children.iter().position(|c| c.kind() == child_kind);
-                    (pos.map(|p| top.children[p].clone()), pos)
+                    (pos.and_then(|p| top.children.get(p).cloned()), pos)
                 }
                 Multiplicity::OnDemand if top.children.iter().any(|c| c.kind() == child_kind) => {
                     return Err(ErrorKind::DuplicateChild(child_kind.tag()));

@@ -639,9 +639,12 @@ impl Model {
             self.node_at(&path).cloned().ok_or_else(|| EditError::new(ErrorKind::NotFound, self.describe(&path)))?;
         let in_section_chain = {
             let mut n = &self.root;
-            path.iter().all(|&i| {
-                n = &n.children()[i];
-                n.kind().multiplicity() == Multiplicity::Singleton
+            path.iter().all(|&i| match n.children().get(i) {
+                Some(c) => {
+                    n = c;
+                    c.kind().multiplicity() == Multiplicity::Singleton
+                }
+                None => false,
             })
         };
         let holds_frame = !self.index.scopes.is_empty() && node.descendants().any(|n| n.attached().is_some());

@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use imbl::Vector;
+use crate::seq::Seq as Vector;
 use quick_xml::events::{BytesStart, Event};
 use smol_str::SmolStr;
 
