@@ -61,6 +61,29 @@ impl<T: Clone> Seq<T> {
         Iter { chunks: self.chunks.iter(), front: [].iter(), back: [].iter(), left: self.len }
     }
 
+    /// The items at positions `start..end` (clamped to the length), found in
+    /// O(log chunks) rather than by stepping over the ones before.
+    pub(crate) fn range(&self, start: usize, end: usize) -> Iter<'_, T> {
+        let end = end.min(self.len);
+        let start = start.min(end);
+        if start == end {
+            return Iter { chunks: [].iter(), front: [].iter(), back: [].iter(), left: 0 };
+        }
+        let (ks, js) = self.locate(start);
+        let (ke, je) = self.locate(end - 1);
+        let chunk = |k: usize| self.chunks.get(k).map_or(&[][..], |c| c.as_slice());
+        let (front, middle, back) = if ks == ke {
+            (chunk(ks).get(js..=je).unwrap_or(&[]), &[][..], &[][..])
+        } else {
+            (
+                chunk(ks).get(js..).unwrap_or(&[]),
+                self.chunks.get(ks + 1..ke).unwrap_or(&[]),
+                chunk(ke).get(..=je).unwrap_or(&[]),
+            )
+        };
+        Iter { chunks: middle.iter(), front: front.iter(), back: back.iter(), left: end - start }
+    }
+
     /// Recomputes the start positions from chunk `from` on.
     fn restart(&mut self, from: usize) {
         let starts = Arc::make_mut(&mut self.starts);
@@ -289,6 +312,11 @@ mod tests {
                 prop_assert_eq!(s.iter().len(), m.len());
                 for i in [0, m.len() / 2, m.len().saturating_sub(1), m.len()] {
                     prop_assert_eq!(s.get(i), m.get(i));
+                    let (a, b) = (i / 3, i + 70);
+                    let want: Vec<u32> = m[a.min(m.len())..b.min(m.len())].to_vec();
+                    prop_assert_eq!(s.range(a, b).copied().collect::<Vec<_>>(), want.clone());
+                    prop_assert_eq!(s.range(a, b).len(), want.len());
+                    prop_assert_eq!(s.range(a, b).rev().copied().collect::<Vec<_>>(), want.into_iter().rev().collect::<Vec<_>>());
                 }
             }
         }

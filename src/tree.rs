@@ -162,8 +162,8 @@ impl Node {
         if children.get(hint).is_some_and(|c| c.id() == id) {
             return Some(hint);
         }
-        let after = children.iter().skip(hint).position(|c| c.id() == id).map(|p| p + hint);
-        after.or_else(|| children.iter().take(hint).rposition(|c| c.id() == id))
+        let after = children.range(hint, children.len()).position(|c| c.id() == id).map(|p| p + hint);
+        after.or_else(|| children.range(0, hint).rposition(|c| c.id() == id))
     }
 
     /// The first child of this kind.

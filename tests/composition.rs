@@ -10,23 +10,9 @@ use mjcf::{Element, ErrorKind, Loc, Model, Namespace};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 
-/// A robot: a body with a joint, a geom and a site, and a motor on the joint.
-fn robot(name: &str) -> Model {
-    let m = Model::new(name);
-    let (m, _) = m
-        .add(
-            &m.worldbody(),
-            Element::new("body")
-                .attr("name", "torso")
-                .child(Element::new("joint").attr("name", "hip").attr("type", "hinge"))
-                .child(Element::new("geom").attr("name", "torso").attr("size", [0.1]))
-                .child(Element::new("geom").attr("size", [0.05]))
-                .child(Element::new("site").attr("name", "mount")),
-        )
-        .unwrap();
-    let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip")).unwrap();
-    m
-}
+#[path = "support/robot.rs"]
+mod robot;
+use robot::robot;
 
 #[test]
 fn one_child_attached_many_times_is_shared_not_copied() {

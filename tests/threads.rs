@@ -6,6 +6,10 @@ use std::thread;
 
 use mjcf::{Element, Model, Namespace};
 
+#[path = "support/robot.rs"]
+mod robot;
+use robot::robot;
+
 const VARIANTS: usize = 1000;
 const THREADS: usize = 8;
 
@@ -19,23 +23,6 @@ fn models_locators_and_errors_are_send_and_sync() {
     assert_send_sync::<mjcf::Error>();
 }
 
-fn robot() -> Model {
-    let m = Model::new("robot");
-    let (m, _) = m
-        .add(
-            &m.worldbody(),
-            Element::new("body")
-                .attr("name", "torso")
-                .child(Element::new("joint").attr("name", "hip").attr("type", "hinge"))
-                .child(
-                    Element::new("geom").attr("name", "shell").attr("size", [0.1]).attr("rgba", [1.0, 1.0, 1.0, 1.0]),
-                ),
-        )
-        .unwrap();
-    let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip")).unwrap();
-    m
-}
-
 /// An arena with 10 sites and a robot attached at each of the first five.
 fn base() -> Model {
     let mut m = Model::new("arena");
@@ -43,7 +30,7 @@ fn base() -> Model {
         let site = Element::new("site").attr("name", format!("spawn_{i}").as_str()).attr("pos", [i as f64, 0.0, 0.5]);
         m = m.add(&m.worldbody(), site).unwrap().0;
     }
-    let r = robot();
+    let r = robot("robot");
     for i in 0..5 {
         let site = m.find(Namespace::Site, &format!("spawn_{i}")).unwrap();
         let (next, frame) = m.attach(&site, &r).unwrap();
@@ -56,12 +43,12 @@ fn base() -> Model {
 /// detach one of the first five, and write.
 fn variant(base: &Model, i: usize) -> (Model, String) {
     let scope = |k: usize| if k == 0 { "robot".to_string() } else { format!("robot_{k}") };
-    let shell = base.find(Namespace::Geom, &format!("{}/shell", scope(i % 5))).unwrap();
-    let m = base.set_attr(&shell, "rgba", [i as f64 / VARIANTS as f64, 0.5, 0.5, 1.0]).unwrap();
+    let geom = base.find(Namespace::Geom, &format!("{}/torso", scope(i % 5))).unwrap();
+    let m = base.set_attr(&geom, "rgba", [i as f64 / VARIANTS as f64, 0.5, 0.5, 1.0]).unwrap();
     let torso = m.find(Namespace::Body, &format!("{}/torso", scope((i + 1) % 5))).unwrap();
     let m = m.set_attr(&torso, "pos", [0.0, 0.0, i as f64]).unwrap();
     let site = m.find(Namespace::Site, &format!("spawn_{}", 5 + i % 5)).unwrap();
-    let (m, _) = m.attach(&site, &robot()).unwrap();
+    let (m, _) = m.attach(&site, &robot("robot")).unwrap();
     let m = m.detach(&scope((i + 2) % 5)).unwrap();
     let xml = m.to_xml_string().unwrap();
     (m, xml)

@@ -20,6 +20,8 @@
 #![no_main]
 
 mod common;
+#[path = "../../tests/support/robot.rs"]
+mod shared_robot;
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
@@ -285,21 +287,9 @@ enum Op {
     },
 }
 
-/// A small robot: a body with a joint, geoms and a site, a motor and a touch sensor.
+/// The shared test robot (`tests/support/robot.rs`) with a touch sensor on its site.
 fn robot(name: &str) -> Model {
-    let m = Model::new(name);
-    let (m, _) = m
-        .add(
-            &m.worldbody(),
-            Element::new("body")
-                .attr("name", "torso")
-                .child(Element::new("joint").attr("name", "hip").attr("type", "hinge"))
-                .child(Element::new("geom").attr("name", "torso").attr("size", [0.1]))
-                .child(Element::new("geom").attr("size", [0.05]))
-                .child(Element::new("site").attr("name", "mount")),
-        )
-        .unwrap();
-    let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip")).unwrap();
+    let m = shared_robot::robot(name);
     let (m, _) = m.add(&m.sensor(), Element::new("touch").attr("name", "t").attr("site", "mount")).unwrap();
     m
 }

@@ -85,10 +85,10 @@ impl Model {
         let mut index = self.index.clone();
         let scope = index.scopes.free_name(base);
         let tag = node.kind().tag();
-        let (parent_path, position, body_kind, attrs) = match tag {
+        let (parent_path, parent, position, body_kind, attrs) = match tag {
             "worldbody" => {
                 let kind = node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
-                (path.clone(), node.children().len(), kind, Vec::new())
+                (path.clone(), node, node.children().len(), kind, Vec::new())
             }
             "site" if !path.is_empty() => {
                 let (last, parent_path) = path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
@@ -99,16 +99,15 @@ impl Model {
                 while parent.children().get(pos).is_some_and(|c| c.attached().is_some()) {
                     pos += 1;
                 }
-                (parent_path, pos, kind, frame_attrs(node, kind))
+                let pos = pos.min(parent.children().len());
+                (parent_path, parent, pos, kind, frame_attrs(node, kind))
             }
             _ => return Err(err(ErrorKind::InvalidParent(tag))),
         };
         let id = ElementId::fresh();
         let frame = Node::frame(id, body_kind, attrs, Attached { scope: scope.clone(), model: child.clone() });
-        let parent_id = self.node_at(&parent_path).map(Node::id);
         // A new frame has no identifier, so indexing it cannot find a duplicate.
-        let parent_len = self.node_at(&parent_path).map_or(0, |p| p.children().len());
-        let _ = index.insert_subtree(parent_id, &frame, position.min(parent_len));
+        let _ = index.insert_subtree(Some(parent.id()), &frame, position);
         index.scopes.push(scope, id);
         // The merged settings: the child's folded into ours (each cached, so O(1)).
         let mut sections = settings::merged(self).map_err(err)?.to_vec();
@@ -116,7 +115,7 @@ impl Model {
         index.merged = MergedCache::known(sections.into());
         let root = self.root.update_path(&parent_path, |p| {
             let mut children = p.children().clone();
-            children.insert(position.min(children.len()), frame);
+            children.insert(position, frame);
             Ok::<_, EditError>(p.with_children(children))
         })?;
         Ok((Model { root, index, files: self.files.clone() }, id))

@@ -525,7 +525,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
-        let name = model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| "unnamed_model".into());
+        let name = model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| crate::model::UNNAMED.into());
         r.arena[0].attrs.push((i as u16, Value::String(name)));
     }
     // Bottom-up: children always have larger arena indices than their parent.
