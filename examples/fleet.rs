@@ -94,7 +94,7 @@ fn variant(base: &Model, robot: &Model, scopes: &[String], seed: u64) -> Result<
     }
     for _ in 0..2 {
         let scope = &scopes[rng.below(scopes.len())];
-        if let Some(frame) = m.frame(scope) {
+        if let Ok(frame) = m.frame(scope) {
             m = m.set_attr(&frame, "pos", [40.0 * rng.unit() - 20.0, 40.0 * rng.unit() - 20.0, 0.6])?;
         }
     }

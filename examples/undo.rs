@@ -74,7 +74,7 @@ fn step(e: &ElementRef<'_>) -> String {
 
 /// The attachment frames of a model: frame id → scope name.
 fn frames(m: &Model) -> HashMap<ElementId, String> {
-    m.scopes().filter_map(|s| Some((m.frame(s)?.id(), s.to_string()))).collect()
+    m.scopes().filter_map(|s| Some((m.frame(s).ok()?.id(), s.to_string()))).collect()
 }
 
 /// Joins a path and a step: `worldbody/body[torso]`; a scope prefix ends with `/`.
@@ -128,7 +128,7 @@ impl Pair<'_> {
         }
         // An attachment frame in both versions: compare the models it holds.
         if let (Some(sa), Some(sb)) = (self.frames_a.get(&a.loc().id()), self.frames_b.get(&b.loc().id())) {
-            if let (Some(x), Some(y)) = (self.a.attached(sa), self.b.attached(sb)) {
+            if let (Ok(x), Ok(y)) = (self.a.attached(sa), self.b.attached(sb)) {
                 diff_models(x, y, &format!("{}{sb}/", self.prefix), out);
             }
         }
@@ -142,7 +142,7 @@ impl Pair<'_> {
         for c in b.children() {
             let child_path = join(path, &step(&c));
             match before.get(&c.loc().id()) {
-                Some(old) => self.diff(*old, c, &child_path, out),
+                Some(old) => self.diff(old.clone(), c, &child_path, out),
                 None => {
                     let what = self.frames_b.get(&c.loc().id()).map_or(String::new(), |s| format!(" (attachment {s})"));
                     out.lines.push(format!("  added   {child_path}{what}"));

@@ -16,7 +16,8 @@ use std::path::PathBuf;
 
 use smol_str::SmolStr;
 
-use crate::schema::Namespace;
+use crate::id::ElementId;
+use crate::schema::{ElementKind, Namespace};
 
 /// What is wrong with a value, independent of where it was found.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -82,26 +83,30 @@ pub enum ErrorKind {
     #[error("the root element should be <mujoco>, got <{0}>")]
     WrongRoot(SmolStr),
     /// An element the schema does not allow here.
-    #[error("<{tag}> is not a valid child of <{parent}>")]
+    #[error("<{tag}> is not a valid child of <{parent}>{}", hint_one(*.suggestion))]
     InvalidChild {
         /// The parent's tag.
         parent: &'static str,
         /// The child's tag.
         tag: SmolStr,
+        /// The nearest valid child tag, if one is close.
+        suggestion: Option<&'static str>,
     },
     /// A second singleton or on-demand child.
     #[error("a <{0}> child already exists")]
     DuplicateChild(&'static str),
     /// An attribute the schema does not define for this element.
-    #[error("'{attribute}' is not a valid attribute for <{tag}>")]
+    #[error("'{attribute}' is not a valid attribute for <{tag}>{}", hint_one(*.suggestion))]
     UnknownAttribute {
         /// The element's tag.
         tag: &'static str,
         /// The attribute.
         attribute: SmolStr,
+        /// The nearest valid attribute, if one is close.
+        suggestion: Option<&'static str>,
     },
     /// A value that does not fit its attribute.
-    #[error("invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}")]
+    #[error("invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}{}", keyword_hint(value, error))]
     InvalidValue {
         /// The element's tag.
         tag: &'static str,
@@ -153,9 +158,55 @@ pub enum ErrorKind {
         /// The identifier.
         name: SmolStr,
     },
+    /// An attribute read (with [`Model::float`](crate::Model::float) and the like)
+    /// that is not set.
+    #[error("attribute '{attribute}' of <{tag}> is not set")]
+    Unset {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+    },
+    /// An attribute read as a type it does not have (`floats` of a keyword).
+    #[error("attribute '{attribute}' of <{tag}> does not hold a value of the type asked for")]
+    WrongType {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+    },
     /// A locator that names no element of this model.
     #[error("no such element")]
     NotFound,
+    /// A locator of an element that is not in this model: it was removed, or the
+    /// locator comes from another model.
+    #[error("element {id:?} of model '{origin}' is not in this model (removed, or a locator of another model)")]
+    StaleLocator {
+        /// The element's id.
+        id: ElementId,
+        /// The name of the model the locator was taken from.
+        origin: SmolStr,
+    },
+    /// A name that [`Model::lookup`](crate::Model::lookup) did not find.
+    #[error("no {namespace} named '{name}'{}{}", in_scope(scope), crate::suggest::hint(suggestions))]
+    UnknownName {
+        /// The namespace looked in.
+        namespace: Namespace,
+        /// The identifier looked for (without its scope).
+        name: SmolStr,
+        /// The scope path looked in (empty for the model itself).
+        scope: SmolStr,
+        /// The nearest existing names in that namespace and scope.
+        suggestions: Vec<SmolStr>,
+    },
+    /// A scope path with a leading or trailing `/` or an empty segment.
+    #[error("invalid scope path '{0}': scope names are separated by single '/', with none at the start or end")]
+    InvalidScope(SmolStr),
+    /// A freejoint on an attachment frame that does not sit directly in the worldbody.
+    #[error(
+        "the frame of '{0}' cannot take a freejoint: only a frame directly in the worldbody can (attach at a site of the worldbody)"
+    )]
+    FreejointNotTopLevel(SmolStr),
     /// A global setting that differs between two models being merged.
     #[error("conflicting values for attribute '{attribute}' of <{tag}>: {ours} vs {theirs}")]
     AttributeConflict {
@@ -172,14 +223,66 @@ pub enum ErrorKind {
     #[error("cannot attach at a <{0}>: only at a site or the worldbody")]
     InvalidParent(&'static str),
     /// A scope path that names no attachment.
-    #[error("no model is attached at scope '{0}'")]
-    NotAttached(SmolStr),
+    #[error("no model is attached at scope '{scope}'{}", attached_list(attached))]
+    NotAttached {
+        /// The scope path asked for.
+        scope: SmolStr,
+        /// The scopes attached where the search stopped (nearest first, then the rest).
+        attached: Vec<SmolStr>,
+    },
     /// A removal that would take attached content with it.
     #[error("removing this element affects attached models; remove with attachments explicitly")]
     AffectsAttachments,
     /// `include_copy` of a model that has attachments.
     #[error("cannot copy from a model with attachments")]
     SourceHasAttachments,
+}
+
+fn hint_one(suggestion: Option<&str>) -> String {
+    crate::suggest::hint(suggestion.as_slice())
+}
+
+fn in_scope(scope: &str) -> String {
+    if scope.is_empty() { String::new() } else { format!(" in scope '{scope}'") }
+}
+
+fn attached_list(attached: &[SmolStr]) -> String {
+    if attached.is_empty() {
+        "; nothing is attached there".to_string()
+    } else {
+        let list: Vec<String> = attached.iter().map(|s| format!("'{s}'")).collect();
+        format!("; attached there: {}", list.join(", "))
+    }
+}
+
+/// For a misspelt keyword, the nearest valid one.
+fn keyword_hint(value: &str, error: &ValueError) -> String {
+    match error {
+        ValueError::NotKeyword { valid } => hint_one(crate::suggest::closest(value, valid.iter().copied())),
+        _ => String::new(),
+    }
+}
+
+impl ErrorKind {
+    /// An unknown attribute of `kind`, with the nearest valid one.
+    pub(crate) fn unknown_attribute(kind: ElementKind, attribute: &str) -> ErrorKind {
+        let names = kind.spec().attrs.iter().map(|a| a.name);
+        ErrorKind::UnknownAttribute {
+            tag: kind.tag(),
+            attribute: attribute.into(),
+            suggestion: crate::suggest::closest(attribute, names),
+        }
+    }
+
+    /// A child tag that `parent` does not allow, with the nearest valid one.
+    pub(crate) fn invalid_child(parent: ElementKind, tag: &str) -> ErrorKind {
+        let tags = parent.spec().children.iter().map(|c| c.tag());
+        ErrorKind::InvalidChild {
+            parent: parent.tag(),
+            tag: tag.into(),
+            suggestion: crate::suggest::closest(tag, tags),
+        }
+    }
 }
 
 /// A 1-based position in XML text.
@@ -377,7 +480,7 @@ mod tests {
     #[test]
     fn messages_say_what_then_where() {
         let e = ReadError::new(
-            ErrorKind::UnknownAttribute { tag: "geom", attribute: "foo".into() },
+            ErrorKind::UnknownAttribute { tag: "geom", attribute: "foo".into(), suggestion: None },
             Some("m.xml".into()),
             Some(TextPos { line: 3, column: 5 }),
         );

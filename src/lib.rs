@@ -29,21 +29,44 @@
 mod compose;
 mod error;
 mod files;
+mod id;
 mod model;
 mod schema;
 mod seq;
-mod tree;
+mod suggest;
 mod value;
 mod xml;
 
 pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueError, WriteError};
-pub use crate::model::{Attrs, Element, ElementRef, Loc, Model};
+pub use crate::id::ElementId;
+pub use crate::model::{Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, ScopeRef};
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace, PathNamespace, RefTarget,
 };
-pub use crate::tree::ElementId;
 pub use crate::value::{AttrInput, FileAsset, Reference, Value};
 pub use crate::xml::{ReadOptions, WriteOptions};
+
+/// An [`Element`] with attributes, as `Element::new(tag).attr(name, value)...`:
+/// `element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1)`.
+///
+/// Attribute names are written as bare words (`type`, `class` and other keywords
+/// included); values are anything [`Value`](crate::Value) inputs convert from: text,
+/// numbers, arrays of numbers, booleans. Nothing is checked until the element is
+/// added to a model.
+///
+/// # Examples
+/// ```
+/// use mjcf::{Element, element};
+/// let a = element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1);
+/// let b = Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]).attr("mass", 1);
+/// assert_eq!(a, b);
+/// ```
+#[macro_export]
+macro_rules! element {
+    ($tag:expr $(, $name:tt = $value:expr)* $(,)?) => {
+        $crate::Element::new($tag)$(.attr(stringify!($name), $value))*
+    };
+}
 
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

@@ -52,7 +52,7 @@ fn detach_gives_back_the_parent_exactly() {
     let back = scene.detach("c").unwrap();
     assert_eq!(back, arena);
     assert_eq!(back.to_xml_string().unwrap(), arena.to_xml_string().unwrap());
-    assert!(matches!(scene.detach("nope").unwrap_err().kind(), ErrorKind::NotAttached(_)));
+    assert!(matches!(scene.detach("nope").unwrap_err().kind(), ErrorKind::NotAttached { .. }));
 }
 
 #[test]
@@ -138,7 +138,7 @@ fn scope_paths(m: &Model) -> Vec<String> {
     while let Some((prefix, model)) = stack.pop() {
         for s in model.scopes() {
             let path = format!("{prefix}{s}");
-            if let Some(inner) = model.attached(s) {
+            if let Ok(inner) = model.attached(s) {
                 stack.push((format!("{path}/"), inner));
             }
             out.push(path);

@@ -441,21 +441,21 @@ fn too_many_entries() {
 #[test]
 fn unknown_element() {
     let e = read_err("<mujoco>\n  <worldbody>\n    <body>\n      <bogus/>\n    </body>\n  </worldbody>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "body", tag: "bogus".into() });
+    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "body", tag: "bogus".into(), suggestion: None });
     assert_eq!(e.pos(), at(4, 7));
 }
 
 #[test]
 fn unknown_section() {
     let e = read_err("<mujoco model=\"m\">\n  <scene/>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "mujoco", tag: "scene".into() });
+    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "mujoco", tag: "scene".into(), suggestion: None });
     assert_eq!(e.pos(), at(2, 3));
 }
 
 #[test]
 fn unknown_attribute() {
     let e = read_err("<mujoco>\n  <worldbody>\n    <geom size=\"1\" colour=\"red\"/>\n  </worldbody>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::UnknownAttribute { tag: "geom", attribute: "colour".into() });
+    assert_eq!(e.kind(), &ErrorKind::UnknownAttribute { tag: "geom", attribute: "colour".into(), suggestion: None });
     assert_eq!(e.pos(), at(3, 5));
 }
 

@@ -801,7 +801,7 @@ fn lib_scopes(m: &Model) -> Vec<String> {
         for s in m.scopes() {
             let path = format!("{prefix}{s}");
             out.push(path.clone());
-            if let Some(inner) = m.attached(s) {
+            if let Ok(inner) = m.attached(s) {
                 rec(inner, &format!("{path}/"), out);
             }
         }
@@ -1239,8 +1239,8 @@ fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Opti
                 None => (String::new(), lib.actuator()),
                 Some(i) => {
                     let Some(s) = picker.scope(i) else { return Ok(None) };
-                    let inner = lib.attached(s).ok_or_else(|| format!("library lost scope {s}"))?;
-                    let loc = lib.locate_in(s, &inner.actuator()).ok_or_else(|| format!("no locator in {s}"))?;
+                    let inner = lib.attached(s).ok().ok_or_else(|| format!("library lost scope {s}"))?;
+                    let loc = lib.locate_in(s, &inner.actuator()).ok().ok_or_else(|| format!("no locator in {s}"))?;
                     (s.to_string(), loc)
                 }
             };

@@ -14,10 +14,11 @@ use crate::seq::Seq as Vector;
 use smol_str::SmolStr;
 
 use crate::error::{EditError, ErrorKind};
+use crate::model::settings::combine;
+use crate::model::tree::{Attr, ElementId, Node};
 use crate::model::{Index, Model};
-use crate::schema::{ElementKind, Merge, Multiplicity};
-use crate::tree::{Attr, ElementId, Node};
-use crate::value::{Reference, Value, number};
+use crate::schema::{ElementKind, Multiplicity};
+use crate::value::{Reference, Value};
 
 struct Copier<'a> {
     dest: &'a Model,
@@ -55,14 +56,25 @@ impl Model {
         let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
         let own_name = (self.name() != other_name(&root)).then(|| SmolStr::from(self.name()));
         let mut index = Index { scopes: self.index.scopes.clone(), own_name, ..Index::default() };
-        if let Err(d) = index.insert_subtree(None, &root, 0) {
-            let where_ = Model { root: root.clone(), index: index.clone(), files: self.files.clone() };
-            let path = where_.path_of(d.id).map(|p| where_.describe(&p)).unwrap_or_default();
+        let failed = index.insert_subtree(None, &root, 0);
+        let m = self.next(root, index);
+        if let Err(d) = failed {
+            let path = m.path_of(d.id).map(|p| m.describe(&p)).unwrap_or_default();
             return Err(EditError::new(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, path));
         }
-        let m = Model { root, index, files: self.files.clone() };
-        crate::compose::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        crate::model::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
         Ok(m)
+    }
+
+    /// [`Model::include_copy`] in place.
+    ///
+    /// Time: as [`Model::include_copy`].
+    ///
+    /// # Errors
+    /// As [`Model::include_copy`]; `self` is unchanged on error.
+    pub fn include_copy_mut(&mut self, other: &Model, override_attributes: bool) -> Result<(), EditError> {
+        let r = self.include_copy(other, override_attributes).map(|m| (m, ()));
+        self.apply(r)
     }
 }
 
@@ -179,63 +191,6 @@ fn merge_attrs(dest: &Node, src: &Node, override_attributes: bool) -> Result<Vec
 /// The `model` attribute of a root node.
 fn other_name(root: &Node) -> &str {
     ElementKind::ROOT.attr_index("model").and_then(|i| root.attr(i)).and_then(Value::as_str).unwrap_or("")
-}
-
-/// Combines two set values of one attribute by its merge rule (the copying variant:
-/// `Replace` takes the incoming value).
-pub(crate) fn combine(
-    kind: ElementKind,
-    i: usize,
-    ours: &Value,
-    theirs: &Value,
-    merge: Merge,
-) -> Result<Value, ErrorKind> {
-    let spec = kind.attr(i);
-    let conflict = || ErrorKind::AttributeConflict {
-        tag: kind.tag(),
-        attribute: spec.name,
-        ours: ours.to_string(),
-        theirs: theirs.to_string(),
-    };
-    match merge {
-        Merge::Replace => Ok(theirs.clone()),
-        Merge::MustAgree => {
-            if values_agree(ours, theirs) {
-                Ok(ours.clone())
-            } else {
-                Err(conflict())
-            }
-        }
-        Merge::Min | Merge::Max => {
-            let pick_theirs = match (ours, theirs) {
-                (Value::Float(a), Value::Float(b)) => (merge == Merge::Min) == (b < a),
-                (Value::Int(a), Value::Int(b)) => (merge == Merge::Min) == (b < a),
-                _ => return Err(conflict()),
-            };
-            Ok(if pick_theirs { theirs.clone() } else { ours.clone() })
-        }
-        Merge::MaxBytes => {
-            let (Some(a), Some(b)) = (ours.as_str(), theirs.as_str()) else { return Err(conflict()) };
-            let (Some(x), Some(y)) = (number::parse_bytes(a), number::parse_bytes(b)) else {
-                return Err(conflict());
-            };
-            Ok(Value::String(x.max(y).to_string().into()))
-        }
-    }
-}
-
-/// Equality as the reference checks it: exact, with a one-entry array agreeing with
-/// any array made only of that entry.
-fn values_agree(a: &Value, b: &Value) -> bool {
-    match (a, b) {
-        (Value::Floats(x), Value::Floats(y)) => {
-            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
-        }
-        (Value::Ints(x), Value::Ints(y)) => {
-            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
-        }
-        _ => a == b,
-    }
 }
 
 /// Rewrites element references through `ids` inside the subtrees rooted at `under`

@@ -1,7 +1,5 @@
-//! Composition of models: attachments, merges and copies.
+//! Composition of models: attach, detach, scope renames and `include_copy`. The rules
+//! they rely on (frames, scopes, merged settings) belong to the model, in `model/`.
 
 mod attach;
 mod include;
-pub(crate) mod settings;
-
-pub(crate) use attach::frame_settable;

@@ -8,10 +8,10 @@
 use crate::seq::Seq as Vector;
 use smol_str::SmolStr;
 
+use super::tree::{Attr, ElementId, Node};
 use crate::error::{ErrorKind, ValueError};
 use crate::files::FileContext;
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
-use crate::tree::{Attr, ElementId, Node};
 use crate::value::{self, AttrInput, FileAsset, Value};
 
 /// A set of attribute assignments: values to set and attributes to clear, in order.
@@ -231,45 +231,81 @@ pub(crate) struct ValueCtx<'a> {
     pub(crate) basepaths: &'a Basepaths,
 }
 
+/// An attribute value as given: text (read from XML, or given as text through the
+/// API) or a typed input.
+#[derive(Clone, Copy)]
+pub(crate) enum Input<'a> {
+    /// Text, parsed by the attribute's type.
+    Text(&'a str),
+    /// An input given through the API.
+    Given(&'a AttrInput),
+}
+
+impl Input<'_> {
+    fn text(&self) -> Option<&str> {
+        match self {
+            Input::Text(t) => Some(t),
+            Input::Given(AttrInput::Text(t)) => Some(t),
+            Input::Given(_) => None,
+        }
+    }
+}
+
 impl ValueCtx<'_> {
-    /// Checks one assignment: `Ok(None)` clears the attribute.
-    pub(crate) fn attr(
+    /// Checks one assignment, the same for the reader and the builder: `Ok(None)`
+    /// clears the attribute (no input, empty text for a name, reference, string,
+    /// folder or file, or an auto name such as `//unnamed_geom_0`, which means
+    /// "unnamed"); `dclass` is `class`; a file attribute reads its file; a mesh file
+    /// must have an extension MuJoCo reads.
+    pub(crate) fn assign(
         &self,
         kind: ElementKind,
         name: &str,
-        input: Option<&AttrInput>,
+        input: Option<Input<'_>>,
     ) -> Result<(usize, Option<Value>), ErrorKind> {
         let name = if name == "dclass" { "class" } else { name };
-        let index = kind
-            .attr_index(name)
-            .ok_or_else(|| ErrorKind::UnknownAttribute { tag: kind.tag(), attribute: name.into() })?;
+        let index = kind.attr_index(name).ok_or_else(|| ErrorKind::unknown_attribute(kind, name))?;
         let spec = kind.attr(index);
         let Some(input) = input else { return Ok((index, None)) };
         let invalid = |error: ValueError| ErrorKind::InvalidValue {
             tag: kind.tag(),
             attribute: spec.name,
-            value: input_text(input),
+            value: match input {
+                Input::Text(t) => cut(t),
+                Input::Given(i) => input_text(i),
+            },
             error,
         };
-        let value = match (spec.ty, input) {
-            (AttrType::File { path_namespace }, AttrInput::Text(path)) => {
-                if path.is_empty() {
-                    None
-                } else {
-                    let base = self.basepaths.for_namespace(path_namespace);
-                    let (_, contents) = self.files.read(base, path)?;
-                    Some(Value::File(FileAsset::from_path_and_contents(path, contents)))
-                }
+        if let Some(text) = input.text() {
+            let clears = text.is_empty()
+                && matches!(
+                    spec.ty,
+                    AttrType::Identifier
+                        | AttrType::Reference(_)
+                        | AttrType::String
+                        | AttrType::Basepath { .. }
+                        | AttrType::File { .. }
+                );
+            if clears || (spec.ty == AttrType::Identifier && text.starts_with("//unnamed_")) {
+                return Ok((index, None));
             }
-            _ => value::from_input(spec, kind.namespace(), input).map_err(invalid)?,
-        };
-        if let (Some(Value::File(f)), "mesh") = (&value, kind.tag()) {
-            let ext = f.extension().to_ascii_lowercase();
-            if !matches!(ext.as_str(), ".stl" | ".msh" | ".obj") {
-                return Err(invalid(ValueError::MeshExtension));
+            if let AttrType::File { path_namespace } = spec.ty {
+                let base = self.basepaths.for_namespace(path_namespace);
+                let (_, contents) = self.files.read(base, text)?;
+                let asset = FileAsset::from_path_and_contents(text, contents);
+                if kind.tag() == "mesh"
+                    && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj")
+                {
+                    return Err(invalid(ValueError::MeshExtension));
+                }
+                return Ok((index, Some(Value::File(asset))));
             }
         }
-        Ok((index, value))
+        let value = match input {
+            Input::Text(t) => value::parse_text(spec, kind.namespace(), t).map(Some),
+            Input::Given(i) => value::from_input(spec, kind.namespace(), i),
+        };
+        Ok((index, value.map_err(invalid)?))
     }
 }
 
@@ -371,9 +407,7 @@ pub(crate) fn build(
     path: &mut String,
 ) -> Result<Node, ErrorKind> {
     let root = el.root_part();
-    let kind = parent
-        .child(&root.tag)
-        .ok_or_else(|| ErrorKind::InvalidChild { parent: parent.tag(), tag: root.tag.clone() })?;
+    let kind = parent.child(&root.tag).ok_or_else(|| ErrorKind::invalid_child(parent, &root.tag))?;
     if kind.multiplicity() == Multiplicity::Singleton {
         return Err(ErrorKind::DuplicateChild(kind.tag()));
     }
@@ -410,7 +444,7 @@ impl<'e> Filling<'e> {
         let kind = node.kind();
         let mut changes = Vec::with_capacity(part.attrs.items.len());
         for (name, input) in &part.attrs.items {
-            changes.push(ctx.attr(kind, name, input.as_ref())?);
+            changes.push(ctx.assign(kind, name, input.as_ref().map(Input::Given))?);
         }
         let mut attrs = node.attrs().to_vec();
         apply_attrs(kind, &mut attrs, changes)?;
@@ -435,7 +469,7 @@ fn fill(
             top.next += 1;
             let child = el.part(index);
             let Some(child_kind) = top.kind.child(&child.tag) else {
-                return Err(ErrorKind::InvalidChild { parent: top.kind.tag(), tag: child.tag.clone() });
+                return Err(ErrorKind::invalid_child(top.kind, &child.tag));
             };
             let path_len = path.len();
             let (existing, slot) = match child_kind.multiplicity() {

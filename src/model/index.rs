@@ -13,8 +13,8 @@ use std::sync::{Arc, OnceLock};
 use imbl::{HashMap, OrdMap};
 use smol_str::SmolStr;
 
+use super::tree::{ElementId, Node};
 use crate::schema::{ElementKind, Namespace};
-use crate::tree::{ElementId, Node};
 
 /// What the index knows about one element.
 #[derive(Clone, Debug, PartialEq)]
@@ -48,11 +48,6 @@ pub(crate) struct Index {
 pub(crate) struct MergedCache(Arc<OnceLock<Arc<[Node]>>>);
 
 impl MergedCache {
-    /// A cache holding `sections`.
-    pub(crate) fn known(sections: Arc<[Node]>) -> MergedCache {
-        MergedCache(Arc::new(OnceLock::from(sections)))
-    }
-
     pub(crate) fn get(&self) -> Option<&Arc<[Node]>> {
         self.0.get()
     }
@@ -175,8 +170,11 @@ impl Index {
 /// by frame in O(log n). Persistent, like the rest of the index.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Attach sequence number → (scope, frame).
-    order: OrdMap<u64, (SmolStr, ElementId)>,
+    /// Attach sequence number → (scope, frame, the attached model's merged-settings
+    /// memo). The memo is the attached model's own (shared); it is replaced when an
+    /// edit inside the attachment replaces it, so an unchanged `order` map means
+    /// unchanged attachments as far as merged settings go.
+    order: OrdMap<u64, (SmolStr, ElementId, MergedCache)>,
     by_name: HashMap<SmolStr, (u64, ElementId)>,
     by_frame: HashMap<ElementId, u64>,
     next: u64,
@@ -192,23 +190,42 @@ impl Scopes {
 
     /// (scope, frame) in attach order.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.values().map(|(s, f)| (s, *f))
+        self.order.values().map(|(s, f, _)| (s, *f))
     }
 
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
         let seq = self.by_frame.get(&frame)?;
-        self.order.get(seq).map(|(s, _)| s)
+        self.order.get(seq).map(|(s, _, _)| s)
     }
 
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
         self.by_name.get(scope).map(|(_, f)| *f)
     }
 
-    /// Adds an attachment (its scope name is free).
-    pub(crate) fn push(&mut self, scope: SmolStr, frame: ElementId) {
+    /// Whether both hold the same attachments with the same merged-settings memos
+    /// (O(1): the maps are shared or not).
+    pub(crate) fn same(&self, other: &Scopes) -> bool {
+        self.order.ptr_eq(&other.order)
+    }
+
+    /// Records that the model attached at `frame` now has merged-settings memo
+    /// `memo` (nothing changes if it is the same memo).
+    pub(crate) fn note_model(&mut self, frame: ElementId, memo: &MergedCache) {
+        let Some(&seq) = self.by_frame.get(&frame) else { return };
+        if let Some((scope, f, old)) = self.order.get(&seq) {
+            if !old.same(memo) {
+                let entry = (scope.clone(), *f, memo.clone());
+                self.order.insert(seq, entry);
+            }
+        }
+    }
+
+    /// Adds an attachment (its scope name is free) of a model whose merged-settings
+    /// memo is `memo`.
+    pub(crate) fn push(&mut self, scope: SmolStr, frame: ElementId, memo: MergedCache) {
         let seq = self.next;
         self.next += 1;
-        self.order.insert(seq, (scope.clone(), frame));
+        self.order.insert(seq, (scope.clone(), frame, memo));
         self.by_name.insert(scope, (seq, frame));
         self.by_frame.insert(frame, seq);
     }
@@ -216,7 +233,7 @@ impl Scopes {
     /// Removes the attachment whose frame is `frame`, if any.
     pub(crate) fn remove(&mut self, frame: ElementId) {
         if let Some(seq) = self.by_frame.remove(&frame) {
-            if let Some((scope, _)) = self.order.remove(&seq) {
+            if let Some((scope, _, _)) = self.order.remove(&seq) {
                 self.by_name.remove(&scope);
             }
             self.free_from = HashMap::new();
@@ -226,7 +243,8 @@ impl Scopes {
     /// Renames the attachment whose frame is `frame` (to a free name).
     pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
         let Some(&seq) = self.by_frame.get(&frame) else { return };
-        if let Some((old, _)) = self.order.insert(seq, (to.clone(), frame)) {
+        let memo = self.order.get(&seq).map(|(_, _, m)| m.clone()).unwrap_or_default();
+        if let Some((old, _, _)) = self.order.insert(seq, (to.clone(), frame, memo)) {
             self.by_name.remove(&old);
         }
         self.by_name.insert(to, (seq, frame));

@@ -12,8 +12,8 @@ use std::sync::Arc;
 use smol_str::SmolStr;
 
 use crate::error::ValueError;
+use crate::id::ElementId;
 use crate::schema::{ArrayType, AttrSpec, AttrType, Namespace};
-use crate::tree::ElementId;
 
 pub use file::FileAsset;
 pub(crate) use number::FloatStyle;
@@ -127,6 +127,24 @@ impl<const N: usize> From<[f64; N]> for AttrInput {
         AttrInput::Numbers(v.to_vec())
     }
 }
+impl<const N: usize> From<[i32; N]> for AttrInput {
+    fn from(v: [i32; N]) -> Self {
+        AttrInput::Numbers(v.iter().map(|x| f64::from(*x)).collect())
+    }
+}
+
+impl<const N: usize> From<[f32; N]> for AttrInput {
+    fn from(v: [f32; N]) -> Self {
+        AttrInput::Numbers(v.iter().map(|x| f64::from(*x)).collect())
+    }
+}
+
+impl From<Vec<i32>> for AttrInput {
+    fn from(v: Vec<i32>) -> Self {
+        AttrInput::Numbers(v.into_iter().map(f64::from).collect())
+    }
+}
+
 impl From<&[f64]> for AttrInput {
     fn from(v: &[f64]) -> Self {
         AttrInput::Numbers(v.to_vec())
@@ -224,15 +242,10 @@ pub(crate) fn from_input(
     namespace: Option<Namespace>,
     input: &AttrInput,
 ) -> Result<Option<Value>, ValueError> {
-    let clears_when_empty =
-        matches!(spec.ty, AttrType::Identifier | AttrType::Reference(_) | AttrType::String | AttrType::Basepath { .. });
+    // Text that clears (empty names, references, strings) is handled by the caller,
+    // `ValueCtx::assign`, the one place that decides what clears.
     match input {
-        AttrInput::Text(t) => {
-            if t.is_empty() && clears_when_empty {
-                return Ok(None);
-            }
-            parse_text(spec, namespace, t).map(Some)
-        }
+        AttrInput::Text(t) => parse_text(spec, namespace, t).map(Some),
         AttrInput::Bool(b) => match spec.ty {
             AttrType::Keyword(_) => parse_text(spec, namespace, if *b { "true" } else { "false" }).map(Some),
             _ => Err(ValueError::WrongType),
@@ -435,8 +448,6 @@ mod tests {
         assert_eq!(parse(BODY, "name", "a/b"), Err(ValueError::SlashInIdentifier));
         assert_eq!(parse(BODY, "name", "world"), Err(ValueError::WorldBody));
         assert_eq!(parse(GEOM, "name", "world"), Ok(Value::Identifier("world".into())));
-        let (s, ns) = spec(BODY, "name");
-        assert_eq!(from_input(s, ns, &"".into()), Ok(None));
     }
 
     #[test]

@@ -27,12 +27,14 @@ use crate::seq::Seq as Vector;
 use quick_xml::events::{BytesStart, Event};
 use smol_str::SmolStr;
 
-use crate::error::{ErrorKind, ReadError, TextPos, ValueError};
+use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
-use crate::model::{Basepaths, Index, Model, check_class_named, check_required, cut, empty_node, name_from_file};
+use crate::model::tree::{Attr, ElementId, Node};
+use crate::model::{
+    Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node, name_from_file,
+};
 use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of_objtype};
-use crate::tree::{Attr, ElementId, Node};
-use crate::value::{self, FileAsset, Reference, Value};
+use crate::value::{Reference, Value};
 
 /// How many `<include>`s may nest inside each other.
 pub(crate) const MAX_INCLUDE_DEPTH: usize = 100;
@@ -213,44 +215,9 @@ impl Reader<'_> {
             let raw = a
                 .normalized_value(quick_xml::XmlVersion::default())
                 .map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
-            let name = if name == "dclass" { "class" } else { name };
-            let Some(index) = kind.attr_index(name) else {
-                return Err(self.err(ErrorKind::UnknownAttribute { tag: kind.tag(), attribute: name.into() }, offset));
-            };
+            let ctx = ValueCtx { files: &self.ctx, basepaths: &self.basepaths };
+            let (index, value) = ctx.assign(kind, name, Some(Input::Text(&raw))).map_err(|k| self.err(k, offset))?;
             let spec = kind.attr(index);
-            let invalid = |error: ValueError| ErrorKind::InvalidValue {
-                tag: kind.tag(),
-                attribute: spec.name,
-                value: cut(&raw),
-                error,
-            };
-            let clears = raw.is_empty()
-                && matches!(
-                    spec.ty,
-                    AttrType::Identifier
-                        | AttrType::Reference(_)
-                        | AttrType::String
-                        | AttrType::Basepath { .. }
-                        | AttrType::File { .. }
-                );
-            // Auto names (`//unnamed_geom_0`) written by this crate and by dm_control
-            // mean "unnamed": they are derived again when the model is written.
-            let auto_name = spec.ty == AttrType::Identifier && raw.starts_with("//unnamed_");
-            let value = if clears || auto_name {
-                None
-            } else if let AttrType::File { path_namespace } = spec.ty {
-                let base = self.basepaths.for_namespace(path_namespace);
-                let (_, contents) = self.ctx.read(base, &raw).map_err(|k| self.err(k, offset))?;
-                let asset = FileAsset::from_path_and_contents(&raw, contents);
-                if kind.tag() == "mesh"
-                    && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj")
-                {
-                    return Err(self.err(invalid(ValueError::MeshExtension), offset));
-                }
-                Some(Value::File(asset))
-            } else {
-                Some(value::parse_text(spec, kind.namespace(), &raw).map_err(|e| self.err(invalid(e), offset))?)
-            };
             if let AttrType::Basepath { path_namespace } = spec.ty {
                 self.basepaths.set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
@@ -381,7 +348,7 @@ fn read_document(
             }
         }
         let Some(kind) = parent_kind.child(&name) else {
-            return Err(r.err(ErrorKind::InvalidChild { parent: parent_kind.tag(), tag: name.into() }, offset));
+            return Err(r.err(ErrorKind::invalid_child(parent_kind, &name), offset));
         };
         if stack.len() >= max_depth {
             return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
@@ -463,7 +430,14 @@ fn read_include(
         match a.key.as_ref() {
             "file" => file = Some(v.into_owned()),
             other => {
-                return Err(r.err(ErrorKind::UnknownAttribute { tag: "include", attribute: other.into() }, offset));
+                return Err(r.err(
+                    ErrorKind::UnknownAttribute {
+                        tag: "include",
+                        attribute: other.into(),
+                        suggestion: crate::suggest::closest(other, ["file"]),
+                    },
+                    offset,
+                ));
             }
         }
     }
@@ -586,5 +560,5 @@ fn resolve_all(model: &Model) -> Model {
         resolve_attrs(n.kind(), &mut attrs, lookup);
         n.with_parts(attrs, children)
     });
-    Model { root, ..model.clone() }
+    model.next(root, model.index.clone())
 }

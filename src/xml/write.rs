@@ -17,13 +17,11 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use std::rc::Rc;
-
-use crate::compose::settings;
 use crate::error::WriteError;
-use crate::model::Model;
+use crate::model::settings;
+use crate::model::tree::{ElementId, Node};
+use crate::model::{Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
-use crate::tree::{ElementId, Node};
 use crate::value::{FloatStyle, Reference, Value};
 
 /// The deepest indentation, in levels (deeper elements are indented as much).
@@ -81,15 +79,18 @@ impl Model {
         // The merged global settings, folded before anything is written.
         let merged = settings::merged(self).map_err(|k| WriteError::Conflict(k.to_string()))?;
         let mut w = Writer {
-            insts: instances(self),
+            insts: Vec::new(),
             merged: &merged,
             out: String::with_capacity(4096),
             style: FloatStyle { precision: options.precision, zero_threshold: options.zero_threshold },
             options,
             value: String::new(),
             bad_char: None,
+            open: Vec::new(),
+            pending: None,
+            in_default: false,
         };
-        w.write()?;
+        w.run(Walk::new(self), true)?;
         if let Some((tag, attribute, character)) = w.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
@@ -97,7 +98,7 @@ impl Model {
     }
 }
 
-/// One model in the composed output: the root model or an attachment at some depth.
+/// What the writer keeps per model of the composition (per instance of the walk).
 struct Inst<'a> {
     model: &'a Model,
     /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
@@ -106,29 +107,32 @@ struct Inst<'a> {
     counters: HashMap<Namespace, usize>,
     /// Auto-name indices of every element, counted once when a reference needs one.
     auto_index: Option<HashMap<ElementId, usize>>,
-    /// Frame id → (scope name, index of the attached instance).
-    frames: HashMap<ElementId, (&'a str, usize)>,
 }
 
-/// Every model of the composition, depth first in attach order (the root first).
-fn instances(model: &Model) -> Vec<Inst<'_>> {
-    let mut insts: Vec<Inst<'_>> = Vec::new();
-    // (model, prefix, (parent instance, frame id, scope name))
-    type Pending<'m> = (&'m Model, String, Option<(usize, ElementId, &'m str)>);
-    let mut stack: Vec<Pending<'_>> = vec![(model, String::new(), None)];
-    while let Some((m, prefix, parent)) = stack.pop() {
-        let i = insts.len();
-        if let Some((p, frame, scope)) = parent {
-            insts[p].frames.insert(frame, (scope, i));
-        }
-        for (scope, frame) in m.index.scopes.iter().rev() {
-            if let Some(a) = m.node_by_id(frame).and_then(Node::attached) {
-                stack.push((&a.model, format!("{prefix}{scope}/"), Some((i, frame, scope.as_str()))));
-            }
-        }
-        insts.push(Inst { model: m, prefix, counters: HashMap::new(), auto_index: None, frames: HashMap::new() });
-    }
-    insts
+/// An element whose start tag is not finished yet.
+enum Pending {
+    /// `<tag attrs` is written; `>` or `/>` follows, once it is known whether a child
+    /// comes.
+    Started,
+    /// A top-level section not written at all yet: it is written only if a child
+    /// comes or it has attributes of its own.
+    Unwritten(Inst0Section),
+}
+
+/// A top-level section of the outermost model waiting to be written.
+#[derive(Clone, Copy)]
+struct Inst0Section {
+    depth: usize,
+}
+
+/// An open element: its instance, whether its children are under a `childclass`,
+/// and its written depth.
+struct Open {
+    inst: usize,
+    child_cc: bool,
+    depth: usize,
+    /// For an attachment frame, its name (`robot/`), which its joints build on.
+    frame: Option<String>,
 }
 
 struct Writer<'a> {
@@ -142,16 +146,13 @@ struct Writer<'a> {
     value: String,
     /// The first character XML cannot hold: (tag, attribute, character).
     bad_char: Option<(&'static str, &'static str, char)>,
-}
-
-/// One step of the walk.
-enum Step<'a> {
-    /// Write this element of instance `inst`; `childclass` tells whether an ancestor
-    /// (in the same model) sets `childclass`; `frame` is the frame's name for the
-    /// joints of an attachment frame.
-    Enter { inst: usize, node: &'a Node, depth: usize, childclass: bool, frame: Option<Rc<str>> },
-    /// Close an element.
-    Exit { tag: &'static str, depth: usize },
+    /// The elements entered and not yet left.
+    open: Vec<Open>,
+    /// The element whose start tag is not finished.
+    pending: Option<(Pending, &'a Node)>,
+    /// Inside `<default>`, the wrapper of the root class and the attached models'
+    /// root classes (one level deeper than the walk says).
+    in_default: bool,
 }
 
 /// Whether a singleton writes anything: a written attribute, or a child that does.
@@ -171,170 +172,174 @@ fn emits(node: &Node) -> bool {
 }
 
 impl<'a> Writer<'a> {
-    fn write(&mut self) -> Result<(), WriteError> {
-        let model = self.insts[0].model;
-        let root = &model.root;
-        self.out.push_str("<mujoco");
-        // A model without a name is written with the one the reader gives it.
-        if ElementKind::ROOT.attr_index("model").is_some_and(|i| root.attr(i).is_none()) {
-            self.out.push_str(" model=\"");
-            self.out.push_str(crate::model::UNNAMED);
-            self.out.push('"');
-        }
-        self.write_attrs(0, root, false, None)?;
-        if root.children().is_empty() {
-            self.out.push_str("/>");
-            self.newline();
-            return Ok(());
-        }
-        self.out.push('>');
-        self.newline();
-        for section in root.children() {
-            let kind = section.kind();
-            // Containers are walked even when empty: attachments may fill them (the
-            // walk leaves out a section that ends up empty).
-            let (section, walk) = if settings::is_settings_section(kind) {
-                match self.merged.iter().find(|m| m.kind() == kind) {
-                    Some(m) => (m, emits(m)),
-                    None => continue,
+    /// Writes every step of `walk`; `substitute` writes the merged settings in place
+    /// of the root model's own settings sections.
+    fn run(&mut self, mut walk: Walk<'a>, substitute: bool) -> Result<(), WriteError> {
+        while let Some(step) = walk.next() {
+            // New instances get their writer state (prefix from their parent's).
+            while self.insts.len() < walk.insts.list.len() {
+                let i = &walk.insts.list[self.insts.len()];
+                let prefix = match i.parent {
+                    Some((p, scope)) => format!("{}{scope}/", self.insts[p].prefix),
+                    None => String::new(),
+                };
+                self.insts.push(Inst { model: i.model, prefix, counters: HashMap::new(), auto_index: None });
+            }
+            match step {
+                Step::Enter(item) => {
+                    if !self.enter(item, substitute)? {
+                        walk.skip_subtree();
+                    }
+                    if substitute
+                        && item.depth == 1
+                        && item.inst == 0
+                        && settings::is_settings_section(item.node.kind())
+                    {
+                        // The merged section instead of the model's own.
+                        walk.skip_subtree();
+                        if let Some(m) = self.merged.iter().find(|m| m.kind() == item.node.kind()) {
+                            if emits(m) {
+                                self.run(Walk::plain(self.insts[0].model, m, 1), false)?;
+                            }
+                        }
+                    }
                 }
-            } else if kind.tag() == "worldbody" {
-                (section, emits(section))
-            } else {
-                (section, true)
-            };
-            if walk {
-                self.walk(Step::Enter { inst: 0, node: section, depth: 1, childclass: false, frame: None })?;
+                Step::Leave(item) => self.leave(item),
             }
         }
-        self.out.push_str("</mujoco>");
-        self.newline();
         Ok(())
     }
 
-    /// Writes one section (iteratively).
-    fn walk(&mut self, first: Step<'a>) -> Result<(), WriteError> {
-        let mut stack = vec![first];
-        while let Some(step) = stack.pop() {
-            match step {
-                Step::Exit { tag, depth } => {
-                    self.indent(depth);
-                    self.out.push_str("</");
-                    self.out.push_str(tag);
-                    self.out.push('>');
-                    self.newline();
-                }
-                Step::Enter { inst, node, depth, childclass, frame } => {
-                    let kind = node.kind();
-                    let top_section = depth == 1 && inst == 0;
-                    let is_root_default = top_section && kind.tag() == "default";
-                    let depth = if is_root_default {
-                        self.indent(depth);
-                        self.out.push_str("<default>");
-                        self.newline();
-                        stack.push(Step::Exit { tag: "default", depth });
-                        // Each attachment's root class is a sibling of this one.
-                        for j in (1..self.insts.len()).rev() {
-                            if let Some(sec) = self.insts[j].model.root.child_of_kind(kind) {
-                                stack.push(Step::Enter {
-                                    inst: j,
-                                    node: sec,
-                                    depth: depth + 1,
-                                    childclass: false,
-                                    frame: None,
-                                });
-                            }
-                        }
-                        depth + 1
-                    } else {
-                        depth
-                    };
-                    // The children to write, each with its instance and frame name.
-                    let mut children: Vec<Step<'a>> = Vec::new();
-                    let child_cc = childclass || sets_childclass(self.insts[inst].model, node);
-                    let node_ref: &'a Node = node;
-                    if let Some(&(scope, child_inst)) = self.insts[inst].frames.get(&node_ref.id()) {
-                        let name: Rc<str> = format!("{}{}/", self.insts[inst].prefix, scope).into();
-                        for c in node_ref.children() {
-                            children.push(Step::Enter {
-                                inst,
-                                node: c,
-                                depth: depth + 1,
-                                childclass,
-                                frame: Some(name.clone()),
-                            });
-                        }
-                        let child_model = self.insts[child_inst].model;
-                        if let Some(wb) = section_of(child_model, "worldbody") {
-                            for c in wb.children() {
-                                children.push(Step::Enter {
-                                    inst: child_inst,
-                                    node: c,
-                                    depth: depth + 1,
-                                    childclass: false,
-                                    frame: None,
-                                });
-                            }
-                        }
-                        self.indent(depth);
-                        self.out.push_str("<body");
-                        self.write_frame_attrs(inst, node_ref, &name);
-                    } else {
-                        for c in node_ref.children() {
-                            if emits(c) {
-                                children.push(Step::Enter {
-                                    inst,
-                                    node: c,
-                                    depth: depth + 1,
-                                    childclass: child_cc,
-                                    frame: None,
-                                });
-                            }
-                        }
-                        if top_section
-                            && !is_root_default
-                            && kind.tag() != "worldbody"
-                            && !settings::is_settings_section(kind)
-                        {
-                            // Each attachment's part of the section, in attach order.
-                            for j in 1..self.insts.len() {
-                                let Some(sec) = self.insts[j].model.root.child_of_kind(kind) else { continue };
-                                for c in sec.children() {
-                                    if emits(c) {
-                                        children.push(Step::Enter {
-                                            inst: j,
-                                            node: c,
-                                            depth: depth + 1,
-                                            childclass: false,
-                                            frame: None,
-                                        });
-                                    }
-                                }
-                            }
-                            if children.is_empty() && !singleton_emits_attrs(node_ref) {
-                                continue;
-                            }
-                        }
-                        self.indent(depth);
-                        self.out.push('<');
-                        self.out.push_str(kind.tag());
-                        self.write_attrs(inst, node_ref, childclass, frame.as_deref())?;
-                    }
-                    if children.is_empty() {
-                        self.out.push_str("/>");
-                        self.newline();
-                        continue;
-                    }
-                    self.out.push('>');
-                    self.newline();
-                    let tag = if node_ref.attached().is_some() { "body" } else { kind.tag() };
-                    stack.push(Step::Exit { tag, depth });
-                    children.reverse();
-                    stack.extend(children);
-                }
+    /// Finishes the start tag of the parent of a child about to be written.
+    fn finish_parent(&mut self) -> Result<(), WriteError> {
+        match self.pending.take() {
+            Some((Pending::Started, _)) => {
+                self.out.push('>');
+                self.newline();
             }
+            Some((Pending::Unwritten(sec), node)) => {
+                self.start_tag(0, node, sec.depth, false, None)?;
+                self.out.push('>');
+                self.newline();
+            }
+            None => {}
         }
         Ok(())
+    }
+
+    /// Writes `<tag attrs` (not closed) at `depth`.
+    fn start_tag(
+        &mut self,
+        inst: usize,
+        node: &Node,
+        depth: usize,
+        childclass: bool,
+        frame: Option<&str>,
+    ) -> Result<(), WriteError> {
+        self.indent(depth);
+        self.out.push('<');
+        if let Some(a) = node.attached() {
+            self.out.push_str("body");
+            let name = format!("{}{}/", self.insts[inst].prefix, a.scope);
+            self.write_frame_attrs(inst, node, &name);
+            return Ok(());
+        }
+        let kind = node.kind();
+        self.out.push_str(kind.tag());
+        if kind == ElementKind::ROOT {
+            // A model without a name is written with the one the reader gives it.
+            if ElementKind::ROOT.attr_index("model").is_some_and(|i| node.attr(i).is_none()) {
+                self.out.push_str(" model=\"");
+                self.out.push_str(crate::model::UNNAMED);
+                self.out.push('"');
+            }
+        }
+        self.write_attrs(inst, node, childclass, frame)
+    }
+
+    /// Enters an element; `false` if it is not written (nor its subtree).
+    fn enter(&mut self, item: Item<'a>, substitute: bool) -> Result<bool, WriteError> {
+        let Item { inst, node, depth, in_frame } = item;
+        let kind = node.kind();
+        let top = depth == 1 && inst == 0 && substitute;
+        // The `<default>` wrapper of the root classes opens at the first one and
+        // closes before the next section.
+        if depth == 1 && substitute {
+            let is_default = kind.tag() == "default";
+            if is_default && !self.in_default {
+                self.finish_parent()?;
+                self.indent(1);
+                self.out.push_str("<default>");
+                self.newline();
+                self.in_default = true;
+            } else if !is_default && self.in_default {
+                self.indent(1);
+                self.out.push_str("</default>");
+                self.newline();
+                self.in_default = false;
+            }
+        }
+        if top && settings::is_settings_section(kind) {
+            return Ok(false);
+        }
+        if top && kind.tag() == "worldbody" && !emits(node) {
+            return Ok(false);
+        }
+        if !top && depth > 0 && !in_frame && node.attached().is_none() && !emits(node) {
+            return Ok(false);
+        }
+        let depth = depth + usize::from(self.in_default);
+        // Whether a `childclass` of the same model is above: attached models start
+        // without one.
+        let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
+        let child_cc = cc_here || (node.attached().is_none() && sets_childclass(self.insts[inst].model, node));
+        // A frame's own joints are named after the frame.
+        let frame_name = if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
+        let frame = node.attached().map(|a| format!("{}{}/", self.insts[inst].prefix, a.scope));
+        self.open.push(Open { inst, child_cc, depth, frame });
+        if top && kind.tag() != "default" && kind.tag() != "worldbody" {
+            self.finish_parent()?;
+            self.pending = Some((Pending::Unwritten(Inst0Section { depth }), node));
+            return Ok(true);
+        }
+        if depth > 0 {
+            self.finish_parent()?;
+        }
+        self.start_tag(inst, node, depth, cc_here, frame_name.as_deref())?;
+        self.pending = Some((Pending::Started, node));
+        Ok(true)
+    }
+
+    fn leave(&mut self, item: Item<'a>) {
+        let Some(open) = self.open.pop() else { return };
+        if item.depth == 0 && self.in_default {
+            self.indent(1);
+            self.out.push_str("</default>");
+            self.newline();
+            self.in_default = false;
+        }
+        match self.pending.take() {
+            Some((Pending::Started, _)) => {
+                self.out.push_str("/>");
+                self.newline();
+            }
+            Some((Pending::Unwritten(sec), node)) => {
+                if singleton_emits_attrs(node) {
+                    // Attributes only: failures are reported by `bad_char` or not at all.
+                    let _ = self.start_tag(0, node, sec.depth, false, None);
+                    self.out.push_str("/>");
+                    self.newline();
+                }
+            }
+            None => {
+                let tag = if item.node.attached().is_some() { "body" } else { item.node.kind().tag() };
+                self.indent(open.depth);
+                self.out.push_str("</");
+                self.out.push_str(tag);
+                self.out.push('>');
+                self.newline();
+            }
+        }
     }
 
     fn indent(&mut self, depth: usize) {
@@ -515,11 +520,11 @@ impl<'a> Writer<'a> {
             return Ok(true);
         }
         // A frame, or a joint of a frame.
-        if let Some(&(scope, _)) = self.insts[inst].frames.get(&target) {
+        if let Some(scope) = model.index.scope_of(target) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
             return Ok(true);
         }
-        if let Some(&(scope, _)) = entry.parent.and_then(|p| self.insts[inst].frames.get(&p)) {
+        if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
             if let Some(n) = &entry.name {
                 let _ = write!(self.value, "{n}/");

@@ -46,7 +46,7 @@ pub fn category(kind: &ErrorKind) -> &'static str {
             "parse_error"
         }
         ErrorKind::IncludeCycle(_) => "parse_error",
-        ErrorKind::InvalidChild { .. } => "invalid_child",
+        ErrorKind::InvalidChild { .. } | ErrorKind::FreejointNotTopLevel(_) => "invalid_child",
         ErrorKind::DuplicateChild(_) => "duplicate_child",
         ErrorKind::UnknownAttribute { .. } => "invalid_attribute",
         ErrorKind::InvalidValue { error: ValueError::SlashInIdentifier | ValueError::WorldBody, .. } => {
@@ -60,7 +60,8 @@ pub fn category(kind: &ErrorKind) -> &'static str {
         ErrorKind::AttributeConflict { .. } => "attribute_conflict",
         ErrorKind::CopyConflict { .. } => "copy_conflict",
         ErrorKind::InvalidParent(_) => "invalid_parent",
-        ErrorKind::NotAttached(_) => "not_attached",
+        ErrorKind::NotAttached { .. } | ErrorKind::InvalidScope(_) => "not_attached",
+        ErrorKind::StaleLocator { .. } | ErrorKind::UnknownName { .. } => "not_found",
         ErrorKind::AffectsAttachments => "affects_attachments",
         ErrorKind::SourceHasAttachments => "source_has_attachments",
         _ => "unknown",
@@ -192,7 +193,7 @@ impl State<'_> {
         if path.is_empty() {
             return Ok(m);
         }
-        m.attached(&path).ok_or_else(|| OpError::new("unknown", format!("{var} lost its place {path}")))
+        m.attached(&path).ok().ok_or_else(|| OpError::new("unknown", format!("{var} lost its place {path}")))
     }
 
     fn set_root(&mut self, root: &str, m: Model) {
@@ -206,6 +207,7 @@ impl State<'_> {
         }
         self.root_model(root)?
             .locate_in(path, inner)
+            .ok()
             .ok_or_else(|| OpError::new("not_found", format!("no attachment {path}")))
     }
 
@@ -256,6 +258,7 @@ impl State<'_> {
                 let l = self
                     .root_model(&root)?
                     .frame(&scope)
+                    .ok()
                     .ok_or_else(|| OpError::new("not_attached", format!("{v} is not attached")))?;
                 Ok((root, l))
             }
@@ -327,7 +330,7 @@ impl State<'_> {
                 let mut gone: Vec<(String, Vec<String>, Model)> = Vec::new();
                 for (var, v) in &self.vars {
                     if let Var::Placed { root: r, path } = v {
-                        if *r == root && m.attached(&path.join("/")).is_none() {
+                        if *r == root && m.attached(&path.join("/")).is_err() {
                             gone.push((var.clone(), path.clone(), self.model(var)?.clone()));
                         }
                     }
@@ -404,8 +407,9 @@ impl State<'_> {
                 }
                 let (m, frame) = self.root_model(&root)?.attach(&loc, &child_model).map_err(edit_err)?;
                 // The scope path of the new attachment: the frame's holder, then its scope.
-                let scope =
-                    m.scope_of_frame(&frame).ok_or_else(|| OpError::new("unknown", "the new frame has no scope"))?;
+                let scope = m
+                    .scope_of_frame(frame.frame())
+                    .ok_or_else(|| OpError::new("unknown", "the new frame has no scope"))?;
                 self.set_root(&root, m);
                 let child_path: Vec<String> = scope.split('/').map(String::from).collect();
                 // The child and every variable placed inside it move under the root.
@@ -423,7 +427,7 @@ impl State<'_> {
                     }
                 }
                 if let Some(h) = as_handle {
-                    self.save_handle(h, &root, &frame)?;
+                    self.save_handle(h, &root, frame.frame())?;
                 }
             }
             OpKind::Detach { child } => {
@@ -432,7 +436,8 @@ impl State<'_> {
                     return Err(OpError::new("not_attached", format!("{child} is not attached")));
                 }
                 let m = self.root_model(&root)?;
-                let value = m.attached(&scope).cloned().ok_or_else(|| OpError::new("not_attached", scope.clone()))?;
+                let value =
+                    m.attached(&scope).ok().cloned().ok_or_else(|| OpError::new("not_attached", scope.clone()))?;
                 let m = m.detach(&scope).map_err(edit_err)?;
                 self.set_root(&root, m);
                 let depth = scope.split('/').count();

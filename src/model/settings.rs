@@ -13,12 +13,12 @@
 
 use std::sync::Arc;
 
+use super::Model;
+use super::tree::{Attr, Node};
 use crate::error::ErrorKind;
-use crate::model::Model;
 use crate::schema::{AttrType, ElementKind, Merge, Multiplicity};
-use crate::tree::{Attr, Node};
 
-use super::include::combine;
+use crate::value::{Value, number};
 
 /// Whether a root section takes part in the settings fold: a singleton whose whole
 /// subtree is made of singletons (`compiler`, `option`, `size`, `visual`, `statistic`).
@@ -140,4 +140,61 @@ pub(crate) fn attachments(model: &Model) -> Vec<&Model> {
 /// Refuses a model whose settings cannot be merged (reports the first conflict).
 pub(crate) fn check(model: &Model) -> Result<(), ErrorKind> {
     merged(model).map(|_| ())
+}
+
+/// Combines two set values of one attribute by its merge rule (the copying variant:
+/// `Replace` takes the incoming value).
+pub(crate) fn combine(
+    kind: ElementKind,
+    i: usize,
+    ours: &Value,
+    theirs: &Value,
+    merge: Merge,
+) -> Result<Value, ErrorKind> {
+    let spec = kind.attr(i);
+    let conflict = || ErrorKind::AttributeConflict {
+        tag: kind.tag(),
+        attribute: spec.name,
+        ours: ours.to_string(),
+        theirs: theirs.to_string(),
+    };
+    match merge {
+        Merge::Replace => Ok(theirs.clone()),
+        Merge::MustAgree => {
+            if values_agree(ours, theirs) {
+                Ok(ours.clone())
+            } else {
+                Err(conflict())
+            }
+        }
+        Merge::Min | Merge::Max => {
+            let pick_theirs = match (ours, theirs) {
+                (Value::Float(a), Value::Float(b)) => (merge == Merge::Min) == (b < a),
+                (Value::Int(a), Value::Int(b)) => (merge == Merge::Min) == (b < a),
+                _ => return Err(conflict()),
+            };
+            Ok(if pick_theirs { theirs.clone() } else { ours.clone() })
+        }
+        Merge::MaxBytes => {
+            let (Some(a), Some(b)) = (ours.as_str(), theirs.as_str()) else { return Err(conflict()) };
+            let (Some(x), Some(y)) = (number::parse_bytes(a), number::parse_bytes(b)) else {
+                return Err(conflict());
+            };
+            Ok(Value::String(x.max(y).to_string().into()))
+        }
+    }
+}
+
+/// Equality as the reference checks it: exact, with a one-entry array agreeing with
+/// any array made only of that entry.
+fn values_agree(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Floats(x), Value::Floats(y)) => {
+            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+        }
+        (Value::Ints(x), Value::Ints(y)) => {
+            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+        }
+        _ => a == b,
+    }
 }

@@ -1,0 +1,31 @@
+//! [`ElementId`]: the stable identity of an element (a leaf module: it imports nothing
+//! of the crate).
+
+use std::fmt;
+use std::num::NonZeroU64;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A stable identity of an element, unique within a model.
+///
+/// It survives every edit of other elements and of the element's own attributes, so an
+/// editor can hold it across versions. Ids are never reused: a removed element's id
+/// names nothing in later versions.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ElementId(NonZeroU64);
+
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+impl ElementId {
+    /// A new id, never handed out before in this process.
+    pub(crate) fn fresh() -> ElementId {
+        let n = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        // The counter would need 2^64 allocations to wrap.
+        ElementId(NonZeroU64::new(n).unwrap_or(NonZeroU64::MIN))
+    }
+}
+
+impl fmt::Debug for ElementId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{}", self.0)
+    }
+}

@@ -1,0 +1,597 @@
+//! The composed document: one cursor ([`ElementRef`]) and one preorder walk
+//! ([`Model::walk`]) over a model with its attachments, in the order the writer writes.
+//!
+//! The order rules live here once, in [`Walk::expand`]:
+//! - the root's sections in schema order; right after the root `<default>` class, the
+//!   root class of every attached model (depth first, in attach order), each a
+//!   sibling class;
+//! - an attachment frame holds its own children (joints, freejoint, inertial), then
+//!   the attached model's worldbody children;
+//! - every other top-level section (`asset`, `actuator`, ...) holds its own children,
+//!   then the same section's children of every attached model (depth first, in
+//!   attach order); global settings sections hold only their own (the writer writes
+//!   the merged ones);
+//! - everything else holds its own children.
+//!
+//! The writer and [`Model::find_all`] both fold over this walk.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::Arc;
+
+use crate::error::{EditError, ErrorKind};
+use crate::schema::{ElementKind, Namespace};
+use crate::value::{Reference, Value};
+
+use super::settings::is_settings_section;
+use super::tree::{ElementId, Node};
+use super::{Loc, Model};
+
+/// One model of a composition: the outermost (index 0) or an attachment at any depth.
+#[derive(Clone)]
+pub(crate) struct Inst<'a> {
+    pub(crate) model: &'a Model,
+    /// The frames from the outermost model down to this one (empty for index 0).
+    pub(crate) frames: Arc<[ElementId]>,
+    /// The instance holding the frame and the scope name, for attachments.
+    pub(crate) parent: Option<(usize, &'a str)>,
+}
+
+/// The models of a composition met so far, each once: an attached model gets one
+/// index for the whole walk.
+#[derive(Clone)]
+pub(crate) struct Insts<'a> {
+    pub(crate) list: Vec<Inst<'a>>,
+    by_frame: HashMap<(usize, ElementId), usize>,
+}
+
+impl<'a> Insts<'a> {
+    fn new(top: &'a Model) -> Insts<'a> {
+        Insts { list: vec![Inst { model: top, frames: Arc::from([]), parent: None }], by_frame: HashMap::new() }
+    }
+
+    /// The instance attached at `frame` (a node of instance `parent`).
+    fn attached(&mut self, parent: usize, frame: &'a Node) -> Option<usize> {
+        let a = frame.attached()?;
+        if let Some(&i) = self.by_frame.get(&(parent, frame.id())) {
+            return Some(i);
+        }
+        let mut frames = self.list[parent].frames.to_vec();
+        frames.push(frame.id());
+        let i = self.list.len();
+        self.list.push(Inst { model: &a.model, frames: frames.into(), parent: Some((parent, a.scope.as_str())) });
+        self.by_frame.insert((parent, frame.id()), i);
+        Some(i)
+    }
+
+    /// The instance of the model attached along `frames` from instance 0.
+    fn along(&mut self, frames: &[ElementId]) -> Option<usize> {
+        let mut i = 0;
+        for f in frames {
+            let node = self.list[i].model.node_by_id(*f)?;
+            i = self.attached(i, node)?;
+        }
+        Some(i)
+    }
+
+    /// Every instance attached under `inst`, depth first in attach order.
+    fn attached_under(&mut self, inst: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut stack = vec![inst];
+        while let Some(i) = stack.pop() {
+            if i != inst {
+                out.push(i);
+            }
+            let m = self.list[i].model;
+            let mut children: Vec<usize> =
+                m.index.scopes.iter().filter_map(|(_, f)| self.attached(i, m.node_by_id(f)?)).collect();
+            children.reverse();
+            stack.extend(children);
+        }
+        out
+    }
+}
+
+/// An element of the walk.
+#[derive(Clone, Copy)]
+pub(crate) struct Item<'a> {
+    /// The instance (model) it belongs to.
+    pub(crate) inst: usize,
+    pub(crate) node: &'a Node,
+    /// 0 for the root, 1 for sections (and attached root default classes), ...
+    pub(crate) depth: usize,
+    /// Whether it is an own child of an attachment frame (a frame's joint).
+    pub(crate) in_frame: bool,
+}
+
+/// A step of the preorder walk.
+#[derive(Clone, Copy)]
+pub(crate) enum Step<'a> {
+    Enter(Item<'a>),
+    Leave(Item<'a>),
+}
+
+/// The preorder walk of a composed document (or of a part of it).
+pub(crate) struct Walk<'a> {
+    pub(crate) insts: Insts<'a>,
+    stack: Vec<Step<'a>>,
+    /// The element just entered, whose subtree `skip_subtree` would skip.
+    entered: Option<usize>,
+}
+
+impl<'a> Walk<'a> {
+    /// The walk of the whole composed `model`, from its root.
+    pub(crate) fn new(model: &'a Model) -> Walk<'a> {
+        let item = Item { inst: 0, node: &model.root, depth: 0, in_frame: false };
+        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+    }
+
+    /// A walk of a plain subtree with no attachments in it (such as a merged
+    /// settings section), written as part of instance 0 at `depth`.
+    pub(crate) fn plain(model: &'a Model, node: &'a Node, depth: usize) -> Walk<'a> {
+        let item = Item { inst: 0, node, depth, in_frame: false };
+        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+    }
+
+    /// Skips the children and the `Leave` of the element entered last.
+    pub(crate) fn skip_subtree(&mut self) {
+        if let Some(len) = self.entered.take() {
+            self.stack.truncate(len);
+        }
+    }
+
+    /// The composed children of `item`, in document order (the rules of the module
+    /// documentation).
+    pub(crate) fn expand(&mut self, item: Item<'a>) -> Vec<Item<'a>> {
+        let Item { inst, node, depth, .. } = item;
+        let plain = |n: &'a Node, inst: usize, in_frame: bool| Item { inst, node: n, depth: depth + 1, in_frame };
+        let mut out: Vec<Item<'a>> = Vec::with_capacity(node.children().len());
+        if node.attached().is_some() {
+            out.extend(node.children().iter().map(|c| plain(c, inst, true)));
+            if let Some(child) = self.insts.attached(inst, node) {
+                if let Some(wb) = section(self.insts.list[child].model, "worldbody") {
+                    out.extend(wb.children().iter().map(|c| plain(c, child, false)));
+                }
+            }
+            return out;
+        }
+        out.extend(node.children().iter().map(|c| plain(c, inst, false)));
+        if inst != 0 || depth > 1 || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT) {
+            return out;
+        }
+        if depth == 0 {
+            // The root: after the root default class, every attached root class.
+            let Some(p) = out.iter().position(|c| c.node.kind().tag() == "default") else { return out };
+            let kind = out[p].node.kind();
+            let siblings: Vec<Item<'a>> = self
+                .attached_under(0)
+                .into_iter()
+                .filter_map(|j| {
+                    let sec = self.insts.list[j].model.root.child_of_kind(kind)?;
+                    Some(Item { inst: j, node: sec, depth: 1, in_frame: false })
+                })
+                .collect();
+            out.splice(p + 1..p + 1, siblings);
+            return out;
+        }
+        let kind = node.kind();
+        if matches!(kind.tag(), "worldbody" | "default") || is_settings_section(kind) {
+            return out;
+        }
+        for j in self.attached_under(0) {
+            if let Some(sec) = self.insts.list[j].model.root.child_of_kind(kind) {
+                out.extend(sec.children().iter().map(|c| plain(c, j, false)));
+            }
+        }
+        out
+    }
+
+    fn attached_under(&mut self, inst: usize) -> Vec<usize> {
+        self.insts.attached_under(inst)
+    }
+}
+
+impl<'a> Iterator for Walk<'a> {
+    type Item = Step<'a>;
+
+    fn next(&mut self) -> Option<Step<'a>> {
+        self.entered = None;
+        let step = self.stack.pop()?;
+        if let Step::Enter(item) = step {
+            self.entered = Some(self.stack.len());
+            self.stack.push(Step::Leave(item));
+            let children = self.expand(item);
+            self.stack.extend(children.into_iter().rev().map(Step::Enter));
+        }
+        Some(step)
+    }
+}
+
+fn section<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
+    model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
+}
+
+/// A step of [`Model::walk`]: entering an element (before its children) or leaving it
+/// (after them).
+#[derive(Clone, Debug)]
+pub enum Event<'a> {
+    /// Before the element's children.
+    Enter(ElementRef<'a>),
+    /// After the element's children.
+    Leave(ElementRef<'a>),
+}
+
+/// The preorder walk of a composed model, from [`Model::walk`].
+pub struct Preorder<'a> {
+    walk: Walk<'a>,
+}
+
+impl<'a> Preorder<'a> {
+    /// Skips the children of the element entered last, and its `Leave`.
+    ///
+    /// Time: O(1).
+    pub fn skip_subtree(&mut self) {
+        self.walk.skip_subtree();
+    }
+}
+
+impl fmt::Debug for Preorder<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Preorder").field("pending", &self.walk.stack.len()).finish()
+    }
+}
+
+impl<'a> Iterator for Preorder<'a> {
+    type Item = Event<'a>;
+
+    fn next(&mut self) -> Option<Event<'a>> {
+        let step = self.walk.next()?;
+        let (Step::Enter(item) | Step::Leave(item)) = step;
+        let inst = &self.walk.insts.list[item.inst];
+        let view = ElementRef::new(self.walk.insts.list[0].model, inst.model, &inst.frames, item.node);
+        Some(match step {
+            Step::Enter(_) => Event::Enter(view),
+            Step::Leave(_) => Event::Leave(view),
+        })
+    }
+}
+
+impl Model {
+    /// The preorder walk of the composed model: the root, its sections, and every
+    /// element, attached models' included, in the order they are written (see
+    /// [`Model::to_xml_string`]).
+    ///
+    /// Time: O(1) per event, O(n) for the whole walk of a composed model of n
+    /// elements (plus O(attachments) per top-level section).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Event, Model, element};
+    /// let mut m = Model::new("m");
+    /// m.add_mut(&m.worldbody(), element!("body", name = "a"))?;
+    /// let tags: Vec<&str> = m.walk().filter_map(|e| match e {
+    ///     Event::Enter(el) => Some(el.tag()),
+    ///     Event::Leave(_) => None,
+    /// }).collect();
+    /// assert_eq!(tags.first(), Some(&"mujoco"));
+    /// let wb = tags.iter().position(|t| *t == "worldbody").unwrap();
+    /// assert_eq!(tags[wb + 1], "body");
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn walk(&self) -> Preorder<'_> {
+        Preorder { walk: Walk::new(self) }
+    }
+
+    /// Every element of `namespace`, in the order of [`Model::walk`]: attachment
+    /// frames count as bodies, their joints as joints.
+    ///
+    /// Time: O(n) in the size of the composed model.
+    pub fn find_all(&self, namespace: Namespace) -> Vec<Loc> {
+        let mut out = Vec::new();
+        let name = self.name();
+        let mut walk = Walk::new(self);
+        while let Some(step) = walk.next() {
+            if let Step::Enter(item) = step {
+                if item.node.kind().namespace() == Some(namespace) && namespace != Namespace::AttachmentFrame {
+                    out.push(Loc::scoped(walk.insts.list[item.inst].frames.clone(), item.node.id(), name));
+                }
+            }
+        }
+        out
+    }
+
+    /// The view of the element at `loc`.
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// [`ErrorKind::StaleLocator`] if `loc` names no element of this model (removed,
+    /// or from another model).
+    pub fn get(&self, loc: impl AsRef<Loc>) -> Result<ElementRef<'_>, EditError> {
+        let loc = loc.as_ref();
+        self.element(loc).ok_or_else(|| self.stale(loc))
+    }
+
+    /// The view of the element at `loc`, if it exists in this version.
+    ///
+    /// Time: O(levels · depth · log width).
+    pub fn element(&self, loc: impl AsRef<Loc>) -> Option<ElementRef<'_>> {
+        let loc = loc.as_ref();
+        let m = self.scoped_model(loc.scope())?;
+        let node = m.node_by_id(loc.id())?;
+        let frames: Arc<[ElementId]> = Arc::from(loc.scope());
+        Some(ElementRef::new(self, m, &frames, node))
+    }
+}
+
+/// A read-only view of one element of a composed model: it knows its model and the
+/// attachments it lies in, so it can go up, down and name itself as MuJoCo will.
+#[derive(Clone)]
+pub struct ElementRef<'a> {
+    /// The model the view was taken from (the outermost).
+    top: &'a Model,
+    /// The model holding the element.
+    model: &'a Model,
+    frames: Arc<[ElementId]>,
+    node: &'a Node,
+}
+
+impl<'a> ElementRef<'a> {
+    fn new(top: &'a Model, model: &'a Model, frames: &Arc<[ElementId]>, node: &'a Node) -> ElementRef<'a> {
+        ElementRef { top, model, frames: frames.clone(), node }
+    }
+
+    /// The element's locator in the model the view was taken from (scoped when the
+    /// element lies inside an attachment).
+    ///
+    /// Time: O(1).
+    pub fn loc(&self) -> Loc {
+        Loc::scoped(self.frames.clone(), self.node.id(), self.top.name())
+    }
+
+    /// The XML tag (`body` for an attachment frame).
+    pub fn tag(&self) -> &'static str {
+        self.node.kind().tag()
+    }
+
+    /// The schema kind.
+    pub fn kind(&self) -> ElementKind {
+        self.node.kind()
+    }
+
+    /// Whether this is an attachment frame.
+    pub fn is_frame(&self) -> bool {
+        self.node.attached().is_some()
+    }
+
+    /// The element's own identifier (no scope prefix), if set.
+    pub fn identifier(&self) -> Option<&'a str> {
+        self.node.identifier()
+    }
+
+    /// The scope path of the model holding the element (`""`, `robot`,
+    /// `arena/robot_1`).
+    ///
+    /// Time: O(levels · depth · log n).
+    pub fn scope(&self) -> String {
+        self.top.scope_path(&self.loc()).unwrap_or_default()
+    }
+
+    /// The name MuJoCo will give the element in the written model: the identifier
+    /// with its scope prefix (`robot_1/torso`), an attachment frame's scope
+    /// (`robot_1/`), or the automatic name of an unnamed element (`//unnamed_geom_0`,
+    /// `robot/unnamed_geom_2`); `None` for elements without a namespace.
+    ///
+    /// Time: O(levels · depth · log n) for named elements and frames; O(size of the
+    /// element's model) for unnamed ones, whose number is their position.
+    pub fn full_name(&self) -> Option<String> {
+        let scope = self.scope();
+        let prefix = if scope.is_empty() { String::new() } else { format!("{scope}/") };
+        if let Some(a) = self.node.attached() {
+            return Some(format!("{prefix}{}/", a.scope));
+        }
+        let ns = self.node.kind().namespace()?;
+        if let Some(n) = self.identifier() {
+            return Some(format!("{prefix}{n}"));
+        }
+        let index = self
+            .model
+            .root
+            .descendants()
+            .filter(|n| n.kind().namespace() == Some(ns))
+            .position(|n| n.id() == self.node.id())?;
+        let p = if prefix.is_empty() { "/" } else { prefix.as_str() };
+        Some(format!("{p}/unnamed_{}_{index}", ns.as_str()))
+    }
+
+    /// The value of attribute `name`, if set.
+    pub fn attr(&self, name: &str) -> Option<&'a Value> {
+        self.node.attr(self.node.kind().attr_index(name)?)
+    }
+
+    /// The set attributes, in schema order.
+    pub fn attrs(&self) -> impl Iterator<Item = (&'static str, &'a Value)> + 'a {
+        let kind = self.node.kind();
+        self.node.attrs().iter().map(move |(i, v)| (kind.attr(*i as usize).name, v))
+    }
+
+    /// A float attribute, if set.
+    pub fn float(&self, name: &str) -> Option<f64> {
+        self.attr(name)?.as_float()
+    }
+
+    /// A float array attribute (`pos`, `size`, `rgba`), if set.
+    pub fn floats(&self, name: &str) -> Option<&'a [f64]> {
+        self.attr(name)?.as_floats()
+    }
+
+    /// An integer attribute, if set.
+    pub fn int(&self, name: &str) -> Option<i64> {
+        self.attr(name)?.as_int()
+    }
+
+    /// An integer array attribute, if set.
+    pub fn ints(&self, name: &str) -> Option<&'a [i64]> {
+        self.attr(name)?.as_ints()
+    }
+
+    /// A text attribute (string, keyword, name, folder), or the name a reference
+    /// gives (for a resolved reference, its target's own identifier), if set.
+    pub fn string(&self, name: &str) -> Option<&'a str> {
+        match self.attr(name)? {
+            Value::Reference(Reference::Element(id)) => self.model.index.elems.get(id)?.name.as_deref(),
+            v => v.as_str(),
+        }
+    }
+
+    /// The composed parent: for a top-level body of an attached model, its
+    /// attachment frame; for an element directly in a section of an attached model,
+    /// that section of the outermost model; `None` for the root.
+    ///
+    /// Time: O(levels · depth · log n).
+    pub fn parent(&self) -> Option<ElementRef<'a>> {
+        let parent = self.model.index.elems.get(&self.node.id())?.parent?;
+        let pnode = self.model.node_by_id(parent)?;
+        let is_section = pnode.kind().spec().parent == Some(ElementKind::ROOT);
+        match self.frames.split_last() {
+            Some((frame, outer)) if pnode.kind().tag() == "worldbody" && is_section => {
+                let outer_model = self.top.scoped_model(outer)?;
+                let fnode = outer_model.node_by_id(*frame)?;
+                Some(ElementRef::new(self.top, outer_model, &Arc::from(outer), fnode))
+            }
+            Some(_) if is_section => {
+                let sec = self.top.root.child_of_kind(pnode.kind())?;
+                Some(ElementRef::new(self.top, self.top, &Arc::from([]), sec))
+            }
+            Some(_) if pnode.kind() == ElementKind::ROOT => {
+                Some(ElementRef::new(self.top, self.top, &Arc::from([]), &self.top.root))
+            }
+            _ => Some(ElementRef::new(self.top, self.model, &self.frames, pnode)),
+        }
+    }
+
+    /// The composed children, in document order: an attachment frame's own
+    /// children then the attached model's bodies; a top-level section's own
+    /// elements then those of every attached model.
+    ///
+    /// Time: O(children), plus O(attachments) for a top-level section.
+    pub fn children(&self) -> impl Iterator<Item = ElementRef<'a>> + 'a {
+        let mut walk = Walk::new(self.top);
+        let top = self.top;
+        let inst = walk.insts.along(&self.frames).unwrap_or(0);
+        let depth = if self.node.kind() == ElementKind::ROOT && inst == 0 {
+            0
+        } else if self.node.kind().spec().parent == Some(ElementKind::ROOT) && inst == 0 {
+            1
+        } else {
+            // Deeper than any rule of a top-level section or the root applies.
+            2
+        };
+        let items = walk.expand(Item { inst, node: self.node, depth, in_frame: false });
+        let insts = walk.insts;
+        items
+            .into_iter()
+            .map(move |it| {
+                let i = &insts.list[it.inst];
+                ElementRef::new(top, i.model, &i.frames, it.node)
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+    }
+
+    /// Whether two views show the same shared node (O(1)); after an edit, every
+    /// element the edit did not touch is still the same node.
+    pub fn ptr_eq(&self, other: &ElementRef<'_>) -> bool {
+        self.node.ptr_eq(other.node)
+    }
+}
+
+impl fmt::Debug for ElementRef<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(self.node, f)
+    }
+}
+
+impl Model {
+    /// The value of attribute `name` of the element at `loc`.
+    fn value_at<'s>(&'s self, loc: &Loc, name: &str) -> Result<(&'static str, &'s Value), EditError> {
+        let e = self.get(loc)?;
+        let path = || self.scope_path(loc).unwrap_or_default();
+        let kind = e.kind();
+        let index =
+            kind.attr_index(name).ok_or_else(|| EditError::new(ErrorKind::unknown_attribute(kind, name), path()))?;
+        let spec = kind.attr(index);
+        let v = e
+            .node
+            .attr(index)
+            .ok_or_else(|| EditError::new(ErrorKind::Unset { tag: kind.tag(), attribute: spec.name }, path()))?;
+        Ok((spec.name, v))
+    }
+
+    fn typed<'s, T>(&'s self, loc: &Loc, name: &str, f: impl FnOnce(&'s Value) -> Option<T>) -> Result<T, EditError> {
+        let (attribute, v) = self.value_at(loc, name)?;
+        let tag = self.get(loc)?.tag();
+        f(v).ok_or_else(|| {
+            EditError::new(ErrorKind::WrongType { tag, attribute }, self.scope_path(loc).unwrap_or_default())
+        })
+    }
+
+    /// The float attribute `name` of the element at `loc`.
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// [`ErrorKind::StaleLocator`], [`ErrorKind::UnknownAttribute`],
+    /// [`ErrorKind::Unset`], or [`ErrorKind::WrongType`] for an attribute of another
+    /// type.
+    pub fn float(&self, loc: &Loc, name: &str) -> Result<f64, EditError> {
+        self.typed(loc, name, Value::as_float)
+    }
+
+    /// The float array attribute `name` (`pos`, `size`, `rgba`) of the element at
+    /// `loc`.
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// As [`Model::float`].
+    pub fn floats(&self, loc: &Loc, name: &str) -> Result<&[f64], EditError> {
+        self.typed(loc, name, Value::as_floats)
+    }
+
+    /// The integer attribute `name` of the element at `loc`.
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// As [`Model::float`].
+    pub fn int(&self, loc: &Loc, name: &str) -> Result<i64, EditError> {
+        self.typed(loc, name, Value::as_int)
+    }
+
+    /// The integer array attribute `name` of the element at `loc`.
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// As [`Model::float`].
+    pub fn ints(&self, loc: &Loc, name: &str) -> Result<&[i64], EditError> {
+        self.typed(loc, name, Value::as_ints)
+    }
+
+    /// The text attribute `name` of the element at `loc` (see [`ElementRef::string`]).
+    ///
+    /// Time: O(levels · depth · log width).
+    ///
+    /// # Errors
+    /// As [`Model::float`].
+    pub fn string(&self, loc: &Loc, name: &str) -> Result<&str, EditError> {
+        self.value_at(loc, name)?;
+        let e = self.get(loc)?;
+        let tag = e.tag();
+        let attribute = e.kind().attr(e.kind().attr_index(name).unwrap_or(0)).name;
+        e.string(name).ok_or_else(|| {
+            EditError::new(ErrorKind::WrongType { tag, attribute }, self.scope_path(loc).unwrap_or_default())
+        })
+    }
+}

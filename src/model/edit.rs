@@ -1,0 +1,408 @@
+//! Element edits: add, insert, set, clear, remove, and their in-place twins.
+//!
+//! Each edit comes twice, as in `imbl`: `add(&self, ..) -> Result<(Model, Loc)>`
+//! returns a new model for functional code, and `add_mut(&mut self, ..) ->
+//! Result<Loc>` replaces `*self` with it. Both are atomic: on error nothing changes,
+//! and a clone taken before an in-place edit keeps its content (the new version is
+//! a new value; the clone still shares the old one).
+
+use smol_str::SmolStr;
+
+use crate::error::{EditError, ErrorKind};
+use crate::schema::{AttrType, Multiplicity};
+use crate::value::{AttrInput, Value};
+
+use super::build::{self, Input, ValueCtx, apply_attrs, check_class_named, empty_node};
+use super::frame::{check_frame_child, frame_settable};
+use super::tree::Node;
+use super::{Attrs, Element, Loc, Model};
+
+impl Model {
+    /// Replaces `self` with the model of a successful edit and returns the edit's
+    /// result; on error `self` is unchanged.
+    pub(crate) fn apply<R>(&mut self, edit: Result<(Model, R), EditError>) -> Result<R, EditError> {
+        let (m, r) = edit?;
+        *self = m;
+        Ok(r)
+    }
+
+    /// Adds `element` as the last child of `parent`; returns the new model and the new
+    /// element's locator.
+    ///
+    /// Time: O(depth · log width + size of the element).
+    ///
+    /// # Errors
+    /// Leaving `self` unchanged: the tag is not a valid child of the parent
+    /// ([`ErrorKind::InvalidChild`], with the nearest valid tag), an attribute is
+    /// unknown ([`ErrorKind::UnknownAttribute`]) or has a bad value
+    /// ([`ErrorKind::InvalidValue`]), a required attribute is missing, a file cannot be
+    /// read, an identifier is taken ([`ErrorKind::DuplicateIdentifier`]), or `parent`
+    /// is not in this model ([`ErrorKind::StaleLocator`]).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let m = Model::new("m");
+    /// let (m2, geom) = m.add(&m.worldbody(), element!("geom", name = "floor", size = [1.0, 1.0, 0.1]))?;
+    /// assert_eq!(m2.get(&geom)?.identifier(), Some("floor"));
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn add(&self, parent: impl AsRef<Loc>, element: Element) -> Result<(Model, Loc), EditError> {
+        let parent = parent.as_ref();
+        self.insert_at(parent, None, element)
+    }
+
+    /// [`Model::add`] in place: adds `element` to `self` and returns its locator.
+    ///
+    /// Time: O(depth · log width + size of the element).
+    ///
+    /// # Errors
+    /// As [`Model::add`]; `self` is unchanged on error.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut m = Model::new("m");
+    /// let before = m.clone();
+    /// let body = m.add_mut(&m.worldbody(), element!("body", name = "torso"))?;
+    /// m.add_mut(&body, element!("geom", size = [0.1]))?;
+    /// assert_ne!(m, before); // the clone kept its content
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn add_mut(&mut self, parent: impl AsRef<Loc>, element: Element) -> Result<Loc, EditError> {
+        let parent = parent.as_ref();
+        let r = self.add(parent, element);
+        self.apply(r)
+    }
+
+    /// Inserts `element` at `index` among the parent's repeated and on-demand children
+    /// (singletons always come first and are not counted); an index past the end
+    /// appends.
+    ///
+    /// Time: O(depth · log width + size of the element).
+    ///
+    /// # Errors
+    /// As [`Model::add`].
+    pub fn insert(&self, parent: impl AsRef<Loc>, index: usize, element: Element) -> Result<(Model, Loc), EditError> {
+        let parent = parent.as_ref();
+        self.insert_at(parent, Some(index), element)
+    }
+
+    /// [`Model::insert`] in place; returns the new element's locator.
+    ///
+    /// Time: O(depth · log width + size of the element).
+    ///
+    /// # Errors
+    /// As [`Model::add`]; `self` is unchanged on error.
+    pub fn insert_mut(&mut self, parent: impl AsRef<Loc>, index: usize, element: Element) -> Result<Loc, EditError> {
+        let parent = parent.as_ref();
+        let r = self.insert(parent, index, element);
+        self.apply(r)
+    }
+
+    fn insert_at(&self, parent: &Loc, index: Option<usize>, element: Element) -> Result<(Model, Loc), EditError> {
+        let (m, new) = self.in_scope(parent.scope(), |m: &Model| m.insert_here(parent, index, &element))?;
+        Ok((m, new.within(parent.scope())))
+    }
+
+    fn insert_here(&self, loc: &Loc, index: Option<usize>, element: &Element) -> Result<(Model, Loc), EditError> {
+        let path = self.locate(loc)?;
+        // The element path for errors, made only when there is one: the parent's path
+        // (O(width) to describe) and the new element's own part.
+        let mut sub = String::new();
+        let at = |sub: &str| -> String {
+            let outer = self.describe(&path);
+            match (outer.is_empty(), sub.is_empty()) {
+                (true, _) => sub.to_string(),
+                (false, true) => outer,
+                (false, false) => format!("{outer}/{sub}"),
+            }
+        };
+        let parent_node = self.node_at(&path).cloned().ok_or_else(|| self.stale(loc))?;
+        let basepaths = self.basepaths();
+        let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
+        let node =
+            build::build(&ctx, parent_node.kind(), element, &mut sub).map_err(|k| EditError::new(k, at(&sub)))?;
+        if let Some(a) = parent_node.attached() {
+            let grand = path.split_last().and_then(|(_, p)| self.node_at(p));
+            check_frame_child(grand, &parent_node, &node, &a.scope).map_err(|k| EditError::new(k, at(&sub)))?;
+        }
+        if node.kind().multiplicity() == Multiplicity::OnDemand
+            && parent_node.children().iter().any(|c| c.kind() == node.kind())
+        {
+            return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), at(&sub)));
+        }
+        let children = parent_node.children();
+        let singletons = children.iter().take_while(|c| c.kind().multiplicity() == Multiplicity::Singleton).count();
+        let position = match index {
+            Some(i) => (singletons + i).min(children.len()),
+            None => children.len(),
+        };
+        let mut index_ = self.index.clone();
+        if let Err(d) = index_.insert_subtree(Some(parent_node.id()), &node, position) {
+            return Err(EditError::new(
+                ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
+                at(&sub),
+            ));
+        }
+        let id = node.id();
+        let root = self.root.update_path(&path, |p| -> Result<Node, EditError> {
+            let mut children = p.children().clone();
+            children.insert(position.min(children.len()), node);
+            Ok(p.with_children(children))
+        })?;
+        Ok((self.next(root, index_), self.scoped_loc(&[], id)))
+    }
+
+    /// Sets and clears attributes of the element at `loc`, all or nothing.
+    ///
+    /// Time: O(depth · log width), plus a fold of the merged settings when a global
+    /// setting changes in a model with attachments.
+    ///
+    /// # Errors
+    /// Leaving `self` unchanged: an unknown attribute or bad value, clearing a
+    /// required attribute, a name already taken, a setting that conflicts with an
+    /// attached model's ([`ErrorKind::AttributeConflict`]), or `loc` not in this model.
+    pub fn set(&self, loc: impl AsRef<Loc>, attrs: Attrs) -> Result<Model, EditError> {
+        let loc = loc.as_ref();
+        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.set_here(loc, &attrs).map(|m| (m, ())))?;
+        // An edit of a global setting, on either side of an attachment, may conflict;
+        // no other edit takes part in the merge.
+        if self.in_settings_section(loc) {
+            super::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
+        }
+        Ok(m)
+    }
+
+    /// [`Model::set`] in place.
+    ///
+    /// Time: as [`Model::set`].
+    ///
+    /// # Errors
+    /// As [`Model::set`]; `self` is unchanged on error.
+    pub fn set_mut(&mut self, loc: impl AsRef<Loc>, attrs: Attrs) -> Result<(), EditError> {
+        let loc = loc.as_ref();
+        let r = self.set(loc, attrs).map(|m| (m, ()));
+        self.apply(r)
+    }
+
+    /// Sets one attribute.
+    ///
+    /// Time: as [`Model::set`].
+    ///
+    /// # Errors
+    /// As [`Model::set`].
+    pub fn set_attr(&self, loc: impl AsRef<Loc>, name: &str, value: impl Into<AttrInput>) -> Result<Model, EditError> {
+        let loc = loc.as_ref();
+        self.set(loc, Attrs::new().set(name, value))
+    }
+
+    /// [`Model::set_attr`] in place.
+    ///
+    /// Time: as [`Model::set`].
+    ///
+    /// # Errors
+    /// As [`Model::set`]; `self` is unchanged on error.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut m = Model::new("m");
+    /// let g = m.add_mut(&m.worldbody(), element!("geom", size = [0.1]))?;
+    /// m.set_attr_mut(&g, "rgba", [1, 0, 0, 1])?;
+    /// assert_eq!(m.floats(&g, "rgba")?, [1.0, 0.0, 0.0, 1.0]);
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn set_attr_mut(
+        &mut self,
+        loc: impl AsRef<Loc>,
+        name: &str,
+        value: impl Into<AttrInput>,
+    ) -> Result<(), EditError> {
+        let loc = loc.as_ref();
+        self.set_mut(loc, Attrs::new().set(name, value))
+    }
+
+    /// Clears one attribute.
+    ///
+    /// Time: as [`Model::set`].
+    ///
+    /// # Errors
+    /// As [`Model::set`] (a required attribute cannot be cleared).
+    pub fn clear_attr(&self, loc: impl AsRef<Loc>, name: &str) -> Result<Model, EditError> {
+        let loc = loc.as_ref();
+        self.set(loc, Attrs::new().clear(name))
+    }
+
+    /// [`Model::clear_attr`] in place.
+    ///
+    /// Time: as [`Model::set`].
+    ///
+    /// # Errors
+    /// As [`Model::set`]; `self` is unchanged on error.
+    pub fn clear_attr_mut(&mut self, loc: impl AsRef<Loc>, name: &str) -> Result<(), EditError> {
+        let loc = loc.as_ref();
+        self.set_mut(loc, Attrs::new().clear(name))
+    }
+
+    /// Whether the element lies in a global settings section (`option`, ...).
+    fn in_settings_section(&self, loc: &Loc) -> bool {
+        let Some(m) = self.scoped_model(loc.scope()) else { return false };
+        let Some(section) = m.path_of(loc.id()).and_then(|p| p.first().copied()) else { return false };
+        m.root.children().get(section).is_some_and(|n| super::settings::is_settings_section(n.kind()))
+    }
+
+    fn set_here(&self, loc: &Loc, attrs: &Attrs) -> Result<Model, EditError> {
+        let path = self.locate(loc)?;
+        let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
+        let node = self.node_at(&path).ok_or_else(|| self.stale(loc))?;
+        let kind = node.kind();
+        let mut basepaths = self.basepaths();
+        let mut changes = Vec::with_capacity(attrs.len());
+        for (name, input) in attrs.items() {
+            if node.attached().is_some() && !frame_settable(name) {
+                let valid = super::frame::FRAME_ATTRS.iter().copied().chain(["mocap"]);
+                return Err(err(ErrorKind::UnknownAttribute {
+                    tag: "body",
+                    attribute: name.clone(),
+                    suggestion: crate::suggest::closest(name, valid),
+                }));
+            }
+            let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
+            let change = ctx.assign(kind, name, input.as_ref().map(Input::Given)).map_err(err)?;
+            // A folder setting applies to file attributes set after it in the same call.
+            if let AttrType::Basepath { path_namespace } = kind.attr(change.0).ty {
+                basepaths.set(path_namespace, change.1.as_ref().and_then(Value::as_str).map(SmolStr::from));
+            }
+            changes.push(change);
+        }
+        let mut new_attrs = node.attrs().to_vec();
+        apply_attrs(kind, &mut new_attrs, changes).map_err(err)?;
+        if let Some(parent) = path.split_last().and_then(|(_, p)| self.node_at(p)) {
+            check_class_named(parent.kind(), kind, &new_attrs).map_err(err)?;
+        }
+        let new_node = node.with_attrs(new_attrs);
+        let mut index = self.index.clone();
+        let old_name = node.identifier();
+        let new_name = new_node.identifier();
+        if old_name != new_name {
+            if let (Some(ns), Some(name)) = (kind.namespace(), new_name) {
+                // A frame's joints have a namespace of their own: that frame's joints.
+                let frame = path.split_last().and_then(|(_, p)| self.node_at(p)).filter(|p| p.attached().is_some());
+                let taken = match frame {
+                    Some(f) => f.children().iter().any(|c| c.id() != node.id() && c.identifier() == Some(name)),
+                    None => index.names.contains_key(&(ns, SmolStr::from(name))),
+                };
+                if taken {
+                    return Err(err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() }));
+                }
+            }
+            index.rename(node.id(), new_name.map(SmolStr::from));
+        }
+        let root = self.root.update_path(&path, |_| Ok::<_, EditError>(new_node))?;
+        Ok(self.next(root, index))
+    }
+
+    /// Removes the element at `loc` with its subtree. A singleton (such as `option`)
+    /// stays but loses its attributes and children.
+    ///
+    /// References to removed elements that were resolved (read from XML) become dead:
+    /// an optional one is no longer written, a required one makes writing fail. A
+    /// reference held as a plain name is written as it is.
+    ///
+    /// Time: O(depth · log width + size of the subtree).
+    ///
+    /// # Errors
+    /// [`ErrorKind::AffectsAttachments`] if the subtree holds an attachment frame, or
+    /// the element is a global section (or part of one) while models are attached: use
+    /// [`Model::detach`] first; [`ErrorKind::StaleLocator`] if `loc` is not in this
+    /// model.
+    pub fn remove(&self, loc: impl AsRef<Loc>) -> Result<Model, EditError> {
+        let loc = loc.as_ref();
+        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, false).map(|m| (m, ())))?;
+        Ok(m)
+    }
+
+    /// [`Model::remove`] in place.
+    ///
+    /// Time: as [`Model::remove`].
+    ///
+    /// # Errors
+    /// As [`Model::remove`]; `self` is unchanged on error.
+    pub fn remove_mut(&mut self, loc: impl AsRef<Loc>) -> Result<(), EditError> {
+        let loc = loc.as_ref();
+        let r = self.remove(loc).map(|m| (m, ()));
+        self.apply(r)
+    }
+
+    /// Removes the element at `loc` like [`Model::remove`], together with the
+    /// attachments in its subtree (their frames go with it). A global section keeps
+    /// merging the attachments' settings: only this model's own are cleared.
+    ///
+    /// Time: O(depth · log width + size of the subtree).
+    ///
+    /// # Errors
+    /// [`ErrorKind::StaleLocator`] if `loc` is not in this model.
+    pub fn remove_with_attachments(&self, loc: impl AsRef<Loc>) -> Result<Model, EditError> {
+        let loc = loc.as_ref();
+        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, true).map(|m| (m, ())))?;
+        Ok(m)
+    }
+
+    /// [`Model::remove_with_attachments`] in place.
+    ///
+    /// Time: as [`Model::remove_with_attachments`].
+    ///
+    /// # Errors
+    /// As [`Model::remove_with_attachments`]; `self` is unchanged on error.
+    pub fn remove_with_attachments_mut(&mut self, loc: impl AsRef<Loc>) -> Result<(), EditError> {
+        let loc = loc.as_ref();
+        let r = self.remove_with_attachments(loc).map(|m| (m, ()));
+        self.apply(r)
+    }
+
+    fn remove_here(&self, loc: &Loc, affect_attachments: bool) -> Result<Model, EditError> {
+        let path = self.locate(loc)?;
+        let node = self.node_at(&path).cloned().ok_or_else(|| self.stale(loc))?;
+        let in_section_chain = {
+            let mut n = &self.root;
+            path.iter().all(|&i| match n.children().get(i) {
+                Some(c) => {
+                    n = c;
+                    c.kind().multiplicity() == Multiplicity::Singleton
+                }
+                None => false,
+            })
+        };
+        let holds_frame = !self.index.scopes.is_empty() && node.descendants().any(|n| n.attached().is_some());
+        if !affect_attachments
+            && (holds_frame || (!self.index.scopes.is_empty() && in_section_chain && node.attached().is_none()))
+        {
+            return Err(EditError::new(ErrorKind::AffectsAttachments, self.describe(&path)));
+        }
+        let mut index = self.index.clone();
+        index.remove_subtree(&node);
+        let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {
+            let parent_id = self.index.elems.get(&node.id()).and_then(|e| e.parent);
+            let fresh = Node::new(node.id(), node.kind(), Vec::new(), empty_node(node.kind()).children().clone());
+            // The emptied element holds no identifiers, so this finds no duplicate.
+            let _ = index.insert_subtree(parent_id, &fresh, path.last().copied().unwrap_or(0));
+            self.root.update_path(&path, |_| Ok::<_, EditError>(fresh))?
+        } else {
+            let (last, parent_path) = path.split_last().ok_or_else(|| self.stale(loc))?;
+            self.root.update_path(parent_path, |p| {
+                let mut children = p.children().clone();
+                children.remove(*last);
+                Ok::<_, EditError>(p.with_children(children))
+            })?
+        };
+        Ok(self.next(root, index))
+    }
+
+    /// [`Model::with_name`] in place.
+    ///
+    /// Time: O(1).
+    pub fn set_name(&mut self, name: &str) {
+        *self = self.with_name(name);
+    }
+}

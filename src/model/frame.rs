@@ -1,0 +1,59 @@
+//! The rules of attachment frames: what a frame copies from its site, which of its
+//! attributes can be set later, and which children it takes.
+
+use crate::error::ErrorKind;
+use crate::schema::ElementKind;
+
+use super::tree::{Attr, Node};
+
+/// The site attributes an attachment frame copies (reference §3.3).
+pub(crate) const FRAME_ATTRS: [&str; 7] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user"];
+
+/// Whether a frame accepts attribute `name` after the attach: the copied ones and
+/// `mocap`.
+pub(crate) fn frame_settable(name: &str) -> bool {
+    name == "mocap" || FRAME_ATTRS.contains(&name)
+}
+
+/// The frame attributes copied from a site, as attributes of `body_kind`.
+pub(crate) fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
+    let site_kind = site.kind();
+    FRAME_ATTRS
+        .iter()
+        .filter_map(|name| {
+            let v = site.attr(site_kind.attr_index(name)?)?;
+            Some((u16::try_from(body_kind.attr_index(name)?).ok()?, v.clone()))
+        })
+        .collect()
+}
+
+/// Checks a new child of an attachment frame: joints, one inertial, and one freejoint
+/// if the frame sits directly in the worldbody (`parent` is the frame's parent).
+/// `scope` names the frame in errors.
+pub(crate) fn check_frame_child(
+    parent: Option<&Node>,
+    frame: &Node,
+    child: &Node,
+    scope: &str,
+) -> Result<(), ErrorKind> {
+    let tag = child.kind().tag();
+    // The frame's joints have a namespace of their own.
+    if let (Some(ns), Some(name)) = (child.kind().namespace(), child.identifier()) {
+        if frame.children().iter().any(|c| c.identifier() == Some(name)) {
+            return Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() });
+        }
+    }
+    match tag {
+        "joint" => Ok(()),
+        "inertial" | "freejoint" => {
+            if tag == "freejoint" && parent.is_none_or(|p| p.kind().tag() != "worldbody") {
+                return Err(ErrorKind::FreejointNotTopLevel(scope.into()));
+            }
+            if frame.children().iter().any(|c| c.kind() == child.kind()) {
+                return Err(ErrorKind::DuplicateChild(child.kind().tag()));
+            }
+            Ok(())
+        }
+        _ => Err(ErrorKind::InvalidChild { parent: "body", tag: tag.into(), suggestion: None }),
+    }
+}
