@@ -293,5 +293,5 @@ fn growth(budget: Duration) {
 
 fn attach_one(parent: &mjcf::Model, site: &mjcf::Loc, child: &mjcf::Model) -> mjcf::Model {
     let (m, frame) = parent.attach(site, child).expect("attach");
-    m.add(&frame, mjcf::Element::new("freejoint")).expect("freejoint").0
+    m.add(frame.frame(), mjcf::Element::new("freejoint")).expect("freejoint").0
 }

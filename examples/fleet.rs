@@ -101,8 +101,8 @@ fn variant(base: &Model, robot: &Model, scopes: &[String], seed: u64) -> Result<
     // Attach first, then detach: the attach reuses the merged global settings the base
     // has cached, which a detach would make it recompute over every attachment.
     let (next, frame) = m.attach_to_world(robot)?;
-    let (next, _) = next.add(&frame, Element::new("freejoint"))?;
-    let next = next.set_attr(&frame, "pos", [0.0, 0.0, 1.5 + rng.unit()])?;
+    let (next, _) = next.add(frame.frame(), Element::new("freejoint"))?;
+    let next = next.set_attr(frame.frame(), "pos", [0.0, 0.0, 1.5 + rng.unit()])?;
     Ok(next.detach(&scopes[rng.below(scopes.len())])?)
 }
 
@@ -131,7 +131,7 @@ fn main() -> Result<(), Error> {
     for i in 0..n {
         let Some(site) = base.find(Namespace::Site, &format!("spawn_{i}")) else { continue };
         let (m, frame) = base.attach(&site, &robot)?;
-        base = m.add(&frame, Element::new("freejoint"))?.0;
+        base = m.add(frame.frame(), Element::new("freejoint"))?.0;
     }
     let scopes: Vec<String> = base.scopes().map(str::to_string).collect();
     let (rss1, _) = rss_mib();

@@ -40,9 +40,9 @@ fn main() -> Result<(), mjcf::Error> {
     // Attach the first robot at `spawn` and give its frame a freejoint. The frame is
     // then a moving body of its own, which MuJoCo wants to have some mass.
     let (scene, frame) = arena.attach(&spawn, &boxy)?;
-    let (scene, _) = scene.add(&frame, Element::new("freejoint").attr("name", "root"))?;
+    let (scene, _) = scene.add(frame.frame(), Element::new("freejoint").attr("name", "root"))?;
     let (scene, _) = scene.add(
-        &frame,
+        frame.frame(),
         Element::new("inertial").attr("pos", [0.0, 0.0, 0.0]).attr("mass", 0.1).attr("diaginertia", [1e-3; 3]),
     )?;
     // The second robot is also named `robot`: its scope becomes `robot_1`.

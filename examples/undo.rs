@@ -185,7 +185,7 @@ fn main() -> Result<(), Error> {
         h.edit(&format!("attach the quadruped at {site}, with a freejoint"), |m| {
             let at = m.find(Namespace::Site, site).expect("the site exists");
             let (m, frame) = m.attach(&at, &robot)?;
-            Ok(m.add(&frame, Element::new("freejoint"))?.0)
+            Ok(m.add(frame.frame(), Element::new("freejoint"))?.0)
         })?;
     }
     h.edit("paint quadruped_1's torso red", |m| {

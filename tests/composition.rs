@@ -78,7 +78,7 @@ fn nested_attach_at_a_site_inside_an_attachment() {
     let (scene, _) = Model::new("world").attach_to_world(&arm).unwrap();
     let mount = scene.find(Namespace::Site, "arm/mount").unwrap();
     let (scene, frame) = scene.attach(&mount, &robot("gripper")).unwrap();
-    assert_eq!(scene.scope_of_frame(&frame).as_deref(), Some("arm/gripper"));
+    assert_eq!(scene.scope_of_frame(frame.frame()).as_deref(), Some("arm/gripper"));
     assert!(scene.find(Namespace::Joint, "arm/gripper/hip").is_some());
     let xml = scene.to_xml_string().unwrap();
     assert!(xml.contains(r#"<body name="arm/gripper/torso">"#), "{xml}");

@@ -58,7 +58,7 @@ fn ops_model_without_a_name_attaches_under_a_nonempty_scope() {
         assert_eq!(nameless.name(), "unnamed_model", "{what}");
         match arena.attach_to_world(&nameless) {
             Ok((scene, frame)) => {
-                let scope = scene.scope_of_frame(&frame).unwrap();
+                let scope = scene.scope_of_frame(frame.frame()).unwrap();
                 assert!(!scope.is_empty() && !scope.contains('/'), "{what}: scope {scope:?}");
                 assert!(scene.find(Namespace::Body, &format!("{scope}/torso")).is_some(), "{what}");
                 let xml = write(&scene);

@@ -1561,8 +1561,8 @@ scopes: c
     let (m, arm) = Model::new("scene").attach_to_world(&ROBOTS.lib[1]).unwrap();
     let (m, _) = m.attach(&m.find(Namespace::Site, "arm/base").unwrap(), &ROBOTS.lib[0]).unwrap();
     let (m, _) = m.attach(&m.find(Namespace::Site, "arm/robot/mount").unwrap(), &ROBOTS.lib[2]).unwrap();
-    let (m, _) = m.add(&arm, Element::new("freejoint")).unwrap();
-    let (m, _) = m.add(&arm, Element::new("joint").attr("name", "j")).unwrap();
+    let (m, _) = m.add(arm.frame(), Element::new("freejoint")).unwrap();
+    let (m, _) = m.add(arm.frame(), Element::new("joint").attr("name", "j")).unwrap();
     let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "j")).unwrap();
     let m = m.rename_scope("arm", "c").unwrap();
     assert_eq!(canon_of(&m), NESTED);
@@ -1617,35 +1617,35 @@ fn refusals_follow_the_reference() {
     check(
         "a geom on a frame",
         false,
-        m.add(&robot, geom("g")),
+        m.add(robot.frame(), geom("g")),
         n.clone().add(Some(&frame_b), NNode::new("geom", some("g"))),
     );
     check(
         "a freejoint on a frame inside a body",
         false,
-        m.add(&robot, Element::new("freejoint")),
+        m.add(robot.frame(), Element::new("freejoint")),
         n.clone().add(Some(&frame_b), NNode::new("freejoint", None)),
     );
     let mut n2 = n.clone();
     n2.add(Some(&frame_w), NNode::new("freejoint", None)).unwrap();
-    let (m2, _) = m.add(&robot_1, Element::new("freejoint")).unwrap();
+    let (m2, _) = m.add(robot_1.frame(), Element::new("freejoint")).unwrap();
     assert_eq!(canon_of(&m2), n2.canon().to_string());
     check(
         "a second freejoint on a world frame",
         false,
-        m2.add(&robot_1, Element::new("freejoint")),
+        m2.add(robot_1.frame(), Element::new("freejoint")),
         n2.clone().add(Some(&frame_w), NNode::new("freejoint", None)),
     );
     check(
         "a frame joint named like a joint of the model",
         true,
-        m.add(&robot_1, Element::new("joint").attr("name", "slide")),
+        m.add(robot_1.frame(), Element::new("joint").attr("name", "slide")),
         n.clone().add(Some(&frame_w), joint(some("slide"))),
     );
     check(
         "a name on a frame",
         false,
-        m.set_attr(&robot, "name", "x"),
+        m.set_attr(robot.frame(), "name", "x"),
         n.clone().set_name(&Target::Node(frame_b.clone()), Some("x")),
     );
     check("b renamed b", true, m.set_attr(&b, "name", "b"), n.clone().set_name(&Target::Node(vec![0]), Some("b")));
@@ -1681,8 +1681,8 @@ fn refusals_follow_the_reference() {
 #[test]
 fn a_frame_refuses_two_joints_of_the_same_name() {
     let (m, frame) = Model::new("scene").attach_to_world(&ROBOTS.lib[0]).unwrap();
-    let (m, _) = m.add(&frame, Element::new("joint").attr("name", "j")).unwrap();
-    let (m, k) = m.add(&frame, Element::new("joint").attr("name", "k")).unwrap();
+    let (m, _) = m.add(frame.frame(), Element::new("joint").attr("name", "j")).unwrap();
+    let (m, k) = m.add(frame.frame(), Element::new("joint").attr("name", "k")).unwrap();
     // The oracle refuses both.
     let mut n = Naive::new("scene");
     n.attach(&ROBOTS.naive[0], None).unwrap();
@@ -1691,9 +1691,9 @@ fn a_frame_refuses_two_joints_of_the_same_name() {
     assert!(n.clone().add(Some(&[0]), NNode::new("joint", some("j"))).is_err());
     assert!(n.clone().set_name(&Target::Node(vec![0, 1]), Some("j")).is_err());
     assert!(
-        m.add(&frame, Element::new("joint").attr("name", "j")).is_err(),
+        m.add(frame.frame(), Element::new("joint").attr("name", "j")).is_err(),
         "a second joint j on the frame is accepted:\n{}",
-        m.add(&frame, Element::new("joint").attr("name", "j")).unwrap().0.to_xml_string().unwrap()
+        m.add(frame.frame(), Element::new("joint").attr("name", "j")).unwrap().0.to_xml_string().unwrap()
     );
     assert!(m.set_attr(&k, "name", "j").is_err(), "the frame joint k can be renamed j, next to j");
 }
@@ -1713,14 +1713,14 @@ fn a_frame_joint_can_be_renamed_like_a_joint_of_its_model() {
         .add(&m.worldbody(), Element::new("body").attr("name", "b").child(Element::new("joint").attr("name", "k")))
         .unwrap();
     let (m, frame) = m.attach_to_world(&ROBOTS.lib[0]).unwrap();
-    let (m, j) = m.add(&frame, Element::new("joint").attr("name", "j")).unwrap();
+    let (m, j) = m.add(frame.frame(), Element::new("joint").attr("name", "j")).unwrap();
     // The oracle accepts it, and the library accepts adding a frame joint named k.
     let mut n = Naive::new("scene");
     n.world.push(NNode::new("body", some("b")).child(NNode::new("joint", some("k"))));
     n.attach(&ROBOTS.naive[0], None).unwrap();
     n.add(Some(&[1]), NNode::new("joint", some("j"))).unwrap();
     n.set_name(&Target::Node(vec![1, 0]), Some("k")).unwrap();
-    assert!(m.add(&frame, Element::new("joint").attr("name", "k")).is_ok());
+    assert!(m.add(frame.frame(), Element::new("joint").attr("name", "k")).is_ok());
     match m.set_attr(&j, "name", "k") {
         Ok(renamed) => assert_eq!(canon_of(&renamed), n.canon().to_string()),
         Err(e) => panic!("renaming the frame joint j to k is refused: {e}"),

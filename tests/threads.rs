@@ -34,7 +34,7 @@ fn base() -> Model {
     for i in 0..5 {
         let site = m.find(Namespace::Site, &format!("spawn_{i}")).unwrap();
         let (next, frame) = m.attach(&site, &r).unwrap();
-        m = next.add(&frame, Element::new("freejoint")).unwrap().0;
+        m = next.add(frame.frame(), Element::new("freejoint")).unwrap().0;
     }
     m
 }

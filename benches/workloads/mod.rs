@@ -100,7 +100,7 @@ pub fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Erro
     for i in 0..n {
         let site = m.find(Namespace::Site, &format!("spawn_{i}")).expect("the arena has the site");
         let (next, frame) = m.attach(&site, robot)?;
-        let (next, _) = next.add(&frame, Element::new("freejoint"))?;
+        let (next, _) = next.add(frame.frame(), Element::new("freejoint"))?;
         m = next;
     }
     Ok(m)

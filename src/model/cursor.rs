@@ -307,16 +307,14 @@ impl Model {
     /// # Errors
     /// [`ErrorKind::StaleLocator`] if `loc` names no element of this model (removed,
     /// or from another model).
-    pub fn get(&self, loc: impl AsRef<Loc>) -> Result<ElementRef<'_>, EditError> {
-        let loc = loc.as_ref();
+    pub fn get(&self, loc: &Loc) -> Result<ElementRef<'_>, EditError> {
         self.element(loc).ok_or_else(|| self.stale(loc))
     }
 
     /// The view of the element at `loc`, if it exists in this version.
     ///
     /// Time: O(levels · depth · log width).
-    pub fn element(&self, loc: impl AsRef<Loc>) -> Option<ElementRef<'_>> {
-        let loc = loc.as_ref();
+    pub fn element(&self, loc: &Loc) -> Option<ElementRef<'_>> {
         let m = self.scoped_model(loc.scope())?;
         let node = m.node_by_id(loc.id())?;
         let frames: Arc<[ElementId]> = Arc::from(loc.scope());

@@ -47,8 +47,7 @@ impl Model {
     /// assert_eq!(m2.get(&geom)?.identifier(), Some("floor"));
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
-    pub fn add(&self, parent: impl AsRef<Loc>, element: Element) -> Result<(Model, Loc), EditError> {
-        let parent = parent.as_ref();
+    pub fn add(&self, parent: &Loc, element: Element) -> Result<(Model, Loc), EditError> {
         self.insert_at(parent, None, element)
     }
 
@@ -69,8 +68,7 @@ impl Model {
     /// assert_ne!(m, before); // the clone kept its content
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
-    pub fn add_mut(&mut self, parent: impl AsRef<Loc>, element: Element) -> Result<Loc, EditError> {
-        let parent = parent.as_ref();
+    pub fn add_mut(&mut self, parent: &Loc, element: Element) -> Result<Loc, EditError> {
         let r = self.add(parent, element);
         self.apply(r)
     }
@@ -83,8 +81,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::add`].
-    pub fn insert(&self, parent: impl AsRef<Loc>, index: usize, element: Element) -> Result<(Model, Loc), EditError> {
-        let parent = parent.as_ref();
+    pub fn insert(&self, parent: &Loc, index: usize, element: Element) -> Result<(Model, Loc), EditError> {
         self.insert_at(parent, Some(index), element)
     }
 
@@ -94,8 +91,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::add`]; `self` is unchanged on error.
-    pub fn insert_mut(&mut self, parent: impl AsRef<Loc>, index: usize, element: Element) -> Result<Loc, EditError> {
-        let parent = parent.as_ref();
+    pub fn insert_mut(&mut self, parent: &Loc, index: usize, element: Element) -> Result<Loc, EditError> {
         let r = self.insert(parent, index, element);
         self.apply(r)
     }
@@ -163,8 +159,7 @@ impl Model {
     /// Leaving `self` unchanged: an unknown attribute or bad value, clearing a
     /// required attribute, a name already taken, a setting that conflicts with an
     /// attached model's ([`ErrorKind::AttributeConflict`]), or `loc` not in this model.
-    pub fn set(&self, loc: impl AsRef<Loc>, attrs: Attrs) -> Result<Model, EditError> {
-        let loc = loc.as_ref();
+    pub fn set(&self, loc: &Loc, attrs: Attrs) -> Result<Model, EditError> {
         let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.set_here(loc, &attrs).map(|m| (m, ())))?;
         // An edit of a global setting, on either side of an attachment, may conflict;
         // no other edit takes part in the merge.
@@ -180,8 +175,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`]; `self` is unchanged on error.
-    pub fn set_mut(&mut self, loc: impl AsRef<Loc>, attrs: Attrs) -> Result<(), EditError> {
-        let loc = loc.as_ref();
+    pub fn set_mut(&mut self, loc: &Loc, attrs: Attrs) -> Result<(), EditError> {
         let r = self.set(loc, attrs).map(|m| (m, ()));
         self.apply(r)
     }
@@ -192,8 +186,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`].
-    pub fn set_attr(&self, loc: impl AsRef<Loc>, name: &str, value: impl Into<AttrInput>) -> Result<Model, EditError> {
-        let loc = loc.as_ref();
+    pub fn set_attr(&self, loc: &Loc, name: &str, value: impl Into<AttrInput>) -> Result<Model, EditError> {
         self.set(loc, Attrs::new().set(name, value))
     }
 
@@ -213,13 +206,7 @@ impl Model {
     /// assert_eq!(m.floats(&g, "rgba")?, [1.0, 0.0, 0.0, 1.0]);
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
-    pub fn set_attr_mut(
-        &mut self,
-        loc: impl AsRef<Loc>,
-        name: &str,
-        value: impl Into<AttrInput>,
-    ) -> Result<(), EditError> {
-        let loc = loc.as_ref();
+    pub fn set_attr_mut(&mut self, loc: &Loc, name: &str, value: impl Into<AttrInput>) -> Result<(), EditError> {
         self.set_mut(loc, Attrs::new().set(name, value))
     }
 
@@ -229,8 +216,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`] (a required attribute cannot be cleared).
-    pub fn clear_attr(&self, loc: impl AsRef<Loc>, name: &str) -> Result<Model, EditError> {
-        let loc = loc.as_ref();
+    pub fn clear_attr(&self, loc: &Loc, name: &str) -> Result<Model, EditError> {
         self.set(loc, Attrs::new().clear(name))
     }
 
@@ -240,8 +226,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`]; `self` is unchanged on error.
-    pub fn clear_attr_mut(&mut self, loc: impl AsRef<Loc>, name: &str) -> Result<(), EditError> {
-        let loc = loc.as_ref();
+    pub fn clear_attr_mut(&mut self, loc: &Loc, name: &str) -> Result<(), EditError> {
         self.set_mut(loc, Attrs::new().clear(name))
     }
 
@@ -317,8 +302,7 @@ impl Model {
     /// the element is a global section (or part of one) while models are attached: use
     /// [`Model::detach`] first; [`ErrorKind::StaleLocator`] if `loc` is not in this
     /// model.
-    pub fn remove(&self, loc: impl AsRef<Loc>) -> Result<Model, EditError> {
-        let loc = loc.as_ref();
+    pub fn remove(&self, loc: &Loc) -> Result<Model, EditError> {
         let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, false).map(|m| (m, ())))?;
         Ok(m)
     }
@@ -329,8 +313,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::remove`]; `self` is unchanged on error.
-    pub fn remove_mut(&mut self, loc: impl AsRef<Loc>) -> Result<(), EditError> {
-        let loc = loc.as_ref();
+    pub fn remove_mut(&mut self, loc: &Loc) -> Result<(), EditError> {
         let r = self.remove(loc).map(|m| (m, ()));
         self.apply(r)
     }
@@ -343,8 +326,7 @@ impl Model {
     ///
     /// # Errors
     /// [`ErrorKind::StaleLocator`] if `loc` is not in this model.
-    pub fn remove_with_attachments(&self, loc: impl AsRef<Loc>) -> Result<Model, EditError> {
-        let loc = loc.as_ref();
+    pub fn remove_with_attachments(&self, loc: &Loc) -> Result<Model, EditError> {
         let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, true).map(|m| (m, ())))?;
         Ok(m)
     }
@@ -355,8 +337,7 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::remove_with_attachments`]; `self` is unchanged on error.
-    pub fn remove_with_attachments_mut(&mut self, loc: impl AsRef<Loc>) -> Result<(), EditError> {
-        let loc = loc.as_ref();
+    pub fn remove_with_attachments_mut(&mut self, loc: &Loc) -> Result<(), EditError> {
         let r = self.remove_with_attachments(loc).map(|m| (m, ()));
         self.apply(r)
     }

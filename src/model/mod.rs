@@ -91,12 +91,6 @@ impl std::hash::Hash for Loc {
     }
 }
 
-impl AsRef<Loc> for Loc {
-    fn as_ref(&self) -> &Loc {
-        self
-    }
-}
-
 impl Loc {
     pub(crate) fn scoped(scope: Arc<[ElementId]>, id: ElementId, origin: &str) -> Loc {
         Loc { scope: if scope.is_empty() { None } else { Some(scope) }, id, origin: origin.into() }

@@ -56,12 +56,6 @@ impl From<Attachment> for Loc {
     }
 }
 
-impl AsRef<Loc> for Attachment {
-    fn as_ref(&self) -> &Loc {
-        &self.frame
-    }
-}
-
 mod sealed {
     pub trait Sealed {}
     impl Sealed for str {}
@@ -284,8 +278,7 @@ impl Model {
     /// `frame`, or `None` if `frame` is not an attachment frame of this model.
     ///
     /// Time: O(levels · depth · log n).
-    pub fn scope_of_frame(&self, frame: impl AsRef<Loc>) -> Option<String> {
-        let frame = frame.as_ref();
+    pub fn scope_of_frame(&self, frame: &Loc) -> Option<String> {
         let outer = self.scope_path(frame)?;
         let scope = self.scoped_model(frame.scope())?.index.scope_of(frame.id())?;
         Some(if outer.is_empty() { scope.to_string() } else { format!("{outer}/{scope}") })

@@ -330,7 +330,7 @@ impl State<'_> {
                 let mut gone: Vec<(String, Vec<String>, Model)> = Vec::new();
                 for (var, v) in &self.vars {
                     if let Var::Placed { root: r, path } = v {
-                        if *r == root && m.attached(&path.join("/")).is_err() {
+                        if *r == root && m.attached(path.join("/")).is_err() {
                             gone.push((var.clone(), path.clone(), self.model(var)?.clone()));
                         }
                     }
@@ -353,7 +353,7 @@ impl State<'_> {
                 } else {
                     let m = self.root_model(&root)?;
                     let m = m.rename_scope(&scope, to).map_err(edit_err)?;
-                    let m = m.edit_attached(&scope_renamed(&scope, to), |c| Ok(c.with_name(to))).map_err(edit_err)?;
+                    let m = m.edit_attached(scope_renamed(&scope, to), |c| Ok(c.with_name(to))).map_err(edit_err)?;
                     self.set_root(&root, m);
                     let depth = scope.split('/').count();
                     for v in self.vars.values_mut() {
