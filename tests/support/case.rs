@@ -8,6 +8,8 @@
 //! the order the case file lists them (without it they would be sorted by
 //! key).
 //!
+//! Its unit tests run in `tests/conformance_support.rs`.
+//!
 //! Loading is strict: an unknown op kind, an unknown field, a field of the
 //! wrong type, an unknown error category or a `null` attribute value outside
 //! `set` is an error naming the case and the op index. Repeated keys in one
