@@ -18,7 +18,8 @@
 //! of names and values.
 //!
 //! This file is self-contained (std + `quick-xml` only) because it is shared by
-//! an integration test and an example via `#[path = "..."] mod compare;`.
+//! integration tests and an example via `#[path = "..."] mod compare;`. Its unit
+//! tests run in `tests/conformance_support.rs`.
 //!
 //! Known differences from Python's ElementTree / compare.py:
 //!   * Parsing and comparing use explicit stacks, so arbitrarily deep documents

@@ -491,6 +491,8 @@ fn scope_renamed(scope: &str, to: &str) -> String {
 }
 
 /// Runs every case under `root`, returning (name, outcome) in name order.
+// For examples/conformance.rs; tests/conformance.rs runs the cases one by one.
+#[allow(dead_code)]
 pub fn run_all(root: &Path, actual_dir: Option<&Path>) -> Result<Vec<(String, Outcome)>, String> {
     let mut out = Vec::new();
     for dir in case::list_cases(root)? {
