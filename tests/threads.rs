@@ -49,7 +49,7 @@ fn variant(base: &Model, i: usize) -> (Model, String) {
     let m = m.set_attr(&torso, "pos", [0.0, 0.0, i as f64]).unwrap();
     let site = m.find(Namespace::Site, &format!("spawn_{}", 5 + i % 5)).unwrap();
     let (m, _) = m.attach(&site, &robot("robot")).unwrap();
-    let m = m.detach(&scope((i + 2) % 5)).unwrap();
+    let m = m.detach(scope((i + 2) % 5)).unwrap();
     let xml = m.to_xml_string().unwrap();
     (m, xml)
 }
