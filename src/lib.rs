@@ -24,7 +24,6 @@
 //! - Everything that depends on where an element sits (scope prefixes, auto names,
 //!   default-class names) is computed when the model is written, never stored.
 #![forbid(unsafe_code)]
-#![warn(missing_docs)]
 
 mod compose;
 mod error;
