@@ -5,24 +5,41 @@
 //! versions (undo) costs only what changed, and `clone()` is a pointer copy.
 //!
 //! ```
-//! use mjcf::{Element, Model, Namespace};
+//! use mjcf::{Model, Namespace, element};
 //!
-//! let arena = Model::new("arena");
-//! let (arena, _) = arena
-//!     .add(&arena.worldbody(), Element::new("geom").attr("name", "floor").attr("type", "plane").attr("size", [5.0, 5.0, 0.1]))
-//!     .unwrap();
-//! let xml = arena.to_xml_string().unwrap();
-//! assert!(xml.contains(r#"<geom name="floor" class="/" type="plane" size="5 5 0.1"/>"#));
-//! assert!(arena.find(Namespace::Geom, "floor").is_some());
+//! let mut arena = Model::new("arena");
+//! let floor = element!("geom", name = "floor", type = "plane", size = [5.0, 5.0, 0.1]);
+//! arena.add_mut(&arena.worldbody(), floor)?;
+//! let spawn = arena.add_mut(&arena.worldbody(), element!("site", name = "spawn"))?;
+//!
+//! let mut robot = Model::new("robot");
+//! robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+//!
+//! let before = arena.clone(); // O(1); an undo point
+//! let a = arena.attach_mut(&spawn, &robot)?;
+//! arena.add_mut(a.frame(), element!("freejoint"))?;
+//! assert!(arena.to_xml_string()?.contains(r#"<body name="robot/torso"/>"#));
+//! arena.detach_mut(&a)?;
+//! assert_eq!(arena, before);
+//! # Ok::<(), mjcf::Error>(())
 //! ```
 //!
+//! Every edit comes twice: `add(&self, ..) -> Result<(Model, Loc)>` returns the new
+//! version for functional code, and `add_mut(&mut self, ..) -> Result<Loc>` replaces
+//! the model in place (atomically: on error it is unchanged). Either way, values taken
+//! before the edit keep their content.
+//!
 //! # What is shared, and what an edit costs
-//! - Nodes are `Arc`-shared and hold no parent pointers; children are `imbl` vectors.
-//! - An edit copies the path from the edited element to the root: O(depth · log width).
+//! - Nodes are `Arc`-shared and hold no parent pointers; children are a chunked
+//!   persistent sequence (`Arc`'d chunks of at most `max(64, √n)` nodes).
+//! - An edit copies the path from the edited element to the root, and on that path
+//!   the chunk list and one chunk of each children sequence: O(depth · √width)
+//!   pointer copies at worst, O(depth) for narrow trees.
 //! - Each model keeps a persistent identifier index (O(log n) `find` and duplicate
 //!   checks), updated by every edit.
 //! - Everything that depends on where an element sits (scope prefixes, auto names,
-//!   default-class names) is computed when the model is written, never stored.
+//!   default-class names, merged settings) is computed when the model is written or
+//!   walked, never stored.
 #![forbid(unsafe_code)]
 
 mod compose;

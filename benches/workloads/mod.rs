@@ -25,39 +25,39 @@ use mjcf::{Element, Error, Model, Namespace};
 static ALLOC: cap::Cap<divan::AllocProfiler> = cap::Cap::new(divan::AllocProfiler::system(), usize::MAX);
 
 /// Heap bytes allocated and not yet freed, over the whole process.
-pub fn live_bytes() -> usize {
+pub(crate) fn live_bytes() -> usize {
     ALLOC.allocated()
 }
 
 /// Heap bytes allocated since the process started, including freed ones.
-pub fn total_bytes() -> usize {
+pub(crate) fn total_bytes() -> usize {
     ALLOC.total_allocated()
 }
 
 /// The fleet sizes of W1.
-pub const FLEET_SIZES: [usize; 4] = [1, 10, 100, 1000];
+pub(crate) const FLEET_SIZES: [usize; 4] = [1, 10, 100, 1000];
 /// W2: the fleet size and the number of edits (= extra versions).
-pub const UNDO_ROBOTS: usize = 100;
-pub const UNDO_EDITS: usize = 1000;
+pub(crate) const UNDO_ROBOTS: usize = 100;
+pub(crate) const UNDO_EDITS: usize = 1000;
 /// W3: 100 chains of 100 bodies.
-pub const TREE_CHAINS: usize = 100;
-pub const TREE_DEPTH: usize = 100;
+pub(crate) const TREE_CHAINS: usize = 100;
+pub(crate) const TREE_DEPTH: usize = 100;
 /// W4: the fleet size.
-pub const DETACH_ROBOTS: usize = 1000;
+pub(crate) const DETACH_ROBOTS: usize = 1000;
 
 /// `benches/models`.
-pub fn models_dir() -> PathBuf {
+pub(crate) fn models_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches").join("models")
 }
 
 /// The quadruped, read from `benches/models/quadruped_robot.xml` (with its includes).
-pub fn read_robot() -> Model {
+pub(crate) fn read_robot() -> Model {
     Model::from_path(models_dir().join("quadruped_robot.xml")).expect("benches/models/quadruped_robot.xml reads")
 }
 
 /// The arena with `n` spawn sites: `benches/models/arena_{100,1000}.xml`, or generated
 /// the same way for other sizes.
-pub fn arena_xml(n: usize) -> String {
+pub(crate) fn arena_xml(n: usize) -> String {
     let file = models_dir().join(format!("arena_{n}.xml"));
     if n == 100 || n == 1000 {
         std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()))
@@ -68,7 +68,7 @@ pub fn arena_xml(n: usize) -> String {
 
 /// An arena as in `benches/models`: a ground plane, a light and `n` sites `spawn_i` on
 /// a 2 m grid (ceil(sqrt(n)) per row) centred on the origin at z = 0.6.
-pub fn generate_arena_xml(n: usize) -> String {
+pub(crate) fn generate_arena_xml(n: usize) -> String {
     use std::fmt::Write;
     let side = (1..).find(|s| s * s >= n).unwrap_or(1);
     let half = side as i64 - 1;
@@ -89,13 +89,13 @@ pub fn generate_arena_xml(n: usize) -> String {
 }
 
 /// The arena with `n` sites, read.
-pub fn read_arena(n: usize) -> Model {
+pub(crate) fn read_arena(n: usize) -> Model {
     Model::from_xml_str(&arena_xml(n)).expect("the arena reads")
 }
 
 /// W1: attaches `robot` at each of the `n` sites `spawn_i` of `arena` (found by name),
 /// each with a freejoint on its frame.
-pub fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Error> {
+pub(crate) fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Error> {
     let mut m = arena.clone();
     for i in 0..n {
         let site = m.find(Namespace::Site, &format!("spawn_{i}")).expect("the arena has the site");
@@ -107,15 +107,15 @@ pub fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Erro
 }
 
 /// The geoms and bodies of the quadruped that W2 edits.
-pub const ROBOT_GEOMS: [&str; 6] =
+pub(crate) const ROBOT_GEOMS: [&str; 6] =
     ["torso", "eye_r", "thigh_front_left", "shin_back_right", "foot_front_right", "toe_back_left"];
-pub const ROBOT_BODIES: [&str; 5] =
+pub(crate) const ROBOT_BODIES: [&str; 5] =
     ["torso", "hip_front_left", "knee_back_right", "ankle_front_right", "toe_back_left"];
 
 /// W2, edit `k` of `m` (whose attachment scopes are `scopes`): even `k` sets the rgba of
 /// a geom inside some robot, odd `k` the pos of a body inside some robot, both found by
 /// scoped name.
-pub fn undo_edit(m: &Model, scopes: &[String], k: usize) -> Result<Model, Error> {
+pub(crate) fn undo_edit(m: &Model, scopes: &[String], k: usize) -> Result<Model, Error> {
     let scope = &scopes[(k * 37) % scopes.len()];
     let t = k as f64 / UNDO_EDITS as f64;
     if k % 2 == 0 {
@@ -130,12 +130,12 @@ pub fn undo_edit(m: &Model, scopes: &[String], k: usize) -> Result<Model, Error>
 }
 
 /// The attachment scope names of a model, in attach order.
-pub fn scopes_of(m: &Model) -> Vec<String> {
+pub(crate) fn scopes_of(m: &Model) -> Vec<String> {
     m.scopes().map(str::to_string).collect()
 }
 
 /// W2: `edits` edits of `fleet`, every version kept (`versions[0]` is `fleet`).
-pub fn undo_history(fleet: &Model, edits: usize) -> Result<Vec<Model>, Error> {
+pub(crate) fn undo_history(fleet: &Model, edits: usize) -> Result<Vec<Model>, Error> {
     let scopes = scopes_of(fleet);
     let mut versions = Vec::with_capacity(edits + 1);
     versions.push(fleet.clone());
@@ -149,7 +149,7 @@ pub fn undo_history(fleet: &Model, edits: usize) -> Result<Vec<Model>, Error> {
 /// W3: `chains` chains of `depth` nested bodies under the worldbody, each body with a
 /// hinge joint and a capsule geom. One element per line, no indentation (indenting a
 /// 10,000-deep chain would make the file mostly spaces).
-pub fn tree_xml(chains: usize, depth: usize) -> String {
+pub(crate) fn tree_xml(chains: usize, depth: usize) -> String {
     use std::fmt::Write;
     let mut s = String::with_capacity(chains * depth * 170 + 100);
     s.push_str("<mujoco model=\"tree\">\n<worldbody>\n");
@@ -170,23 +170,23 @@ pub fn tree_xml(chains: usize, depth: usize) -> String {
 }
 
 /// W3: the 10,000-body tree.
-pub fn tree_10k_xml() -> String {
+pub(crate) fn tree_10k_xml() -> String {
     tree_xml(TREE_CHAINS, TREE_DEPTH)
 }
 
 /// W3: the same 10,000 bodies as one chain (names `b0_0` … `b0_9999`).
-pub fn chain_10k_xml() -> String {
+pub(crate) fn chain_10k_xml() -> String {
     tree_xml(1, TREE_CHAINS * TREE_DEPTH)
 }
 
 /// W3: the CMU humanoid (`benches/models/humanoid_CMU.xml`, from the conformance corpus).
-pub fn humanoid_xml() -> String {
+pub(crate) fn humanoid_xml() -> String {
     std::fs::read_to_string(models_dir().join("humanoid_CMU.xml")).expect("benches/models/humanoid_CMU.xml")
 }
 
 /// W5: reads `xml` into quick-xml events and writes them back with `quick_xml::Writer`;
 /// returns the bytes written.
-pub fn quickxml_roundtrip(xml: &str) -> Vec<u8> {
+pub(crate) fn quickxml_roundtrip(xml: &str) -> Vec<u8> {
     let mut reader = quick_xml::Reader::from_str(xml);
     let mut writer = quick_xml::Writer::new(Vec::with_capacity(xml.len()));
     loop {
@@ -200,7 +200,7 @@ pub fn quickxml_roundtrip(xml: &str) -> Vec<u8> {
 }
 
 /// W5: quick-xml reading `xml` into events only; returns the number of events.
-pub fn quickxml_read(xml: &str) -> usize {
+pub(crate) fn quickxml_read(xml: &str) -> usize {
     let mut reader = quick_xml::Reader::from_str(xml);
     let mut n = 0;
     loop {
@@ -219,7 +219,7 @@ pub fn quickxml_read(xml: &str) -> usize {
 /// One measurement: the median time of `runs` runs of `f`, and the heap bytes the last
 /// run allocated in total and still holds (the value it returned, before it is dropped).
 #[derive(Clone, Debug)]
-pub struct Measured<T> {
+pub(crate) struct Measured<T> {
     pub value: T,
     pub seconds: f64,
     pub min_seconds: f64,
@@ -230,7 +230,7 @@ pub struct Measured<T> {
 
 /// Runs `f` repeatedly (at least `min_runs` times and until about `budget` has passed,
 /// at most `max_runs`), dropping each result except the last.
-pub fn measure<T>(min_runs: usize, max_runs: usize, budget: Duration, mut f: impl FnMut() -> T) -> Measured<T> {
+pub(crate) fn measure<T>(min_runs: usize, max_runs: usize, budget: Duration, mut f: impl FnMut() -> T) -> Measured<T> {
     let mut times = Vec::new();
     let start = Instant::now();
     let mut last = None;

@@ -10,7 +10,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::seq::Seq as Vector;
+use crate::seq::Seq;
 use smol_str::SmolStr;
 
 use crate::error::{EditError, ErrorKind};
@@ -87,7 +87,7 @@ impl Copier<'_> {
             dest: Node,
             src: &'s Node,
             attrs: Vec<Attr>,
-            children: Vector<Node>,
+            children: Seq<Node>,
             /// The next of `src`'s children.
             next: usize,
             /// The position in the parent's children this merge replaces.
@@ -147,7 +147,7 @@ impl Copier<'_> {
     }
 
     /// With `override_attributes`, the position of the same-named child of `dest`.
-    fn override_target(&self, children: &Vector<Node>, s: &Node) -> Result<Option<usize>, ErrorKind> {
+    fn override_target(&self, children: &Seq<Node>, s: &Node) -> Result<Option<usize>, ErrorKind> {
         if !self.override_attributes {
             return Ok(None);
         }

@@ -5,7 +5,7 @@
 //! model, where every problem becomes one [`EditError`](crate::EditError) naming the
 //! element's path. So builder calls chain without a `?` after each setter.
 
-use crate::seq::Seq as Vector;
+use crate::seq::Seq;
 use smol_str::SmolStr;
 
 use super::tree::{Attr, ElementId, Node};
@@ -182,7 +182,7 @@ impl std::fmt::Debug for Element {
 /// Creates an empty element of `kind` with a fresh id and every singleton child it
 /// always has (an `option` gets its `flag`, a default class its `geom`, ...).
 pub(crate) fn empty_node(kind: ElementKind) -> Node {
-    let children: Vector<Node> = kind
+    let children: Seq<Node> = kind
         .spec()
         .children
         .iter()
@@ -420,7 +420,7 @@ struct Filling<'e> {
     id: ElementId,
     kind: ElementKind,
     attrs: Vec<Attr>,
-    children: Vector<Node>,
+    children: Seq<Node>,
     part: &'e Part,
     /// The next of `part`'s children to fill.
     next: usize,

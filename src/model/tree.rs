@@ -15,7 +15,7 @@ use std::cell::{Cell, RefCell};
 use std::fmt;
 use std::sync::Arc;
 
-use crate::seq::Seq as Vector;
+use crate::seq::Seq;
 use smol_str::SmolStr;
 
 pub(crate) use crate::id::ElementId;
@@ -34,7 +34,7 @@ pub(crate) struct NodeData {
     pub(crate) id: ElementId,
     pub(crate) kind: ElementKind,
     pub(crate) attrs: Arc<[Attr]>,
-    pub(crate) children: Vector<Node>,
+    pub(crate) children: Seq<Node>,
     /// Set on an attachment frame: the attached model and its scope name.
     pub(crate) attached: Option<Arc<Attached>>,
 }
@@ -49,7 +49,7 @@ pub(crate) struct Attached {
 }
 
 impl Node {
-    pub(crate) fn new(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, children: Vector<Node>) -> Node {
+    pub(crate) fn new(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, children: Seq<Node>) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children, attached: None }))
@@ -63,7 +63,7 @@ impl Node {
             id,
             kind,
             attrs: attrs.into(),
-            children: Vector::new(),
+            children: Seq::new(),
             attached: Some(Arc::new(attached)),
         }))
     }
@@ -81,7 +81,7 @@ impl Node {
     }
 
     /// A copy with other attributes and children (and the same attachment, if any).
-    pub(crate) fn with_parts(&self, attrs: Vec<Attr>, children: Vector<Node>) -> Node {
+    pub(crate) fn with_parts(&self, attrs: Vec<Attr>, children: Seq<Node>) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         let mut data = NodeData::clone(&self.0);
@@ -102,7 +102,7 @@ impl Node {
         &self.0.attrs
     }
 
-    pub(crate) fn children(&self) -> &Vector<Node> {
+    pub(crate) fn children(&self) -> &Seq<Node> {
         &self.0.children
     }
 
@@ -155,7 +155,7 @@ impl Node {
     }
 
     /// A copy with different children.
-    pub(crate) fn with_children(&self, children: Vector<Node>) -> Node {
+    pub(crate) fn with_children(&self, children: Seq<Node>) -> Node {
         let mut data = NodeData::clone(&self.0);
         data.children = children;
         Node(Arc::new(data))
@@ -191,7 +191,7 @@ impl Node {
 
     /// Rebuilds the subtree bottom-up (iteratively): `f` gets each node and its rebuilt
     /// children and returns the node's replacement.
-    pub(crate) fn rebuild(&self, mut f: impl FnMut(&Node, Vector<Node>) -> Node) -> Node {
+    pub(crate) fn rebuild(&self, mut f: impl FnMut(&Node, Seq<Node>) -> Node) -> Node {
         let mut stack: Vec<(&Node, bool)> = vec![(self, false)];
         let mut built: Vec<Node> = Vec::new();
         while let Some((n, done)) = stack.pop() {
@@ -200,7 +200,7 @@ impl Node {
                 stack.extend(n.children().iter().rev().map(|c| (c, false)));
                 continue;
             }
-            let children: Vector<Node> = built.split_off(built.len() - n.children().len()).into_iter().collect();
+            let children: Seq<Node> = built.split_off(built.len() - n.children().len()).into_iter().collect();
             built.push(f(n, children));
         }
         built.pop().unwrap_or_else(|| self.clone())
@@ -281,7 +281,7 @@ impl PartialEq for Attached {
 const MAX_DROP_DEPTH: usize = 200;
 
 /// What a dropped node owned: its children and its attachment.
-type Parts = (Vector<Node>, Option<Arc<Attached>>);
+type Parts = (Seq<Node>, Option<Arc<Attached>>);
 
 thread_local! {
     static DROP_DEPTH: Cell<usize> = const { Cell::new(0) };

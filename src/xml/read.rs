@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use crate::seq::Seq as Vector;
+use crate::seq::Seq;
 use quick_xml::events::{BytesStart, Event};
 use smol_str::SmolStr;
 
@@ -506,7 +506,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
     for i in (0..r.arena.len()).rev() {
         let p = &mut r.arena[i];
-        let mut children: Vector<Node> = Vector::new();
+        let mut children: Seq<Node> = Seq::new();
         for k in p.kind.spec().children {
             if k.multiplicity() == Multiplicity::Singleton {
                 let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);

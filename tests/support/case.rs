@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use serde_json::{Map, Value};
 
 /// The error categories of README.md ("Expected errors").
-pub const ERROR_CATEGORIES: [&str; 20] = [
+pub(crate) const ERROR_CATEGORIES: [&str; 20] = [
     "attach_to_self",
     "already_attached",
     "cyclic_attachment",
@@ -49,7 +49,7 @@ pub const ERROR_CATEGORIES: [&str; 20] = [
 
 /// One conformance case.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Case {
+pub(crate) struct Case {
     /// The case folder's name, e.g. `hand_001_seed_example`.
     pub name: String,
     /// The case folder; ops run with it as the working directory.
@@ -62,7 +62,7 @@ pub struct Case {
 
 /// One op of a case.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Op {
+pub(crate) struct Op {
     /// What the op does.
     pub kind: OpKind,
     /// The error category the op must fail with (`expect_error`).
@@ -77,19 +77,19 @@ pub struct Op {
 
 impl Op {
     /// True when the op carries the deviation label `label` (e.g. `"D1"`).
-    pub fn has_deviation(&self, label: &str) -> bool {
+    pub(crate) fn has_deviation(&self, label: &str) -> bool {
         self.deviation.iter().any(|d| d == label)
     }
 
     /// The op's name in case.json (`"load"`, `"include_copy"`, ...).
-    pub fn op_name(&self) -> &'static str {
+    pub(crate) fn op_name(&self) -> &'static str {
         self.kind.op_name()
     }
 }
 
 /// The `observed_error` record of an op with `expect_error`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ObservedError {
+pub(crate) struct ObservedError {
     /// The Python exception class.
     pub type_name: String,
     /// The exception message (object ids replaced by `?`).
@@ -101,7 +101,7 @@ pub struct ObservedError {
 /// The kinds of op, with their fields. Variables (`name`, `model`, `parent`,
 /// `child`) are case-local model names.
 #[derive(Debug, Clone, PartialEq)]
-pub enum OpKind {
+pub(crate) enum OpKind {
     /// `name = mjcf.from_path(file)`.
     Load { name: String, file: String },
     /// `name = mjcf.RootElement(model=model)`.
@@ -127,7 +127,7 @@ pub enum OpKind {
 
 impl OpKind {
     /// The op's name in case.json.
-    pub fn op_name(&self) -> &'static str {
+    pub(crate) fn op_name(&self) -> &'static str {
         match self {
             OpKind::Load { .. } => "load",
             OpKind::New { .. } => "new",
@@ -145,7 +145,7 @@ impl OpKind {
 
 /// Where an `attach` puts the child.
 #[derive(Debug, Clone, PartialEq)]
-pub enum AttachSite {
+pub(crate) enum AttachSite {
     /// `"site": null`: the parent's worldbody.
     World,
     /// `"site": "name"`: the site found by that name in the parent.
@@ -156,7 +156,7 @@ pub enum AttachSite {
 
 /// A locator (README "Locators").
 #[derive(Debug, Clone, PartialEq)]
-pub enum Loc {
+pub(crate) enum Loc {
     /// A section of the root: `"option.flag"` -> `["option", "flag"]`.
     Section(Vec<String>),
     /// `{"find": [namespace, identifier]}`.
@@ -169,7 +169,7 @@ pub enum Loc {
 
 /// An attribute value given in `add`/`set`.
 #[derive(Debug, Clone, PartialEq)]
-pub enum AttrValue {
+pub(crate) enum AttrValue {
     /// `null`: clears the attribute (only in `set`).
     Null,
     /// A JSON string.
@@ -187,7 +187,7 @@ impl AttrValue {
     /// shortest decimal text that reads back as the same `f64` (`4` -> "4",
     /// `0.1` -> "0.1", `1e-16` -> "1e-16"), arrays joined by single spaces,
     /// booleans as "true"/"false"; `None` for `null`.
-    pub fn to_mjcf_text(&self) -> Option<String> {
+    pub(crate) fn to_mjcf_text(&self) -> Option<String> {
         match self {
             AttrValue::Null => None,
             AttrValue::Str(text) => Some(text.clone()),
@@ -200,7 +200,7 @@ impl AttrValue {
 
 /// Options of an `output` op (keyword arguments of `to_xml_string`).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct OutputOptions {
+pub(crate) struct OutputOptions {
     pub precision: Option<u32>,
     pub zero_threshold: Option<f64>,
     pub pretty_print: Option<bool>,
@@ -209,7 +209,7 @@ pub struct OutputOptions {
 
 /// Loads the case in folder `dir` (its `case.json`); the case name is the
 /// folder name.
-pub fn load_case(dir: &Path) -> Result<Case, String> {
+pub(crate) fn load_case(dir: &Path) -> Result<Case, String> {
     let name = dir
         .file_name()
         .and_then(|n| n.to_str())
@@ -222,7 +222,7 @@ pub fn load_case(dir: &Path) -> Result<Case, String> {
 }
 
 /// Parses the text of a `case.json` for the case `name` in folder `dir`.
-pub fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, String> {
+pub(crate) fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, String> {
     let fail = |message: String| format!("case {name}: {message}");
     let root: Value = serde_json::from_str(json).map_err(|e| fail(format!("case.json: {e}")))?;
     let root = Fields::new(&root, "case.json").map_err(fail)?;
@@ -247,7 +247,7 @@ pub fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, String> {
 
 /// Every immediate subfolder of `root` that holds a `case.json`, sorted by
 /// name.
-pub fn list_cases(root: &Path) -> Result<Vec<PathBuf>, String> {
+pub(crate) fn list_cases(root: &Path) -> Result<Vec<PathBuf>, String> {
     let entries = std::fs::read_dir(root).map_err(|e| format!("cannot list {}: {e}", root.display()))?;
     let mut dirs = Vec::new();
     for entry in entries {

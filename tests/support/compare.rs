@@ -62,16 +62,16 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::reader::Reader;
 
 /// Relative tolerance for numeric attribute values (compare.py's `REL_TOL`).
-pub const REL_TOL: f64 = 1e-9;
+pub(crate) const REL_TOL: f64 = 1e-9;
 /// Absolute tolerance for numeric attribute values (compare.py's `ABS_TOL`).
-pub const ABS_TOL: f64 = 1e-12;
+pub(crate) const ABS_TOL: f64 = 1e-12;
 
 /// One element of a parsed document, in the shape ElementTree gives it.
 ///
 /// Dropping is iterative, so very deep trees are fine; the derived `Debug`
 /// is recursive, so do not print a very deep tree.
 #[derive(Debug, Default)]
-pub struct XmlElement {
+pub(crate) struct XmlElement {
     /// The tag as written (no namespace processing).
     pub tag: String,
     /// Attributes in document order, values unescaped and normalized.
@@ -86,13 +86,13 @@ pub struct XmlElement {
 
 impl XmlElement {
     /// Creates an element with the given tag and nothing else.
-    pub fn new(tag: impl Into<String>) -> Self {
+    pub(crate) fn new(tag: impl Into<String>) -> Self {
         XmlElement { tag: tag.into(), attrs: Vec::new(), text: String::new(), children: Vec::new() }
     }
 
     /// The value of attribute `key` (the last one if it is repeated, like a
     /// Python dict built from the pairs).
-    pub fn get(&self, key: &str) -> Option<&str> {
+    pub(crate) fn get(&self, key: &str) -> Option<&str> {
         self.attrs.iter().rev().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
     }
 }
@@ -111,7 +111,7 @@ impl Drop for XmlElement {
 ///
 /// Comments, processing instructions, the XML declaration and the DOCTYPE
 /// are ignored.
-pub fn parse_xml(text: &str) -> Result<XmlElement, String> {
+pub(crate) fn parse_xml(text: &str) -> Result<XmlElement, String> {
     if let Some((offset, c)) = text.char_indices().find(|&(_, c)| !is_xml_char(c)) {
         return Err(format!("not well-formed (invalid character U+{:04X}) at byte {offset}", u32::from(c)));
     }
@@ -202,7 +202,7 @@ pub fn parse_xml(text: &str) -> Result<XmlElement, String> {
 /// Compares two XML documents; `Ok(None)` when they are equivalent,
 /// `Ok(Some(description))` for the first difference, `Err` when either
 /// does not parse.
-pub fn compare_strings(actual: &str, expected: &str) -> Result<Option<String>, String> {
+pub(crate) fn compare_strings(actual: &str, expected: &str) -> Result<Option<String>, String> {
     let actual = parse_xml(actual).map_err(|e| format!("actual XML: {e}"))?;
     let expected = parse_xml(expected).map_err(|e| format!("expected XML: {e}"))?;
     Ok(first_difference(&actual, &expected))
@@ -210,7 +210,7 @@ pub fn compare_strings(actual: &str, expected: &str) -> Result<Option<String>, S
 
 /// Returns a description of the first difference, or `None` if the trees are
 /// equivalent. Same traversal order and wording as compare.py.
-pub fn first_difference(actual: &XmlElement, expected: &XmlElement) -> Option<String> {
+pub(crate) fn first_difference(actual: &XmlElement, expected: &XmlElement) -> Option<String> {
     struct Frame<'a> {
         actual: &'a XmlElement,
         expected: &'a XmlElement,
@@ -248,7 +248,7 @@ pub fn first_difference(actual: &XmlElement, expected: &XmlElement) -> Option<St
 
 /// True when two attribute values are equivalent (compare.py's
 /// `values_equal`).
-pub fn values_equal(actual: &str, expected: &str) -> bool {
+pub(crate) fn values_equal(actual: &str, expected: &str) -> bool {
     if actual == expected {
         return true;
     }
@@ -261,7 +261,7 @@ pub fn values_equal(actual: &str, expected: &str) -> bool {
 /// Python's `float(text)`, or `None` where Python raises `ValueError`.
 /// `text` is expected without surrounding whitespace (as produced by
 /// `str.split()`); whitespace makes it invalid here.
-pub fn parse_py_float(text: &str) -> Option<f64> {
+pub(crate) fn parse_py_float(text: &str) -> Option<f64> {
     // Python first maps every Unicode decimal digit to its ASCII digit; any
     // other non-ASCII character makes the string invalid.
     let mut ascii = String::with_capacity(text.len());

@@ -17,7 +17,7 @@ use super::compare;
 
 /// The result of one case.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Outcome {
+pub(crate) enum Outcome {
     /// Every normative op behaved as expected.
     Pass,
     /// The first normative mismatch.
@@ -40,7 +40,7 @@ impl OpError {
 }
 
 /// The README category of an error kind.
-pub fn category(kind: &ErrorKind) -> &'static str {
+pub(crate) fn category(kind: &ErrorKind) -> &'static str {
     match kind {
         ErrorKind::Syntax(_) | ErrorKind::InvalidUtf8 | ErrorKind::WrongRoot(_) | ErrorKind::TooDeep(_) => {
             "parse_error"
@@ -110,7 +110,7 @@ struct State<'c> {
 
 /// Runs one case. With `actual_dir`, every output is also written to
 /// `actual_dir/<case>/<file>`.
-pub fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
+pub(crate) fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
     let mut st = State { case, vars: HashMap::new(), handles: HashMap::new(), actual_dir };
     let mut deviations: Vec<String> = Vec::new();
     for op in &case.ops {
@@ -493,7 +493,7 @@ fn scope_renamed(scope: &str, to: &str) -> String {
 /// Runs every case under `root`, returning (name, outcome) in name order.
 // For examples/conformance.rs; tests/conformance.rs runs the cases one by one.
 #[allow(dead_code)]
-pub fn run_all(root: &Path, actual_dir: Option<&Path>) -> Result<Vec<(String, Outcome)>, String> {
+pub(crate) fn run_all(root: &Path, actual_dir: Option<&Path>) -> Result<Vec<(String, Outcome)>, String> {
     let mut out = Vec::new();
     for dir in case::list_cases(root)? {
         let c = case::load_case(&dir)?;

@@ -6,7 +6,7 @@ use mjcf::{Element, Model};
 
 /// A robot named `name`: a body `torso` with a hinge joint `hip`, a geom `torso`, an
 /// unnamed geom and a site `mount`, and a motor `m` on the joint.
-pub fn robot(name: &str) -> Model {
+pub(crate) fn robot(name: &str) -> Model {
     let m = Model::new(name);
     let (m, _) = m
         .add(

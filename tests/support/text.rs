@@ -5,7 +5,7 @@
 /// pretty printing writes it) replaced by what reading and writing it again gives:
 /// the written root class `<default class="R">` is read as a class nested in an
 /// unnamed root class, which is written as `<default class="/">`.
-pub fn rewrapped_root_default(text: &str) -> String {
+pub(crate) fn rewrapped_root_default(text: &str) -> String {
     let mut out = String::new();
     let mut inside = false;
     for line in text.lines() {
