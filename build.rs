@@ -52,7 +52,9 @@ fn attr_map(e: &BytesStart) -> Vec<(String, String)> {
             let a = a.expect("schema.xml: malformed attribute");
             (
                 a.key.as_ref().to_string(),
-                a.normalized_value(quick_xml::XmlVersion::default()).expect("schema.xml: bad value").into_owned(),
+                a.normalized_value(quick_xml::XmlVersion::default())
+                    .expect("schema.xml: bad value")
+                    .into_owned(),
             )
         })
         .collect()
@@ -206,14 +208,24 @@ fn main() {
         write!(out, "Namespace::{}, ", camel(n)).unwrap();
     }
     writeln!(out, "Namespace::AttachmentFrame];").unwrap();
-    writeln!(out, "    /// The namespace's MJCF name (`\"body\"`, `\"attachment_frame\"`).").unwrap();
-    writeln!(out, "    pub const fn as_str(self) -> &'static str {{\n        match self {{").unwrap();
+    writeln!(out, "    /// The namespace's MJCF name (`\"body\"`, `\"attachment_frame\"`).")
+        .unwrap();
+    writeln!(out, "    pub const fn as_str(self) -> &'static str {{\n        match self {{")
+        .unwrap();
     for n in &ns_list {
         writeln!(out, "            Namespace::{} => {n:?},", camel(n)).unwrap();
     }
-    writeln!(out, "            Namespace::AttachmentFrame => \"attachment_frame\",\n        }}\n    }}").unwrap();
+    writeln!(
+        out,
+        "            Namespace::AttachmentFrame => \"attachment_frame\",\n        }}\n    }}"
+    )
+    .unwrap();
     writeln!(out, "    /// The namespace with this MJCF name, if any.").unwrap();
-    writeln!(out, "    pub fn from_name(name: &str) -> Option<Namespace> {{\n        Some(match name {{").unwrap();
+    writeln!(
+        out,
+        "    pub fn from_name(name: &str) -> Option<Namespace> {{\n        Some(match name {{"
+    )
+    .unwrap();
     for n in &ns_list {
         writeln!(out, "            {n:?} => Namespace::{},", camel(n)).unwrap();
     }
@@ -234,7 +246,8 @@ fn main() {
                 "identifier" => "AttrType::Identifier".to_string(),
                 "keyword" => {
                     let vals = a.valid_values.as_deref().expect("keyword without valid_values");
-                    let list: Vec<String> = vals.split_whitespace().map(|v| format!("{v:?}")).collect();
+                    let list: Vec<String> =
+                        vals.split_whitespace().map(|v| format!("{v:?}")).collect();
                     format!("AttrType::Keyword(&[{}])", list.join(", "))
                 }
                 "array" => {
@@ -263,9 +276,15 @@ fn main() {
                         format!("AttrType::Reference(RefTarget::Fixed(Namespace::{}))", camel(rn))
                     }
                 }
-                "file" => format!("AttrType::File {{ path_namespace: {} }}", path_ns(a.path_namespace.as_deref())),
+                "file" => format!(
+                    "AttrType::File {{ path_namespace: {} }}",
+                    path_ns(a.path_namespace.as_deref())
+                ),
                 "basepath" => {
-                    format!("AttrType::Basepath {{ path_namespace: {} }}", path_ns(a.path_namespace.as_deref()))
+                    format!(
+                        "AttrType::Basepath {{ path_namespace: {} }}",
+                        path_ns(a.path_namespace.as_deref())
+                    )
                 }
                 other => panic!("schema: unknown attribute type {other}"),
             };
@@ -292,7 +311,8 @@ fn main() {
         let mut by_name: Vec<usize> = (0..e.attrs.len()).collect();
         by_name.sort_by(|x, y| e.attrs[*x].name.cmp(&e.attrs[*y].name));
         by_name.dedup_by(|x, y| e.attrs[*x].name == e.attrs[*y].name);
-        writeln!(out, "static ATTRS_BY_NAME_{i}: [u16; {}] = {:?};", by_name.len(), by_name).unwrap();
+        writeln!(out, "static ATTRS_BY_NAME_{i}: [u16; {}] = {:?};", by_name.len(), by_name)
+            .unwrap();
     }
 
     writeln!(out, "\npub(crate) static ELEMENTS: [ElementSpec; {}] = [", elems.len()).unwrap();
@@ -316,7 +336,8 @@ fn main() {
             Some(p) => format!("Some(ElementKind({p}))"),
             None => "None".to_string(),
         };
-        let children: Vec<String> = e.children.iter().map(|c| format!("ElementKind({c})")).collect();
+        let children: Vec<String> =
+            e.children.iter().map(|c| format!("ElementKind({c})")).collect();
         writeln!(
             out,
             "    ElementSpec {{ tag: {:?}, multiplicity: {multiplicity}, namespace: {ns}, identifier: {ident}, parent: {parent}, attrs: &ATTRS_{i}, attrs_by_name: &ATTRS_BY_NAME_{i}, children: &[{}] }},",

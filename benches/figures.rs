@@ -44,14 +44,28 @@ fn parse_args() -> Args {
     while let Some(arg) = it.next() {
         match arg.as_str() {
             "--sizes" => {
-                a.sizes = it.next().unwrap_or_default().split(',').filter_map(|s| s.trim().parse().ok()).collect()
+                a.sizes = it
+                    .next()
+                    .unwrap_or_default()
+                    .split(',')
+                    .filter_map(|s| s.trim().parse().ok())
+                    .collect()
             }
             "--only" => {
-                a.only = Some(it.next().unwrap_or_default().split(',').map(|s| s.trim().to_lowercase()).collect())
+                a.only = Some(
+                    it.next()
+                        .unwrap_or_default()
+                        .split(',')
+                        .map(|s| s.trim().to_lowercase())
+                        .collect(),
+                )
             }
             "--dump-dir" => a.dump_dir = it.next().map(PathBuf::from),
             "--dump-only" => a.dump_only = true,
-            "--budget-ms" => a.budget = Duration::from_millis(it.next().and_then(|s| s.parse().ok()).unwrap_or(1000)),
+            "--budget-ms" => {
+                a.budget =
+                    Duration::from_millis(it.next().and_then(|s| s.parse().ok()).unwrap_or(1000))
+            }
             // `cargo bench` passes `--bench`; ignore it and anything else.
             _ => {}
         }
@@ -60,7 +74,8 @@ fn parse_args() -> Args {
 }
 
 fn emit(mut line: Value) {
-    if let (Some(b), Some(s)) = (line.get("bytes").and_then(Value::as_f64), line.get("seconds").and_then(Value::as_f64))
+    if let (Some(b), Some(s)) =
+        (line.get("bytes").and_then(Value::as_f64), line.get("seconds").and_then(Value::as_f64))
     {
         if s > 0.0 {
             line["mb_per_s"] = json!(b / s / 1e6);
@@ -103,7 +118,8 @@ fn main() {
         }
         std::fs::write(dir.join("tree_10k.xml"), tree_10k_xml()).expect("write");
         std::fs::write(dir.join("chain_10k.xml"), chain_10k_xml()).expect("write");
-        std::fs::copy(models_dir().join("humanoid_CMU.xml"), dir.join("humanoid_CMU.xml")).expect("copy");
+        std::fs::copy(models_dir().join("humanoid_CMU.xml"), dir.join("humanoid_CMU.xml"))
+            .expect("copy");
         eprintln!("wrote the generated models to {}", dir.display());
         if args.dump_only {
             return;
@@ -153,12 +169,14 @@ fn main() {
 
     // W2 undo: 1000 edits of the 100-robot fleet, every version kept.
     if wants("w2") {
-        let fleet = build_fleet(&read_arena(UNDO_ROBOTS), &robot, UNDO_ROBOTS).expect("the fleet builds");
+        let fleet =
+            build_fleet(&read_arena(UNDO_ROBOTS), &robot, UNDO_ROBOTS).expect("the fleet builds");
         let scopes = scopes_of(&fleet);
         let h = measure(1, 10, budget, || undo_history(&fleet, UNDO_EDITS));
         match &h.value {
             Ok(versions) => {
-                let mut l = line("w2_history", &format!("W2 {UNDO_EDITS} edits, all versions kept"), &h);
+                let mut l =
+                    line("w2_history", &format!("W2 {UNDO_EDITS} edits, all versions kept"), &h);
                 l["versions"] = json!(versions.len());
                 l["seconds_per_edit"] = json!(h.seconds / UNDO_EDITS as f64);
                 l["live_bytes_per_version"] = json!(h.live_bytes as f64 / UNDO_EDITS as f64);
@@ -209,13 +227,15 @@ fn main() {
 
     // W4 detach one robot out of the 1000-robot fleet.
     if wants("w4") {
-        let fleet = build_fleet(&read_arena(DETACH_ROBOTS), &robot, DETACH_ROBOTS).expect("the fleet builds");
+        let fleet = build_fleet(&read_arena(DETACH_ROBOTS), &robot, DETACH_ROBOTS)
+            .expect("the fleet builds");
         let scopes = scopes_of(&fleet);
         let scope = scopes[DETACH_ROBOTS / 2].clone();
         let d = measure(20, 100_000, budget, || fleet.detach(&scope));
         match &d.value {
             Ok(_) => {
-                let mut l = line("w4_detach", &format!("W4 detach {scope} (N={DETACH_ROBOTS})"), &d);
+                let mut l =
+                    line("w4_detach", &format!("W4 detach {scope} (N={DETACH_ROBOTS})"), &d);
                 l["scope"] = json!(scope);
                 emit(l);
             }
@@ -230,7 +250,9 @@ fn main() {
     if wants("w5") {
         let fleet_xml = match fleet_1000_xml {
             Some(x) => x,
-            None => build_fleet(&read_arena(1000), &robot, 1000).and_then(|f| Ok(f.to_xml_string()?)).expect("fleet"),
+            None => build_fleet(&read_arena(1000), &robot, 1000)
+                .and_then(|f| Ok(f.to_xml_string()?))
+                .expect("fleet"),
         };
         for (key, name, xml) in [
             ("w5_fleet_1000", "W5 quick-xml, W1 N=1000 output", &fleet_xml),
@@ -261,15 +283,19 @@ fn growth(budget: Duration) {
             .expect("the child reads")
             .with_name("child");
         let m = measure(20, 100_000, budget, || attach_one(&parent, &site, &child));
-        let mut l =
-            line(&format!("growth_child_{bodies}"), &format!("attach a {bodies}-body child (parent: 50 robots)"), &m);
+        let mut l = line(
+            &format!("growth_child_{bodies}"),
+            &format!("attach a {bodies}-body child (parent: 50 robots)"),
+            &m,
+        );
         l["child_bodies"] = json!(bodies);
         emit(l);
     }
     for width in [10usize, 100, 1000, 10_000] {
         let arena = read_arena(width);
         let half = build_fleet(&arena, &robot, width / 2).expect("the fleet builds");
-        let site = half.find(mjcf::Namespace::Site, &format!("spawn_{}", width - 1)).expect("the site");
+        let site =
+            half.find(mjcf::Namespace::Site, &format!("spawn_{}", width - 1)).expect("the site");
         let m = measure(20, 100_000, budget, || attach_one(&half, &site, &robot));
         let mut l = line(
             &format!("growth_width_{width}"),
@@ -283,7 +309,8 @@ fn growth(budget: Duration) {
         let fleet = build_fleet(&read_arena(n), &robot, n).expect("the fleet builds");
         let w = measure(2, 50, budget, || fleet.to_xml_string());
         if let Ok(xml) = &w.value {
-            let mut l = line(&format!("growth_write_{n}"), &format!("write the {n}-robot fleet"), &w);
+            let mut l =
+                line(&format!("growth_write_{n}"), &format!("write the {n}-robot fleet"), &w);
             l["bytes"] = json!(xml.len());
             l["ns_per_byte"] = json!(w.seconds * 1e9 / xml.len() as f64);
             emit(l);

@@ -45,7 +45,8 @@ mod w2_undo {
     /// One more version: one edit (scoped find + set_attr) of the fleet.
     #[divan::bench]
     fn one_edit(bencher: Bencher) {
-        let fleet = build_fleet(&read_arena(UNDO_ROBOTS), &read_robot(), UNDO_ROBOTS).expect("the fleet builds");
+        let fleet = build_fleet(&read_arena(UNDO_ROBOTS), &read_robot(), UNDO_ROBOTS)
+            .expect("the fleet builds");
         let scopes = scopes_of(&fleet);
         let mut k = 0;
         bencher.bench_local(|| {
@@ -57,7 +58,8 @@ mod w2_undo {
     /// 1000 edits in a row, every version kept in a Vec.
     #[divan::bench(sample_count = 10)]
     fn history_1000(bencher: Bencher) {
-        let fleet = build_fleet(&read_arena(UNDO_ROBOTS), &read_robot(), UNDO_ROBOTS).expect("the fleet builds");
+        let fleet = build_fleet(&read_arena(UNDO_ROBOTS), &read_robot(), UNDO_ROBOTS)
+            .expect("the fleet builds");
         bencher.bench(|| undo_history(&fleet, UNDO_EDITS).expect("the edits apply"));
     }
 }
@@ -68,7 +70,9 @@ mod w3_read {
     use divan::{Bencher, counter::BytesCount};
 
     fn read(bencher: Bencher, xml: &str) {
-        bencher.counter(BytesCount::new(xml.len())).bench(|| mjcf::Model::from_xml_str(xml).expect("reads"));
+        bencher
+            .counter(BytesCount::new(xml.len()))
+            .bench(|| mjcf::Model::from_xml_str(xml).expect("reads"));
     }
 
     fn write(bencher: Bencher, xml: &str) {
@@ -110,7 +114,8 @@ mod w4_detach {
 
     #[divan::bench]
     fn one_of_1000(bencher: Bencher) {
-        let fleet = build_fleet(&read_arena(DETACH_ROBOTS), &read_robot(), DETACH_ROBOTS).expect("the fleet builds");
+        let fleet = build_fleet(&read_arena(DETACH_ROBOTS), &read_robot(), DETACH_ROBOTS)
+            .expect("the fleet builds");
         let scope = scopes_of(&fleet)[DETACH_ROBOTS / 2].clone();
         bencher.bench(|| fleet.detach(&scope).expect("detaches"));
     }
@@ -123,7 +128,10 @@ mod w5_quick_xml {
     use divan::{Bencher, counter::BytesCount};
 
     fn fleet_1000_xml() -> String {
-        build_fleet(&read_arena(1000), &read_robot(), 1000).expect("the fleet builds").to_xml_string().expect("writes")
+        build_fleet(&read_arena(1000), &read_robot(), 1000)
+            .expect("the fleet builds")
+            .to_xml_string()
+            .expect("writes")
     }
 
     #[divan::bench(sample_count = 20)]

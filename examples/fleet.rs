@@ -67,15 +67,24 @@ fn arena(n: usize) -> Result<Model, Error> {
     let m = Model::new("arena");
     let (m, _) = m.add(
         &m.worldbody(),
-        Element::new("light").attr("name", "top").attr("pos", [0.0, 0.0, 20.0]).attr("directional", true),
+        Element::new("light")
+            .attr("name", "top")
+            .attr("pos", [0.0, 0.0, 20.0])
+            .attr("directional", true),
     )?;
     let (mut m, _) = m.add(
         &m.worldbody(),
-        Element::new("geom").attr("name", "floor").attr("type", "plane").attr("size", [0.0, 0.0, 0.1]),
+        Element::new("geom")
+            .attr("name", "floor")
+            .attr("type", "plane")
+            .attr("size", [0.0, 0.0, 0.1]),
     )?;
     for i in 0..n {
         let pos = [2.0 * (i % side) as f64 - half, 2.0 * (i / side) as f64 - half, 0.6];
-        let site = Element::new("site").attr("name", format!("spawn_{i}")).attr("pos", pos).attr("size", [0.05]);
+        let site = Element::new("site")
+            .attr("name", format!("spawn_{i}"))
+            .attr("pos", pos)
+            .attr("size", [0.05]);
         m = m.add(&m.worldbody(), site)?.0;
     }
     Ok(m)
@@ -95,7 +104,11 @@ fn variant(base: &Model, robot: &Model, scopes: &[String], seed: u64) -> Result<
     for _ in 0..2 {
         let scope = &scopes[rng.below(scopes.len())];
         if let Ok(frame) = m.frame(scope) {
-            m = m.set_attr(&frame, "pos", [40.0 * rng.unit() - 20.0, 40.0 * rng.unit() - 20.0, 0.6])?;
+            m = m.set_attr(
+                &frame,
+                "pos",
+                [40.0 * rng.unit() - 20.0, 40.0 * rng.unit() - 20.0, 0.6],
+            )?;
         }
     }
     // Attach first, then detach: the attach reuses the merged global settings the base
@@ -124,7 +137,10 @@ fn main() -> Result<(), Error> {
     let t = Instant::now();
     let robot = Model::from_path(models.join("quadruped_robot.xml"))?;
     let arena = arena(n)?;
-    println!("read the robot and built a {n}-site arena in {:.1} ms", t.elapsed().as_secs_f64() * 1e3);
+    println!(
+        "read the robot and built a {n}-site arena in {:.1} ms",
+        t.elapsed().as_secs_f64() * 1e3
+    );
 
     let t = Instant::now();
     let mut base = arena;
@@ -191,7 +207,11 @@ fn main() -> Result<(), Error> {
 
     // Every variant has as many robots as the base: one removed, one added.
     if let Some(v) = variants.first() {
-        println!("variant 0: {} robots, base: {} robots; the base is unchanged", v.scopes().count(), scopes.len());
+        println!(
+            "variant 0: {} robots, base: {} robots; the base is unchanged",
+            v.scopes().count(),
+            scopes.len()
+        );
     }
     Ok(())
 }

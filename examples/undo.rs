@@ -32,7 +32,11 @@ impl History {
 
     /// Applies an edit to the current version; versions after the cursor (the redo
     /// branch) are dropped, as in an editor.
-    fn edit(&mut self, label: &str, f: impl FnOnce(&Model) -> Result<Model, Error>) -> Result<(), Error> {
+    fn edit(
+        &mut self,
+        label: &str,
+        f: impl FnOnce(&Model) -> Result<Model, Error>,
+    ) -> Result<(), Error> {
         let next = f(self.current())?;
         self.versions.truncate(self.cursor + 1);
         self.versions.push((label.to_string(), next));
@@ -43,7 +47,12 @@ impl History {
 
     fn undo(&mut self) {
         if self.cursor > 0 {
-            println!("undo  v{} -> v{} (undoes \"{}\")", self.cursor, self.cursor - 1, self.versions[self.cursor].0);
+            println!(
+                "undo  v{} -> v{} (undoes \"{}\")",
+                self.cursor,
+                self.cursor - 1,
+                self.versions[self.cursor].0
+            );
             self.cursor -= 1;
         }
     }
@@ -51,7 +60,12 @@ impl History {
     fn redo(&mut self) {
         if self.cursor + 1 < self.versions.len() {
             self.cursor += 1;
-            println!("redo  v{} -> v{} (redoes \"{}\")", self.cursor - 1, self.cursor, self.versions[self.cursor].0);
+            println!(
+                "redo  v{} -> v{} (redoes \"{}\")",
+                self.cursor - 1,
+                self.cursor,
+                self.versions[self.cursor].0
+            );
         }
     }
 }
@@ -79,7 +93,11 @@ fn frames(m: &Model) -> HashMap<ElementId, String> {
 
 /// Joins a path and a step: `worldbody/body[torso]`; a scope prefix ends with `/`.
 fn join(path: &str, step: &str) -> String {
-    if path.is_empty() || path.ends_with('/') { format!("{path}{step}") } else { format!("{path}/{step}") }
+    if path.is_empty() || path.ends_with('/') {
+        format!("{path}{step}")
+    } else {
+        format!("{path}/{step}")
+    }
 }
 
 /// Two versions of one model (the top one, or one attached in both under `prefix`).
@@ -127,16 +145,23 @@ impl Pair<'_> {
             }
         }
         // An attachment frame in both versions: compare the models it holds.
-        if let (Some(sa), Some(sb)) = (self.frames_a.get(&a.loc().id()), self.frames_b.get(&b.loc().id())) {
+        if let (Some(sa), Some(sb)) =
+            (self.frames_a.get(&a.loc().id()), self.frames_b.get(&b.loc().id()))
+        {
             if let (Ok(x), Ok(y)) = (self.a.attached(sa), self.b.attached(sb)) {
                 diff_models(x, y, &format!("{}{sb}/", self.prefix), out);
             }
         }
         // Children, matched by their stable ids.
-        let before: HashMap<ElementId, ElementRef<'_>> = a.children().map(|c| (c.loc().id(), c)).collect();
-        let after: HashMap<ElementId, ElementRef<'_>> = b.children().map(|c| (c.loc().id(), c)).collect();
+        let before: HashMap<ElementId, ElementRef<'_>> =
+            a.children().map(|c| (c.loc().id(), c)).collect();
+        let after: HashMap<ElementId, ElementRef<'_>> =
+            b.children().map(|c| (c.loc().id(), c)).collect();
         for c in a.children().filter(|c| !after.contains_key(&c.loc().id())) {
-            let what = self.frames_a.get(&c.loc().id()).map_or(String::new(), |s| format!(" (attachment {s})"));
+            let what = self
+                .frames_a
+                .get(&c.loc().id())
+                .map_or(String::new(), |s| format!(" (attachment {s})"));
             out.lines.push(format!("  removed {}{what}", join(path, &step(&c))));
         }
         for c in b.children() {
@@ -144,7 +169,10 @@ impl Pair<'_> {
             match before.get(&c.loc().id()) {
                 Some(old) => self.diff(old.clone(), c, &child_path, out),
                 None => {
-                    let what = self.frames_b.get(&c.loc().id()).map_or(String::new(), |s| format!(" (attachment {s})"));
+                    let what = self
+                        .frames_b
+                        .get(&c.loc().id())
+                        .map_or(String::new(), |s| format!(" (attachment {s})"));
                     out.lines.push(format!("  added   {child_path}{what}"));
                 }
             }
@@ -173,12 +201,19 @@ fn main() -> Result<(), Error> {
     let arena = Model::new("arena");
     let (arena, _) = arena.add(
         &arena.worldbody(),
-        Element::new("geom").attr("name", "floor").attr("type", "plane").attr("size", [10.0, 10.0, 0.1]),
+        Element::new("geom")
+            .attr("name", "floor")
+            .attr("type", "plane")
+            .attr("size", [10.0, 10.0, 0.1]),
     )?;
-    let (arena, _) =
-        arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn_0").attr("pos", [-2.0, 0.0, 0.6]))?;
-    let (arena, _) =
-        arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn_1").attr("pos", [2.0, 0.0, 0.6]))?;
+    let (arena, _) = arena.add(
+        &arena.worldbody(),
+        Element::new("site").attr("name", "spawn_0").attr("pos", [-2.0, 0.0, 0.6]),
+    )?;
+    let (arena, _) = arena.add(
+        &arena.worldbody(),
+        Element::new("site").attr("name", "spawn_1").attr("pos", [2.0, 0.0, 0.6]),
+    )?;
 
     let mut h = History::new(arena);
     for site in ["spawn_0", "spawn_1"] {
@@ -197,10 +232,13 @@ fn main() -> Result<(), Error> {
         Ok(m.set_attr(&floor, "pos", [0.0, 0.0, -0.01])?)
     })?;
     h.edit("add a box obstacle", |m| {
-        let obstacle = Element::new("body")
-            .attr("name", "obstacle")
-            .attr("pos", [0.0, 3.0, 0.25])
-            .child(Element::new("geom").attr("name", "obstacle").attr("type", "box").attr("size", [0.25, 0.25, 0.25]));
+        let obstacle =
+            Element::new("body").attr("name", "obstacle").attr("pos", [0.0, 3.0, 0.25]).child(
+                Element::new("geom")
+                    .attr("name", "obstacle")
+                    .attr("type", "box")
+                    .attr("size", [0.25, 0.25, 0.25]),
+            );
         Ok(m.add(&m.worldbody(), obstacle)?.0)
     })?;
     println!();
@@ -211,11 +249,18 @@ fn main() -> Result<(), Error> {
 
     h.undo();
     h.undo();
-    println!("current: v{} (obstacle: {})", h.cursor, h.current().find(Namespace::Body, "obstacle").is_some());
+    println!(
+        "current: v{} (obstacle: {})",
+        h.cursor,
+        h.current().find(Namespace::Body, "obstacle").is_some()
+    );
     h.redo();
     println!("current: v{} (floor moved: {})", h.cursor, {
         let floor = h.current().find(Namespace::Geom, "floor").expect("the floor exists");
-        h.current().element(&floor).and_then(|e| e.attr("pos").map(|p| p.to_string())).unwrap_or_default()
+        h.current()
+            .element(&floor)
+            .and_then(|e| e.attr("pos").map(|p| p.to_string()))
+            .unwrap_or_default()
     });
     // A new edit after an undo drops the redo branch (v5, the obstacle).
     h.edit("detach quadruped (the first robot)", |m| Ok(m.detach("quadruped")?))?;

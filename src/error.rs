@@ -106,7 +106,10 @@ pub enum ErrorKind {
         suggestion: Option<&'static str>,
     },
     /// A value that does not fit its attribute.
-    #[error("invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}{}", keyword_hint(value, error))]
+    #[error(
+        "invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}{}",
+        keyword_hint(value, error)
+    )]
     InvalidValue {
         /// The element's tag.
         tag: &'static str,
@@ -180,7 +183,9 @@ pub enum ErrorKind {
     NotFound,
     /// A locator of an element that is not in this model: it was removed, or the
     /// locator comes from another model.
-    #[error("element {id:?} of model '{origin}' is not in this model (removed, or a locator of another model)")]
+    #[error(
+        "element {id:?} of model '{origin}' is not in this model (removed, or a locator of another model)"
+    )]
     StaleLocator {
         /// The element's id.
         id: ElementId,
@@ -188,7 +193,11 @@ pub enum ErrorKind {
         origin: SmolStr,
     },
     /// A name that [`Model::lookup`](crate::Model::lookup) did not find.
-    #[error("no {namespace} named '{name}'{}{}", in_scope(scope), crate::suggest::hint(suggestions))]
+    #[error(
+        "no {namespace} named '{name}'{}{}",
+        in_scope(scope),
+        crate::suggest::hint(suggestions)
+    )]
     UnknownName {
         /// The namespace looked in.
         namespace: Namespace,
@@ -200,7 +209,9 @@ pub enum ErrorKind {
         suggestions: Vec<SmolStr>,
     },
     /// A scope path with a leading or trailing `/` or an empty segment.
-    #[error("invalid scope path '{0}': scope names are separated by single '/', with none at the start or end")]
+    #[error(
+        "invalid scope path '{0}': scope names are separated by single '/', with none at the start or end"
+    )]
     InvalidScope(SmolStr),
     /// A freejoint on an attachment frame that does not sit directly in the worldbody.
     #[error(
@@ -258,7 +269,9 @@ fn attached_list(attached: &[SmolStr]) -> String {
 /// For a misspelt keyword, the nearest valid one.
 fn keyword_hint(value: &str, error: &ValueError) -> String {
     match error {
-        ValueError::NotKeyword { valid } => hint_one(crate::suggest::closest(value, valid.iter().copied())),
+        ValueError::NotKeyword { valid } => {
+            hint_one(crate::suggest::closest(value, valid.iter().copied()))
+        }
         _ => String::new(),
     }
 }
@@ -305,7 +318,10 @@ impl TextPos {
         let line = before.bytes().filter(|b| *b == b'\n').count() + 1;
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
         let column = before[line_start..].chars().count() + 1;
-        TextPos { line: line.min(u32::MAX as usize) as u32, column: column.min(u32::MAX as usize) as u32 }
+        TextPos {
+            line: line.min(u32::MAX as usize) as u32,
+            column: column.min(u32::MAX as usize) as u32,
+        }
     }
 }
 
@@ -415,7 +431,9 @@ impl std::error::Error for EditError {
 #[non_exhaustive]
 pub enum WriteError {
     /// A required reference whose target was removed.
-    #[error("attribute '{attribute}' of <{tag}> at {path} is required, but the element it named was removed")]
+    #[error(
+        "attribute '{attribute}' of <{tag}> at {path} is required, but the element it named was removed"
+    )]
     MissingRequired {
         /// The element's tag.
         tag: &'static str,

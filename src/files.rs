@@ -60,7 +60,11 @@ pub(crate) fn normalize(path: &str) -> String {
 impl FileContext {
     /// Reads the file `path` (as written in MJCF), with the folder setting `basepath`
     /// already chosen by the caller. Returns the path as resolved and the contents.
-    pub(crate) fn read(&self, basepath: Option<&str>, path: &str) -> Result<(PathBuf, Arc<[u8]>), ErrorKind> {
+    pub(crate) fn read(
+        &self,
+        basepath: Option<&str>,
+        path: &str,
+    ) -> Result<(PathBuf, Arc<[u8]>), ErrorKind> {
         let joined = join(basepath, path);
         if let Some(assets) = &self.assets {
             if let Some(bytes) = assets.get(path).or_else(|| assets.get(&normalize(&joined))) {
@@ -79,7 +83,8 @@ impl FileContext {
         let rel = Path::new(joined);
         if self.confine {
             let normal = normalize(joined);
-            let escapes = rel.is_absolute() || Path::new(&normal).components().next() == Some(Component::ParentDir);
+            let escapes = rel.is_absolute()
+                || Path::new(&normal).components().next() == Some(Component::ParentDir);
             if escapes {
                 return Err(ErrorKind::FileOutsideRoot(rel.to_path_buf()));
             }

@@ -55,9 +55,12 @@ mod xml;
 
 pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueError, WriteError};
 pub use crate::id::ElementId;
-pub use crate::model::{Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, ScopeRef};
+pub use crate::model::{
+    Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, ScopeRef,
+};
 pub use crate::schema::{
-    ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace, PathNamespace, RefTarget,
+    ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,
+    PathNamespace, RefTarget,
 };
 pub use crate::value::{AttrInput, FileAsset, Reference, Value};
 pub use crate::xml::{ReadOptions, WriteOptions};

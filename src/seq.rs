@@ -90,7 +90,10 @@ impl<T: Clone> Seq<T> {
         starts.truncate(from);
         let mut at = match from {
             0 => 0,
-            _ => starts.last().copied().unwrap_or(0) + self.chunks.get(from - 1).map_or(0, |c| c.len()),
+            _ => {
+                starts.last().copied().unwrap_or(0)
+                    + self.chunks.get(from - 1).map_or(0, |c| c.len())
+            }
         };
         for c in &self.chunks[from.min(self.chunks.len())..] {
             starts.push(at);

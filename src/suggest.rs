@@ -20,7 +20,11 @@ fn distance(a: &str, b: &str) -> usize {
 /// Up to `n` candidates close enough to `word` to be what was meant (about a third of
 /// the longer word's length away at most, and at least one edit), nearest first, ties in the
 /// candidates' order. Time: O(candidates · |word| · |candidate|).
-pub(crate) fn nearest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>, n: usize) -> Vec<&'a str> {
+pub(crate) fn nearest<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+    n: usize,
+) -> Vec<&'a str> {
     // Long words (a 100 MB attribute name) are not worth comparing.
     if word.len() > 256 {
         return Vec::new();
@@ -38,7 +42,10 @@ pub(crate) fn nearest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a s
 }
 
 /// The one nearest candidate, if any is close enough.
-pub(crate) fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub(crate) fn closest<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     nearest(word, candidates, 1).into_iter().next()
 }
 

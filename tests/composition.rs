@@ -42,7 +42,8 @@ fn one_child_attached_many_times_is_shared_not_copied() {
 #[test]
 fn detach_gives_back_the_parent_exactly() {
     let arena = Model::new("arena");
-    let (arena, site) = arena.add(&arena.worldbody(), Element::new("site").attr("name", "s")).unwrap();
+    let (arena, site) =
+        arena.add(&arena.worldbody(), Element::new("site").attr("name", "s")).unwrap();
     let (arena, opt) = (arena.clone(), arena.section("option").unwrap());
     let arena = arena.set_attr(&opt, "timestep", 0.01).unwrap();
     let child = robot("c");
@@ -87,7 +88,9 @@ fn nested_attach_at_a_site_inside_an_attachment() {
     assert!(arm.find(Namespace::AttachmentFrame, "gripper").is_none());
     let before = scene.edit_attached("arm", |a| a.detach("gripper")).unwrap();
     assert_eq!(scene.detach("arm/gripper").unwrap(), before);
-    assert!(before.attached("arm").unwrap().ptr_eq(&arm) || before.attached("arm").unwrap() == &arm);
+    assert!(
+        before.attached("arm").unwrap().ptr_eq(&arm) || before.attached("arm").unwrap() == &arm
+    );
 }
 
 // ---------------------------------------------------------------------------------
@@ -215,7 +218,10 @@ fn step(m: &Model, a: &Action, robots: &[Model]) -> Result<Model, mjcf::EditErro
         Action::IncludeCopy { name } => {
             let src = Model::new("inc");
             let (src, _) = src
-                .add(&src.worldbody(), Element::new("geom").attr("name", format!("inc{name}")).attr("size", [0.2]))
+                .add(
+                    &src.worldbody(),
+                    Element::new("geom").attr("name", format!("inc{name}")).attr("size", [0.2]),
+                )
                 .unwrap();
             m.include_copy(&src, false)
         }
@@ -302,7 +308,9 @@ fn merged_settings_follow_edits_inside_nested_attachments() {
     assert!(edited.to_xml_string().unwrap().contains(r#"timestep="0.005""#));
     assert_eq!(top.to_xml_string().unwrap(), before);
     // The middle model, taken out of the new version, folds the edit too.
-    assert!(edited.attached("mid").unwrap().to_xml_string().unwrap().contains(r#"timestep="0.005""#));
+    assert!(
+        edited.attached("mid").unwrap().to_xml_string().unwrap().contains(r#"timestep="0.005""#)
+    );
     // A conflicting setting at the top is refused, one that agrees is accepted.
     let compiler = top.locate_in("mid/inner", &inner.section("compiler").unwrap()).unwrap();
     let edited = edited.set_attr(&compiler, "angle", "radian").unwrap();
@@ -315,8 +323,9 @@ fn merged_settings_follow_edits_inside_nested_attachments() {
     assert!(!back.to_xml_string().unwrap().contains("timestep"));
     assert!(back.set_attr(&back.section("compiler").unwrap(), "angle", "degree").is_ok());
     // Removing the attachments with a body that holds their frame does too.
-    let (arena, site) =
-        Model::new("arena").add(&Model::new("arena").worldbody(), Element::new("body").attr("name", "b")).unwrap();
+    let (arena, site) = Model::new("arena")
+        .add(&Model::new("arena").worldbody(), Element::new("body").attr("name", "b"))
+        .unwrap();
     let (arena, s) = arena.add(&site, Element::new("site").attr("name", "s")).unwrap();
     let (scene, _) = arena.attach(&s, edited.attached("mid").unwrap()).unwrap();
     assert!(scene.to_xml_string().unwrap().contains(r#"timestep="0.005""#));

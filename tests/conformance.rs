@@ -132,18 +132,28 @@ impl Options {
             if VALUE_OPTIONS.contains(&name.as_str()) {
                 let value = match inline {
                     Some(v) => v,
-                    None => args.next().ok_or_else(|| format!("Argument to option '{}' missing", &name))?,
+                    None => args
+                        .next()
+                        .ok_or_else(|| format!("Argument to option '{}' missing", &name))?,
                 };
                 match name.as_str() {
                     "--test-threads" => match value.parse::<usize>() {
                         Ok(n) if n > 0 => o.threads = Some(n),
-                        _ => return Err(format!("argument for --test-threads must be a number > 0 (error: {value})")),
+                        _ => {
+                            return Err(format!(
+                                "argument for --test-threads must be a number > 0 (error: {value})"
+                            ));
+                        }
                     },
                     "--skip" => o.skip.push(value),
                     "--format" => match value.as_str() {
                         "pretty" => o.terse = false,
                         "terse" => o.terse = true,
-                        _ => return Err(format!("argument for --format must be pretty or terse (was {value})")),
+                        _ => {
+                            return Err(format!(
+                                "argument for --format must be pretty or terse (was {value})"
+                            ));
+                        }
                     },
                     "--color" => {
                         o.color = match value.as_str() {
@@ -188,7 +198,11 @@ impl Options {
             if let Ok(value) = std::env::var("RUST_TEST_THREADS") {
                 match value.parse::<usize>() {
                     Ok(n) if n > 0 => o.threads = Some(n),
-                    _ => return Err(format!("RUST_TEST_THREADS is `{value}`, should be a positive integer.")),
+                    _ => {
+                        return Err(format!(
+                            "RUST_TEST_THREADS is `{value}`, should be a positive integer."
+                        ));
+                    }
                 }
             }
         }
@@ -200,7 +214,8 @@ impl Options {
     fn settle_unknown(&mut self, names: &[String]) {
         for (flag, word) in std::mem::take(&mut self.unknown_with_word) {
             if names.iter().any(|name| self.matches(name, &word)) {
-                self.warnings.push(format!("ignoring unknown option {flag} (taking {word:?} as a filter)"));
+                self.warnings
+                    .push(format!("ignoring unknown option {flag} (taking {word:?} as a filter)"));
                 self.filters.push(word);
             } else {
                 self.warnings.push(format!("ignoring unknown option {flag} {word}"));
@@ -214,7 +229,8 @@ impl Options {
 
     /// Whether the case `name` is selected (filters, `--skip`, `--ignored`, `--bench`).
     fn selects(&self, name: &str) -> bool {
-        let filtered = self.filters.is_empty() || self.filters.iter().any(|f| self.matches(name, f));
+        let filtered =
+            self.filters.is_empty() || self.filters.iter().any(|f| self.matches(name, f));
         let skipped = self.skip.iter().any(|s| self.matches(name, s));
         let only_ignored = self.ignored && !self.include_ignored;
         filtered && !skipped && !only_ignored && !self.bench
@@ -274,9 +290,9 @@ fn run_case(dir: &Path) -> Verdict {
         Ok(Ok(Outcome::Deviation(labels))) => Verdict::Deviation(labels),
         Ok(Ok(Outcome::Fail(why))) => Verdict::Failed(why),
         Ok(Err(load_error)) => Verdict::Failed(load_error),
-        Err(_) => {
-            Verdict::Failed(PANIC_MESSAGE.with(|m| m.borrow_mut().take()).unwrap_or_else(|| "panicked".to_owned()))
-        }
+        Err(_) => Verdict::Failed(
+            PANIC_MESSAGE.with(|m| m.borrow_mut().take()).unwrap_or_else(|| "panicked".to_owned()),
+        ),
     }
 }
 
@@ -327,14 +343,20 @@ fn main() -> ExitCode {
             return ExitCode::from(FAILURE_STATUS);
         }
     };
-    let names: Vec<String> =
-        dirs.iter().map(|d| d.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()).collect();
+    let names: Vec<String> = dirs
+        .iter()
+        .map(|d| d.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default())
+        .collect();
     options.settle_unknown(&names);
     for warning in &options.warnings {
         eprintln!("warning: {warning}");
     }
     if options.filters.is_empty() && options.skip.is_empty() && names.len() < EXPECTED_CASES {
-        eprintln!("error: expected the {EXPECTED_CASES} cases in {}, found {}", root.display(), names.len());
+        eprintln!(
+            "error: expected the {EXPECTED_CASES} cases in {}, found {}",
+            root.display(),
+            names.len()
+        );
         return ExitCode::from(FAILURE_STATUS);
     }
     let selected: Vec<(&String, &PathBuf)> =

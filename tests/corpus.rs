@@ -24,7 +24,9 @@ mod text;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use mjcf::{ElementRef, ErrorKind, Model, ReadError, ReadOptions, TextPos, Value, ValueError, WriteOptions};
+use mjcf::{
+    ElementRef, ErrorKind, Model, ReadError, ReadOptions, TextPos, Value, ValueError, WriteOptions,
+};
 use quick_xml::events::Event;
 
 fn cases_dir() -> PathBuf {
@@ -68,19 +70,28 @@ fn is_expected_output(p: &Path) -> bool {
 /// Every file a case loads, with the error category the case expects (None: must read).
 fn case_loads() -> BTreeMap<PathBuf, Option<String>> {
     let mut loads: BTreeMap<PathBuf, Option<String>> = BTreeMap::new();
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(cases_dir()).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut dirs: Vec<PathBuf> =
+        std::fs::read_dir(cases_dir()).unwrap().map(|e| e.unwrap().path()).collect();
     dirs.sort();
     for dir in dirs {
         let json = dir.join("case.json");
         let Ok(text) = std::fs::read_to_string(&json) else { continue };
-        let case: serde_json::Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", json.display()));
+        let case: serde_json::Value =
+            serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", json.display()));
         let ops = case["ops"].as_array().unwrap_or_else(|| panic!("{}: no ops", json.display()));
         for op in ops.iter().filter(|op| op["op"] == "load") {
-            let file = op["file"].as_str().unwrap_or_else(|| panic!("{}: load without file", json.display()));
+            let file = op["file"]
+                .as_str()
+                .unwrap_or_else(|| panic!("{}: load without file", json.display()));
             let expect = op.get("expect_error").and_then(|e| e.as_str()).map(str::to_string);
             let path = normalize(&dir.join(file));
             if let Some(previous) = loads.insert(path.clone(), expect.clone()) {
-                assert_eq!(previous, expect, "{} is loaded with different expectations", path.display());
+                assert_eq!(
+                    previous,
+                    expect,
+                    "{} is loaded with different expectations",
+                    path.display()
+                );
             }
         }
     }
@@ -125,7 +136,9 @@ fn assert_well_formed(text: &str, what: &str) -> usize {
             }
             Ok(Event::Eof) => break,
             Ok(_) => continue,
-            Err(e) => panic!("{what}: output is not well-formed XML at {}: {e}", reader.error_position()),
+            Err(e) => {
+                panic!("{what}: output is not well-formed XML at {}: {e}", reader.error_position())
+            }
         };
         elements += 1;
         roots += usize::from(depth == 0);
@@ -152,7 +165,10 @@ fn is_positioned_slash_error(e: &ReadError) -> bool {
 fn unnamed_elements(model: &Model) -> usize {
     fn walk(e: ElementRef<'_>, n: &mut usize) {
         let kind = e.kind();
-        if kind.identifier().is_some() && kind.namespace().is_some() && e.tag() != "default" && e.identifier().is_none()
+        if kind.identifier().is_some()
+            && kind.namespace().is_some()
+            && e.tag() != "default"
+            && e.identifier().is_none()
         {
             *n += 1;
         }
@@ -227,7 +243,8 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
                 }
                 Err(e) => {
                     assert!(
-                        is_positioned_slash_error(&e) || matches!(e.kind(), ErrorKind::FileNotFound { .. }),
+                        is_positioned_slash_error(&e)
+                            || matches!(e.kind(), ErrorKind::FileNotFound { .. }),
                         "{name}: dm_control output failed for another reason than a '/' in an identifier or a missing (hashed) asset: {e} ({:?})",
                         e.kind()
                     );
@@ -240,7 +257,9 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
                 Some(e) => e.clone(),
                 None => {
                     let includers = included_by.get(&key).unwrap_or_else(|| {
-                        panic!("{name}: neither loaded by a case nor included by a file; classify it")
+                        panic!(
+                            "{name}: neither loaded by a case nor included by a file; classify it"
+                        )
                     });
                     if includers.iter().all(|i| expected_to_fail(i)) {
                         may_fail.insert(name.clone());
@@ -281,7 +300,10 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
                 (Some(cat), Err(e)) => {
                     assert_eq!(cat, "parse_error", "{name}: unexpected load expectation");
                     assert!(
-                        !matches!(e.kind(), ErrorKind::FileNotFound { .. } | ErrorKind::FileOutsideRoot(_)),
+                        !matches!(
+                            e.kind(),
+                            ErrorKind::FileNotFound { .. } | ErrorKind::FileOutsideRoot(_)
+                        ),
                         "{name}: expected a parse error, got {e}"
                     );
                     assert!(e.pos().is_some(), "{name}: a parse error must carry line:column: {e}");
@@ -312,7 +334,9 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
         // the output reads back whenever no element is unnamed, and writing it again
         // gives the same text but for the extra class level in the defaults.
         let root_class = "corpus_root_class";
-        let Ok(named) = model.set_attr(&model.default_class(), "class", root_class) else { continue };
+        let Ok(named) = model.set_attr(&model.default_class(), "class", root_class) else {
+            continue;
+        };
         // Without the hash in file names: a hashed name read back is a new stem, so
         // it would get a second hash when written again.
         let options = WriteOptions { filename_with_hash: false, ..WriteOptions::default() };
@@ -324,11 +348,18 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
         match read.read_str(&w1) {
             Ok(m2) => {
                 let w2 = m2.to_xml_string_with(&options).unwrap();
-                assert_eq!(w2, text::rewrapped_root_default(&w1), "{name}: write(read(write(m))) differs");
+                assert_eq!(
+                    w2,
+                    text::rewrapped_root_default(&w1),
+                    "{name}: write(read(write(m))) differs"
+                );
                 c.rewritten_after_naming_root_class += 1;
             }
             Err(e) => {
-                assert!(unnamed_elements(&named) > 0, "{name}: a fully named model's output does not read back: {e}");
+                assert!(
+                    unnamed_elements(&named) > 0,
+                    "{name}: a fully named model's output does not read back: {e}"
+                );
                 assert!(
                     is_positioned_slash_error(&e)
                         && matches!(e.kind(), ErrorKind::InvalidValue { value, .. } if value.starts_with("//unnamed_")),
@@ -342,10 +373,17 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
     println!("input files that may fail (only included by files expected to fail): {may_fail:?}");
     let expected_failures = loads.values().filter(|e| e.is_some()).count();
     assert!(c.inputs > 0 && c.inputs_read > 0 && c.written > 0 && c.outputs_of_dm_control > 0);
-    assert_eq!(c.inputs_failed_as_expected, expected_failures, "every expected load failure happened");
+    assert_eq!(
+        c.inputs_failed_as_expected, expected_failures,
+        "every expected load failure happened"
+    );
     assert_eq!(c.inputs_read, must_read + (may_fail.len() - c.included_only_failed));
     assert_eq!(c.inputs, c.inputs_read + c.inputs_failed_as_expected + c.included_only_failed);
-    assert_eq!(c.written, c.inputs_read + c.outputs_of_dm_control_read, "every model that reads also writes");
+    assert_eq!(
+        c.written,
+        c.inputs_read + c.outputs_of_dm_control_read,
+        "every model that reads also writes"
+    );
     // The corpus as of writing: 221 input files (214 read; 5 loads expected to fail;
     // `broken_part.xml` and `inner.xml` fail as only their failing includers use them)
     // and 263 dm_control outputs (none reads: each has a '/' in an identifier). These
@@ -361,7 +399,9 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
 
 fn read_err(text: &str) -> ReadError {
     match Model::from_xml_str(text) {
-        Ok(m) => panic!("expected an error, got a model:\n{}", m.to_xml_string().unwrap_or_default()),
+        Ok(m) => {
+            panic!("expected an error, got a model:\n{}", m.to_xml_string().unwrap_or_default())
+        }
         Err(e) => e,
     }
 }
@@ -394,7 +434,9 @@ fn start_tag_that_is_never_finished() {
 
 #[test]
 fn bad_float_array_value() {
-    let e = read_err("<mujoco>\n  <worldbody>\n    <geom size=\"0.1 big\"/>\n  </worldbody>\n</mujoco>");
+    let e = read_err(
+        "<mujoco>\n  <worldbody>\n    <geom size=\"0.1 big\"/>\n  </worldbody>\n</mujoco>",
+    );
     assert_eq!(
         e.kind(),
         &ErrorKind::InvalidValue {
@@ -440,22 +482,35 @@ fn too_many_entries() {
 
 #[test]
 fn unknown_element() {
-    let e = read_err("<mujoco>\n  <worldbody>\n    <body>\n      <bogus/>\n    </body>\n  </worldbody>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "body", tag: "bogus".into(), suggestion: None });
+    let e = read_err(
+        "<mujoco>\n  <worldbody>\n    <body>\n      <bogus/>\n    </body>\n  </worldbody>\n</mujoco>",
+    );
+    assert_eq!(
+        e.kind(),
+        &ErrorKind::InvalidChild { parent: "body", tag: "bogus".into(), suggestion: None }
+    );
     assert_eq!(e.pos(), at(4, 7));
 }
 
 #[test]
 fn unknown_section() {
     let e = read_err("<mujoco model=\"m\">\n  <scene/>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::InvalidChild { parent: "mujoco", tag: "scene".into(), suggestion: None });
+    assert_eq!(
+        e.kind(),
+        &ErrorKind::InvalidChild { parent: "mujoco", tag: "scene".into(), suggestion: None }
+    );
     assert_eq!(e.pos(), at(2, 3));
 }
 
 #[test]
 fn unknown_attribute() {
-    let e = read_err("<mujoco>\n  <worldbody>\n    <geom size=\"1\" colour=\"red\"/>\n  </worldbody>\n</mujoco>");
-    assert_eq!(e.kind(), &ErrorKind::UnknownAttribute { tag: "geom", attribute: "colour".into(), suggestion: None });
+    let e = read_err(
+        "<mujoco>\n  <worldbody>\n    <geom size=\"1\" colour=\"red\"/>\n  </worldbody>\n</mujoco>",
+    );
+    assert_eq!(
+        e.kind(),
+        &ErrorKind::UnknownAttribute { tag: "geom", attribute: "colour".into(), suggestion: None }
+    );
     assert_eq!(e.pos(), at(3, 5));
 }
 
@@ -500,7 +555,9 @@ fn doctype_entities_are_never_expanded() {
 
 #[test]
 fn a_slash_in_an_identifier_is_refused_with_its_position() {
-    let e = read_err("<mujoco>\n  <worldbody>\n    <geom name=\"a/b\" size=\"1\"/>\n  </worldbody>\n</mujoco>");
+    let e = read_err(
+        "<mujoco>\n  <worldbody>\n    <geom name=\"a/b\" size=\"1\"/>\n  </worldbody>\n</mujoco>",
+    );
     assert_eq!(
         e.kind(),
         &ErrorKind::InvalidValue {
@@ -518,7 +575,10 @@ fn duplicate_identifier_points_at_the_second_element() {
     let e = read_err(
         "<mujoco>\n  <worldbody>\n    <geom name=\"g\" size=\"1\"/>\n    <geom name=\"g\" size=\"2\"/>\n  </worldbody>\n</mujoco>",
     );
-    assert!(matches!(e.kind(), ErrorKind::DuplicateIdentifier { name, .. } if name == "g"), "{e:?}");
+    assert!(
+        matches!(e.kind(), ErrorKind::DuplicateIdentifier { name, .. } if name == "g"),
+        "{e:?}"
+    );
     assert_eq!(e.pos(), at(4, 5));
 }
 
@@ -529,7 +589,10 @@ fn missing_file_has_a_position_in_text() {
         .base_dir(&dir)
         .read_str("<mujoco>\n  <asset>\n    <mesh name=\"gone\" file=\"gone.stl\"/>\n  </asset>\n</mujoco>")
         .unwrap_err();
-    assert!(matches!(e.kind(), ErrorKind::FileNotFound { path, .. } if path.ends_with("gone.stl")), "{e:?}");
+    assert!(
+        matches!(e.kind(), ErrorKind::FileNotFound { path, .. } if path.ends_with("gone.stl")),
+        "{e:?}"
+    );
     assert_eq!(e.pos(), at(3, 5));
     // A model file that does not exist has no position.
     let e = Model::from_path(dir.join("no_such_model.xml")).unwrap_err();

@@ -49,7 +49,8 @@ fn ops_model_without_a_name_attribute_writes_a_fixed_point() {
 #[test]
 fn ops_model_without_a_name_attaches_under_a_nonempty_scope() {
     let child = Model::new("robot");
-    let (child, _) = child.add(&child.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
+    let (child, _) =
+        child.add(&child.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
     let arena = Model::new("arena");
     let mut cases = vec![("with_name(\"\")", child.with_name(""))];
     cases.extend(child.clear_attr(&child.root(), "model").ok().map(|x| ("clear model", x)));
@@ -62,13 +63,23 @@ fn ops_model_without_a_name_attaches_under_a_nonempty_scope() {
                 assert!(!scope.is_empty() && !scope.contains('/'), "{what}: scope {scope:?}");
                 assert!(scene.find(Namespace::Body, &format!("{scope}/torso")).is_some(), "{what}");
                 let xml = write(&scene);
-                assert!(xml.contains(&format!(r#"<body name="{scope}/torso"/>"#)), "{what}:\n{xml}");
-                assert_eq!(xml.matches(r#"<default class="/""#).count(), 1, "{what}: two classes named /:\n{xml}");
+                assert!(
+                    xml.contains(&format!(r#"<body name="{scope}/torso"/>"#)),
+                    "{what}:\n{xml}"
+                );
+                assert_eq!(
+                    xml.matches(r#"<default class="/""#).count(),
+                    1,
+                    "{what}: two classes named /:\n{xml}"
+                );
                 assert!(!xml.contains(r#"name="/""#), "{what}:\n{xml}");
                 assert_eq!(scene.detach(&scope).unwrap(), arena, "{what}");
             }
             Err(e) => assert!(
-                matches!(e.kind(), ErrorKind::InvalidValue { tag: "mujoco", attribute: "model", .. }),
+                matches!(
+                    e.kind(),
+                    ErrorKind::InvalidValue { tag: "mujoco", attribute: "model", .. }
+                ),
                 "{what}: refused, but not as an invalid model name: {e}"
             ),
         }
@@ -88,13 +99,15 @@ fn ops_model_without_a_name_attaches_under_a_nonempty_scope() {
 #[test]
 fn ops_nested_default_class_without_a_name_is_refused() {
     let m = Model::new("m");
-    let missing =
-        |e: &mjcf::EditError| matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" });
+    let missing = |e: &mjcf::EditError| {
+        matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" })
+    };
     let e = m.add(&m.default_class(), Element::new("default")).unwrap_err();
     assert!(missing(&e), "{e}");
     let e = m.add(&m.default_class(), Element::new("default").attr("class", "")).unwrap_err();
     assert!(missing(&e), "{e}");
-    let (named, class) = m.add(&m.default_class(), Element::new("default").attr("class", "c")).unwrap();
+    let (named, class) =
+        m.add(&m.default_class(), Element::new("default").attr("class", "c")).unwrap();
     let e = named.clear_attr(&class, "class").unwrap_err();
     assert!(missing(&e), "{e}");
     // The root class itself may stay unnamed.
@@ -105,9 +118,14 @@ fn ops_nested_default_class_without_a_name_is_refused() {
 /// written as a second `/` class, and read back as part of the root class.
 #[test]
 fn read_xml_nested_default_class_without_a_name_is_refused() {
-    let e =
-        Model::from_xml_str(r#"<mujoco><default><default><geom size="1"/></default></default></mujoco>"#).unwrap_err();
-    assert!(matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" }), "{e}");
+    let e = Model::from_xml_str(
+        r#"<mujoco><default><default><geom size="1"/></default></default></mujoco>"#,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e.kind(), ErrorKind::MissingRequired { tag: "default", attribute: "class" }),
+        "{e}"
+    );
     assert_eq!(e.pos().map(|p| (p.line, p.column)), Some((1, 18)), "{e}");
 }
 
@@ -137,7 +155,10 @@ fn ops_removed_default_class_leaves_the_implicit_class() {
         let m = read(xml);
         let m = m.remove(&m.find(Namespace::Default, "c").unwrap()).unwrap();
         let w1 = write(&m);
-        assert!(w1.contains(r#"<geom name="//unnamed_geom_0" class="/" size="1"/>"#), "{what}:\n{w1}");
+        assert!(
+            w1.contains(r#"<geom name="//unnamed_geom_0" class="/" size="1"/>"#),
+            "{what}:\n{w1}"
+        );
         assert_eq!(write(&read(&w1)), w1, "{what}");
     }
 }

@@ -61,9 +61,21 @@ fn include_cycle_a_b_a_is_an_error_in_memory() {
 #[test]
 fn a_file_included_twice_without_a_cycle_is_fine() {
     let dir = temp_dir("diamond");
-    let main = write(&dir, "main.xml", r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#);
-    write(&dir, "x.xml", r#"<mujoco><include file="common.xml"/><worldbody><body name="x"/></worldbody></mujoco>"#);
-    write(&dir, "y.xml", r#"<mujoco><include file="common.xml"/><worldbody><body name="y"/></worldbody></mujoco>"#);
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#,
+    );
+    write(
+        &dir,
+        "x.xml",
+        r#"<mujoco><include file="common.xml"/><worldbody><body name="x"/></worldbody></mujoco>"#,
+    );
+    write(
+        &dir,
+        "y.xml",
+        r#"<mujoco><include file="common.xml"/><worldbody><body name="y"/></worldbody></mujoco>"#,
+    );
     write(&dir, "common.xml", r#"<mujoco><compiler angle="radian"/></mujoco>"#);
     let m = Model::from_path(&main).unwrap();
     assert!(m.find(Namespace::Body, "x").is_some() && m.find(Namespace::Body, "y").is_some());
@@ -72,7 +84,8 @@ fn a_file_included_twice_without_a_cycle_is_fine() {
 /// A chain main → inc1 → … → incN, each adding one body.
 fn include_chain(dir: &Path, n: usize) -> PathBuf {
     for i in 1..=n {
-        let next = if i < n { format!(r#"<include file="inc{}.xml"/>"#, i + 1) } else { String::new() };
+        let next =
+            if i < n { format!(r#"<include file="inc{}.xml"/>"#, i + 1) } else { String::new() };
         write(
             dir,
             &format!("inc{i}.xml"),
@@ -99,7 +112,10 @@ fn includes_nest_100_deep_and_no_deeper() {
 fn include_depth_counts_the_same_from_a_string() {
     let dir = temp_dir("depthstr");
     include_chain(&dir, 100);
-    let m = ReadOptions::new().base_dir(&dir).read_str(r#"<mujoco><include file="inc1.xml"/></mujoco>"#).unwrap();
+    let m = ReadOptions::new()
+        .base_dir(&dir)
+        .read_str(r#"<mujoco><include file="inc1.xml"/></mujoco>"#)
+        .unwrap();
     assert_eq!(m.find_all(Namespace::Body).len(), 100);
 }
 
@@ -109,7 +125,11 @@ fn include_depth_counts_the_same_from_a_string() {
 fn paths_leaving_the_model_folder_are_allowed_by_default_and_refused_when_confined() {
     let dir = temp_dir("confine");
     write(&dir, "shared/box.stl", "solid box\nendsolid box\n");
-    write(&dir, "shared/part.xml", r#"<mujoco><worldbody><body name="part"/></worldbody></mujoco>"#);
+    write(
+        &dir,
+        "shared/part.xml",
+        r#"<mujoco><worldbody><body name="part"/></worldbody></mujoco>"#,
+    );
     let main = write(
         &dir,
         "model/main.xml",
@@ -125,11 +145,18 @@ fn paths_leaving_the_model_folder_are_allowed_by_default_and_refused_when_confin
 
     let confined = ReadOptions::new().confine_to_base_dir(true);
     let err = confined.read_path(&main).unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(p) if p.ends_with("../shared/part.xml")), "{err}");
+    assert!(
+        matches!(err.kind(), ErrorKind::FileOutsideRoot(p) if p.ends_with("../shared/part.xml")),
+        "{err}"
+    );
     assert_eq!(err.pos().map(|p| p.line), Some(2));
 
     // The mesh alone, without the include.
-    let main2 = write(&dir, "model/mesh.xml", r#"<mujoco><asset><mesh file="../shared/box.stl"/></asset></mujoco>"#);
+    let main2 = write(
+        &dir,
+        "model/mesh.xml",
+        r#"<mujoco><asset><mesh file="../shared/box.stl"/></asset></mujoco>"#,
+    );
     let err = confined.read_path(&main2).unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(_)), "{err}");
 
@@ -141,8 +168,11 @@ fn paths_leaving_the_model_folder_are_allowed_by_default_and_refused_when_confin
 
     // Inside the folder is fine, `..` included as long as it stays inside.
     write(&dir, "model/meshes/box.stl", "solid box\nendsolid box\n");
-    let main3 =
-        write(&dir, "model/in.xml", r#"<mujoco><asset><mesh file="meshes/../meshes/box.stl"/></asset></mujoco>"#);
+    let main3 = write(
+        &dir,
+        "model/in.xml",
+        r#"<mujoco><asset><mesh file="meshes/../meshes/box.stl"/></asset></mujoco>"#,
+    );
     assert!(confined.read_path(&main3).unwrap().find(Namespace::Mesh, "box").is_some());
 }
 
@@ -152,7 +182,11 @@ fn confinement_also_applies_to_files_set_by_edits() {
     write(&dir, "box.stl", "solid box\nendsolid box\n");
     let model_dir = dir.join("model");
     std::fs::create_dir_all(&model_dir).unwrap();
-    let m = ReadOptions::new().confine_to_base_dir(true).base_dir(&model_dir).read_str("<mujoco/>").unwrap();
+    let m = ReadOptions::new()
+        .confine_to_base_dir(true)
+        .base_dir(&model_dir)
+        .read_str("<mujoco/>")
+        .unwrap();
     let err = m.add(&m.asset(), Element::new("mesh").attr("file", "../box.stl")).unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::FileOutsideRoot(_)), "{err}");
 }
@@ -174,7 +208,10 @@ fn nesting_100_000_deep_reads_writes_and_edits_without_overflow() {
     let m = Model::from_xml_str(&text).unwrap();
     let deepest = m.find(Namespace::Geom, "deepest").unwrap();
     let m2 = m.set_attr(&deepest, "size", [2.0]).unwrap();
-    assert_eq!(m2.element(&deepest).unwrap().attr("size").and_then(Value::as_floats), Some(&[2.0][..]));
+    assert_eq!(
+        m2.element(&deepest).unwrap().attr("size").and_then(Value::as_floats),
+        Some(&[2.0][..])
+    );
     assert_ne!(m, m2);
     let out = m2.to_xml_string().unwrap();
     assert_eq!(out.matches("<body name=\"//unnamed_body_").count(), depth);
@@ -202,7 +239,8 @@ fn max_depth_refuses_deeper_input_with_its_own_error() {
 
 #[test]
 fn an_element_built_100_000_deep_adds_compares_and_drops_without_overflow() {
-    let mut body = Element::new("body").child(Element::new("geom").attr("name", "deepest").attr("size", [1.0]));
+    let mut body = Element::new("body")
+        .child(Element::new("geom").attr("name", "deepest").attr("size", [1.0]));
     for _ in 1..100_000 {
         body = Element::new("body").child(body);
     }
@@ -223,7 +261,10 @@ fn an_element_built_100_000_deep_adds_compares_and_drops_without_overflow() {
     }
     assert_eq!(
         top,
-        Element::new("body").child(Element::new("body")).child(Element::new("body")).child(Element::new("body"))
+        Element::new("body")
+            .child(Element::new("body"))
+            .child(Element::new("body"))
+            .child(Element::new("body"))
     );
     drop(copy);
 }
@@ -231,7 +272,8 @@ fn an_element_built_100_000_deep_adds_compares_and_drops_without_overflow() {
 #[test]
 fn attachments_nested_1000_deep_write_and_drop_without_overflow() {
     let mut m = Model::new("leaf");
-    let (leaf, _) = m.add(&m.worldbody(), Element::new("geom").attr("name", "g").attr("size", [1.0])).unwrap();
+    let (leaf, _) =
+        m.add(&m.worldbody(), Element::new("geom").attr("name", "g").attr("size", [1.0])).unwrap();
     m = leaf;
     for i in 0..1000 {
         let outer = Model::new(&format!("m{i}"));
@@ -256,7 +298,8 @@ fn a_million_siblings_read_write_and_edit() {
     let m = Model::from_xml_str(&text).unwrap();
     let last = m.find(Namespace::Site, "last").unwrap();
     let m2 = m.set_attr(&last, "pos", [1.0, 2.0, 3.0]).unwrap();
-    let (m3, _) = m2.insert(&m2.worldbody(), 500_000, Element::new("site").attr("name", "middle")).unwrap();
+    let (m3, _) =
+        m2.insert(&m2.worldbody(), 500_000, Element::new("site").attr("name", "middle")).unwrap();
     let out = m3.to_xml_string().unwrap();
     assert_eq!(out.matches("<site").count(), n + 2);
     // Auto names count every site in document order, so `middle` takes index 500000.
@@ -272,10 +315,12 @@ fn a_million_siblings_read_write_and_edit() {
 #[test]
 fn a_doctype_is_skipped_and_entities_are_never_expanded() {
     // A DOCTYPE alone is dropped.
-    let m = Model::from_xml_str(r#"<?xml version="1.0"?><!DOCTYPE mujoco><mujoco model="m"/>"#).unwrap();
+    let m = Model::from_xml_str(r#"<?xml version="1.0"?><!DOCTYPE mujoco><mujoco model="m"/>"#)
+        .unwrap();
     assert_eq!(m.name(), "m");
     // The billion laughs: declared entities are not expanded; using one is an error.
-    let mut bomb = String::from("<?xml version=\"1.0\"?>\n<!DOCTYPE mujoco [\n  <!ENTITY lol \"lol\">\n");
+    let mut bomb =
+        String::from("<?xml version=\"1.0\"?>\n<!DOCTYPE mujoco [\n  <!ENTITY lol \"lol\">\n");
     for i in 1..10 {
         let prev = if i == 1 { "lol".to_string() } else { format!("lol{}", i - 1) };
         bomb.push_str(&format!("  <!ENTITY lol{i} \"{}\">\n", format!("&{prev};").repeat(10)));
@@ -288,7 +333,8 @@ fn a_doctype_is_skipped_and_entities_are_never_expanded() {
     let unused = bomb.replace("&lol9;", "m");
     assert_eq!(Model::from_xml_str(&unused).unwrap().name(), "m");
     // External entities (XXE) are not fetched either.
-    let xxe = "<!DOCTYPE mujoco [<!ENTITY x SYSTEM \"file:///etc/passwd\">]><mujoco model=\"&x;\"/>";
+    let xxe =
+        "<!DOCTYPE mujoco [<!ENTITY x SYSTEM \"file:///etc/passwd\">]><mujoco model=\"&x;\"/>";
     assert!(matches!(kind_of(Model::from_xml_str(xxe)), ErrorKind::Syntax(_)));
     // Entities in element content (text is dropped) and in attribute values.
     let in_geom = "<!DOCTYPE m [<!ENTITY e \"1\">]><mujoco><worldbody><geom size=\"&e;\"/></worldbody></mujoco>";
@@ -340,21 +386,30 @@ fn nan_inf_overflow_and_negative_zero_follow_the_reference() {
     let m2 = m.set_attr(&g, "pos", [f64::NAN, -0.0, f64::INFINITY]).unwrap();
     assert!(m2.to_xml_string().unwrap().contains(r#"pos="nan -0 inf""#));
     // Integers do not overflow silently.
-    let err = Model::from_xml_str(r#"<mujoco><option><flag/></option><size nconmax="99999999999999999999"/></mujoco>"#)
-        .unwrap_err();
+    let err = Model::from_xml_str(
+        r#"<mujoco><option><flag/></option><size nconmax="99999999999999999999"/></mujoco>"#,
+    )
+    .unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "nconmax", .. }), "{err}");
 }
 
 #[test]
 fn arrays_longer_or_shorter_than_allowed_are_refused_with_a_position() {
-    let err =
-        Model::from_xml_str("<mujoco>\n<worldbody>\n  <body pos=\"1 2 3 4\"/>\n</worldbody></mujoco>").unwrap_err();
+    let err = Model::from_xml_str(
+        "<mujoco>\n<worldbody>\n  <body pos=\"1 2 3 4\"/>\n</worldbody></mujoco>",
+    )
+    .unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "pos", .. }), "{err}");
     assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((3, 3)));
-    let err = Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0 0 0"/></worldbody></mujoco>"#).unwrap_err();
+    let err =
+        Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0 0 0"/></worldbody></mujoco>"#)
+            .unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "quat", .. }), "{err}");
     // Shorter arrays are accepted, as in the reference (MuJoCo decides what they mean).
-    assert!(Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0"/></worldbody></mujoco>"#).is_ok());
+    assert!(
+        Model::from_xml_str(r#"<mujoco><worldbody><body quat="1 0 0"/></worldbody></mujoco>"#)
+            .is_ok()
+    );
     let m = Model::new("m");
     let err = m.add(&m.worldbody(), Element::new("geom").attr("rgba", [1.0; 5])).unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::InvalidValue { attribute: "rgba", .. }), "{err}");
@@ -383,28 +438,54 @@ fn slashes_in_names_are_refused_everywhere_they_could_confuse_scopes() {
     // `/` separates scopes, so no identifier may hold one: not when read, not when
     // set, not as a model name that becomes a scope, not as a new scope name. (The
     // reference refuses it only once the model is attached.)
-    let err = Model::from_xml_str(r#"<mujoco><worldbody><body name="robot/torso"/></worldbody></mujoco>"#).unwrap_err();
+    let err = Model::from_xml_str(
+        r#"<mujoco><worldbody><body name="robot/torso"/></worldbody></mujoco>"#,
+    )
+    .unwrap_err();
     assert!(
         matches!(
             err.kind(),
-            ErrorKind::InvalidValue { attribute: "name", error: mjcf::ValueError::SlashInIdentifier, .. }
+            ErrorKind::InvalidValue {
+                attribute: "name",
+                error: mjcf::ValueError::SlashInIdentifier,
+                ..
+            }
         ),
         "{err}"
     );
     assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((1, 20)));
     let m = Model::new("m");
     let err = m.add(&m.worldbody(), Element::new("site").attr("name", "a/b")).unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }));
+    assert!(matches!(
+        err.kind(),
+        ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }
+    ));
     let err = m.add(&m.default_class(), Element::new("default").attr("class", "x/")).unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }));
+    assert!(matches!(
+        err.kind(),
+        ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }
+    ));
 
     let robot = Model::new("robot");
-    let (robot, _) = robot.add(&robot.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
+    let (robot, _) =
+        robot.add(&robot.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
     let err = Model::new("p").attach_to_world(&robot.with_name("a/b")).unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }), "{err}");
+    assert!(
+        matches!(
+            err.kind(),
+            ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }
+        ),
+        "{err}"
+    );
     let (p, _) = Model::new("p").attach_to_world(&robot).unwrap();
     let err = p.rename_scope("robot", "x/y").unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }), "{err}");
+    assert!(
+        matches!(
+            err.kind(),
+            ErrorKind::InvalidValue { error: mjcf::ValueError::SlashInIdentifier, .. }
+        ),
+        "{err}"
+    );
     // Scoped lookups of names that do not exist are simply absent.
     assert!(p.find(Namespace::Body, "robot/torso").is_some());
     assert!(p.find(Namespace::Body, "robot//torso").is_none());

@@ -240,7 +240,11 @@ impl NNode {
         NNode {
             tag: self.tag,
             name: self.name.as_ref().map(|n| scoped(scope, n)),
-            scope: if self.scope.is_empty() { scope.to_string() } else { scoped(scope, &self.scope) },
+            scope: if self.scope.is_empty() {
+                scope.to_string()
+            } else {
+                scoped(scope, &self.scope)
+            },
             frame: self.frame.as_ref().map(|f| scoped(scope, f)),
             attrs: self
                 .attrs
@@ -278,7 +282,13 @@ struct NItem {
 
 impl NItem {
     fn new(section: &'static str, tag: &'static str, name: Option<&str>) -> NItem {
-        NItem { section, tag, name: name.map(str::to_string), scope: String::new(), attrs: BTreeMap::new() }
+        NItem {
+            section,
+            tag,
+            name: name.map(str::to_string),
+            scope: String::new(),
+            attrs: BTreeMap::new(),
+        }
     }
 
     fn attr(mut self, key: &'static str, v: Val) -> NItem {
@@ -296,7 +306,13 @@ impl NItem {
             children: Vec::new(),
         }
         .prefixed(scope);
-        NItem { section: self.section, tag: self.tag, name: node.name, scope: node.scope, attrs: node.attrs }
+        NItem {
+            section: self.section,
+            tag: self.tag,
+            name: node.name,
+            scope: node.scope,
+            attrs: node.attrs,
+        }
     }
 }
 
@@ -390,19 +406,28 @@ impl Naive {
                 && namespace(n.tag) == ns
                 && n.name.as_deref() == Some(name)
         });
-        in_tree || self.items.iter().any(|it| namespace(it.tag) == ns && it.name.as_deref() == Some(name))
+        in_tree
+            || self
+                .items
+                .iter()
+                .any(|it| namespace(it.tag) == ns && it.name.as_deref() == Some(name))
     }
 
     /// The position of a scope in the output order of the sections (0 for the top).
     fn order(&self, scope: &str) -> usize {
-        if scope.is_empty() { 0 } else { 1 + self.scopes.iter().position(|s| s == scope).expect("a known scope") }
+        if scope.is_empty() {
+            0
+        } else {
+            1 + self.scopes.iter().position(|s| s == scope).expect("a known scope")
+        }
     }
 
     /// Inserts an (already prefixed) item after every item of its scope and the scopes
     /// before it.
     fn insert_item(&mut self, item: NItem) {
         let k = self.order(&item.scope);
-        let at = self.items.iter().position(|it| self.order(&it.scope) > k).unwrap_or(self.items.len());
+        let at =
+            self.items.iter().position(|it| self.order(&it.scope) > k).unwrap_or(self.items.len());
         self.items.insert(at, item);
     }
 
@@ -444,7 +469,11 @@ impl Naive {
             let frame_name = parent_node.name.clone().expect("frames are named");
             node.name = local.map(|n| format!("{frame_name}{n}/"));
             if let Some(n) = &node.name {
-                if parent_node.children.iter().any(|c| is_joint(c.tag) && c.name.as_ref() == Some(n)) {
+                if parent_node
+                    .children
+                    .iter()
+                    .any(|c| is_joint(c.tag) && c.name.as_ref() == Some(n))
+                {
                     return Err(format!("frame joint {n} exists on this frame"));
                 }
             }
@@ -559,8 +588,12 @@ impl Naive {
     /// the new scope path.
     fn attach(&mut self, child: &Naive, site: Option<&[usize]>) -> Result<String, String> {
         let owner = site.map_or(String::new(), |p| self.node(p).scope.clone());
-        let taken: Vec<&str> =
-            self.scopes.iter().filter(|s| parent_scope(s) == owner).map(|s| last_segment(s)).collect();
+        let taken: Vec<&str> = self
+            .scopes
+            .iter()
+            .filter(|s| parent_scope(s) == owner)
+            .map(|s| last_segment(s))
+            .collect();
         let base = child.model.as_str();
         let mut name = base.to_string();
         let mut n = 1;
@@ -649,7 +682,9 @@ impl Naive {
             let children = n
                 .children
                 .iter()
-                .map(|c| node(c, if n.is_frame() && is_joint(c.tag) { n.name.as_deref() } else { None }))
+                .map(|c| {
+                    node(c, if n.is_frame() && is_joint(c.tag) { n.name.as_deref() } else { None })
+                })
                 .collect();
             CNode {
                 tag: n.tag.to_string(),
@@ -664,7 +699,10 @@ impl Naive {
                 .filter(|it| it.section == section)
                 .map(|it| CNode {
                     tag: it.tag.to_string(),
-                    name: it.name.clone().map_or_else(|| auto_name(&it.scope, it.tag), CName::Named),
+                    name: it
+                        .name
+                        .clone()
+                        .map_or_else(|| auto_name(&it.scope, it.tag), CName::Named),
                     attrs: it.attrs.iter().map(|(k, v)| (k.to_string(), v.clone())).collect(),
                     children: Vec::new(),
                 })
@@ -729,7 +767,9 @@ impl fmt::Display for Canon {
             writeln!(f)?;
             n.children.iter().try_for_each(|c| node(f, c, depth + 1))
         }
-        for (title, list) in [("worldbody", &self.worldbody), ("actuator", &self.actuator), ("sensor", &self.sensor)] {
+        for (title, list) in
+            [("worldbody", &self.worldbody), ("actuator", &self.actuator), ("sensor", &self.sensor)]
+        {
             writeln!(f, "{title}:")?;
             list.iter().try_for_each(|n| node(f, n, 1))?;
         }
@@ -766,7 +806,8 @@ fn parse_xml(xml: &str) -> Result<XNode, String> {
         let mut attrs = Vec::new();
         for a in t.attributes() {
             let a = a.map_err(|e| e.to_string())?;
-            let v = a.normalized_value(quick_xml::XmlVersion::default()).map_err(|e| e.to_string())?;
+            let v =
+                a.normalized_value(quick_xml::XmlVersion::default()).map_err(|e| e.to_string())?;
             attrs.push((a.key.as_ref().to_string(), v.to_string()));
         }
         Ok(XNode { tag: t.name().as_ref().to_string(), attrs, children: Vec::new() })
@@ -832,7 +873,11 @@ fn lib_canon(m: &Model, xml: &str) -> Result<Canon, String> {
         return Err(format!("root element <{}>", root.tag));
     }
     let section = |tag: &str| -> Vec<CNode> {
-        root.children.iter().filter(|c| c.tag == tag).flat_map(|c| c.children.iter().map(node)).collect()
+        root.children
+            .iter()
+            .filter(|c| c.tag == tag)
+            .flat_map(|c| c.children.iter().map(node))
+            .collect()
     };
     Ok(Canon {
         worldbody: section("worldbody"),
@@ -952,7 +997,11 @@ fn naive_ball() -> Naive {
     r.world.push(
         NNode::new("body", some("ball"))
             .child(NNode::new("joint", some("roll")).attr("type", Val::text("ball")))
-            .child(NNode::new("geom", some("ball")).attr("type", Val::text("sphere")).attr("size", Val::nums(&[0.1]))),
+            .child(
+                NNode::new("geom", some("ball"))
+                    .attr("type", Val::text("sphere"))
+                    .attr("size", Val::nums(&[0.1])),
+            ),
     );
     r.world.push(NNode::new("site", some("tip")).attr("pos", Val::nums(&[0.0, 0.0, 0.1])));
     r.items.push(NItem::new("actuator", "motor", some("m")).attr("joint", Val::text("ghost")));
@@ -1162,22 +1211,32 @@ impl Picker<'_> {
     /// The picked element on both sides, or `None` if there is none of that kind. The
     /// two lists must have the same length.
     fn pick(&self, kind: PickKind, at: &Index) -> Result<Option<(Target, Loc)>, String> {
-        let nodes = |pick: fn(&NNode) -> bool| self.naive.paths(pick).into_iter().map(Target::Node).collect();
+        let nodes = |pick: fn(&NNode) -> bool| {
+            self.naive.paths(pick).into_iter().map(Target::Node).collect()
+        };
         let (n, l): (Vec<Target>, Vec<Loc>) = match kind {
             PickKind::Body => (nodes(|n| n.tag == "body"), self.lib.find_all(Namespace::Body)),
             PickKind::Frame => {
                 let frames = self.lib.find_all(Namespace::Body).into_iter();
-                (nodes(NNode::is_frame), frames.filter(|l| self.lib.scope_of_frame(l).is_some()).collect())
+                (
+                    nodes(NNode::is_frame),
+                    frames.filter(|l| self.lib.scope_of_frame(l).is_some()).collect(),
+                )
             }
             PickKind::Geom => (nodes(|n| n.tag == "geom"), self.lib.find_all(Namespace::Geom)),
             PickKind::Site => (nodes(|n| n.tag == "site"), self.lib.find_all(Namespace::Site)),
             PickKind::Joint => (nodes(|n| is_joint(n.tag)), self.lib.find_all(Namespace::Joint)),
-            PickKind::Motor => {
-                (self.naive.motors().into_iter().map(Target::Item).collect(), self.lib.find_all(Namespace::Actuator))
-            }
+            PickKind::Motor => (
+                self.naive.motors().into_iter().map(Target::Item).collect(),
+                self.lib.find_all(Namespace::Actuator),
+            ),
         };
         if n.len() != l.len() {
-            return Err(format!("{kind:?} list: the naive model has {}, find_all gives {}", n.len(), l.len()));
+            return Err(format!(
+                "{kind:?} list: the naive model has {}, find_all gives {}",
+                n.len(),
+                l.len()
+            ));
         }
         if n.is_empty() {
             return Ok(None);
@@ -1210,7 +1269,12 @@ struct Outcome {
 }
 
 /// Applies `a` (not `Undo`) to both sides; `Ok(None)` if there was nothing to pick.
-fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Option<Outcome>, String> {
+fn apply(
+    a: &Action,
+    lib: &Model,
+    naive: &Naive,
+    robots: &Robots,
+) -> Result<Option<Outcome>, String> {
     let picker = Picker { lib, naive };
     let mut n = naive.clone();
     let out = match a {
@@ -1228,19 +1292,28 @@ fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Opti
             };
             let element = element_of(&node);
             Outcome {
-                what: format!("add <{} {}> to {where_}", node.tag, node.name.as_deref().unwrap_or("(unnamed)")),
+                what: format!(
+                    "add <{} {}> to {where_}",
+                    node.tag,
+                    node.name.as_deref().unwrap_or("(unnamed)")
+                ),
                 lib: lib.add(&lp, element).map(|(m, _)| m),
                 naive: n.add(np.as_deref(), node).map(|()| n),
             }
         }
         Action::AddMotor { scope, name, joint } => {
-            let item = NItem::new("actuator", "motor", name.map(|i| NAMES[i])).attr("joint", Val::text(NAMES[*joint]));
+            let item = NItem::new("actuator", "motor", name.map(|i| NAMES[i]))
+                .attr("joint", Val::text(NAMES[*joint]));
             let (s, loc) = match scope {
                 None => (String::new(), lib.actuator()),
                 Some(i) => {
                     let Some(s) = picker.scope(i) else { return Ok(None) };
-                    let inner = lib.attached(s).ok().ok_or_else(|| format!("library lost scope {s}"))?;
-                    let loc = lib.locate_in(s, &inner.actuator()).ok().ok_or_else(|| format!("no locator in {s}"))?;
+                    let inner =
+                        lib.attached(s).ok().ok_or_else(|| format!("library lost scope {s}"))?;
+                    let loc = lib
+                        .locate_in(s, &inner.actuator())
+                        .ok()
+                        .ok_or_else(|| format!("no locator in {s}"))?;
                     (s.to_string(), loc)
                 }
             };
@@ -1259,14 +1332,23 @@ fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Opti
             let Some((t, loc)) = picker.pick(*pick, at)? else { return Ok(None) };
             let what = format!("set {change} on {}", describe(naive, &t));
             let (lib, naive) = match change {
-                Change::Name(Some(i)) => (lib.set_attr(&loc, "name", NAMES[*i]), n.set_name(&t, Some(NAMES[*i]))),
-                Change::Name(None) => (lib.clear_attr(&loc, "name"), n.set_name(&t, None)),
-                Change::Pos(p) => (lib.set_attr(&loc, "pos", *p), n.set_attr(&t, "pos", Val::nums(p))),
-                Change::Size(s) => (lib.set_attr(&loc, "size", s.clone()), n.set_attr(&t, "size", Val::nums(s))),
-                Change::Rgba(c) => (lib.set_attr(&loc, "rgba", *c), n.set_attr(&t, "rgba", Val::nums(c))),
-                Change::MotorJoint(j) => {
-                    (lib.set_attr(&loc, "joint", NAMES[*j]), n.set_attr(&t, "joint", Val::text(NAMES[*j])))
+                Change::Name(Some(i)) => {
+                    (lib.set_attr(&loc, "name", NAMES[*i]), n.set_name(&t, Some(NAMES[*i])))
                 }
+                Change::Name(None) => (lib.clear_attr(&loc, "name"), n.set_name(&t, None)),
+                Change::Pos(p) => {
+                    (lib.set_attr(&loc, "pos", *p), n.set_attr(&t, "pos", Val::nums(p)))
+                }
+                Change::Size(s) => {
+                    (lib.set_attr(&loc, "size", s.clone()), n.set_attr(&t, "size", Val::nums(s)))
+                }
+                Change::Rgba(c) => {
+                    (lib.set_attr(&loc, "rgba", *c), n.set_attr(&t, "rgba", Val::nums(c)))
+                }
+                Change::MotorJoint(j) => (
+                    lib.set_attr(&loc, "joint", NAMES[*j]),
+                    n.set_attr(&t, "joint", Val::text(NAMES[*j])),
+                ),
             };
             Outcome { what, lib, naive: naive.map(|()| n) }
         }
@@ -1281,11 +1363,19 @@ fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Opti
         Action::Attach { robot, at } => {
             let child = &robots.lib[*robot];
             let (lib, naive, where_) = match at {
-                None => (lib.attach_to_world(child), n.attach(&robots.naive[*robot], None), "world".to_string()),
+                None => (
+                    lib.attach_to_world(child),
+                    n.attach(&robots.naive[*robot], None),
+                    "world".to_string(),
+                ),
                 Some(i) => {
                     let Some((t, loc)) = picker.pick(PickKind::Site, i)? else { return Ok(None) };
                     let Target::Node(p) = &t else { unreachable!("sites are nodes") };
-                    (lib.attach(&loc, child), n.attach(&robots.naive[*robot], Some(p)), describe(naive, &t))
+                    (
+                        lib.attach(&loc, child),
+                        n.attach(&robots.naive[*robot], Some(p)),
+                        describe(naive, &t),
+                    )
                 }
             };
             Outcome {
@@ -1296,7 +1386,11 @@ fn apply(a: &Action, lib: &Model, naive: &Naive, robots: &Robots) -> Result<Opti
         }
         Action::Detach { scope } => {
             let Some(s) = picker.scope(scope) else { return Ok(None) };
-            Outcome { what: format!("detach {s}"), lib: lib.detach(s), naive: n.detach(s).map(|()| n) }
+            Outcome {
+                what: format!("detach {s}"),
+                lib: lib.detach(s),
+                naive: n.detach(s).map(|()| n),
+            }
         }
         Action::RenameScope { scope, to } => {
             let Some(s) = picker.scope(scope) else { return Ok(None) };
@@ -1321,7 +1415,9 @@ fn replay(actions: &[Action], robots: &Robots) -> Result<(), String> {
     // Every version: the library value, the naive model, and the library's output then.
     let mut history: Vec<(Model, Naive, String)> = vec![(lib, naive, xml)];
     let mut log: Vec<String> = Vec::new();
-    let fail = |log: &[String], msg: String| -> String { format!("{msg}\nsteps:\n  {}", log.join("\n  ")) };
+    let fail = |log: &[String], msg: String| -> String {
+        format!("{msg}\nsteps:\n  {}", log.join("\n  "))
+    };
     for (step, a) in actions.iter().enumerate() {
         if let Action::Undo { to } = a {
             let i = to.index(history.len());
@@ -1331,7 +1427,10 @@ fn replay(actions: &[Action], robots: &Robots) -> Result<(), String> {
             let (lib, _, xml) = &history[i];
             let now = lib.to_xml_string().map_err(|e| fail(&log, e.to_string()))?;
             if &now != xml {
-                return Err(fail(&log, format!("version {i} changed after the fact:\nwas:\n{xml}\nnow:\n{now}")));
+                return Err(fail(
+                    &log,
+                    format!("version {i} changed after the fact:\nwas:\n{xml}\nnow:\n{now}"),
+                ));
             }
             continue;
         }
@@ -1343,13 +1442,16 @@ fn replay(actions: &[Action], robots: &Robots) -> Result<(), String> {
         match (out.lib, out.naive) {
             (Ok(l), Ok(n)) => {
                 log.push(format!("{step}: {} -> ok", out.what));
-                let xml = l.to_xml_string().map_err(|e| fail(&log, format!("writing failed: {e}")))?;
+                let xml =
+                    l.to_xml_string().map_err(|e| fail(&log, format!("writing failed: {e}")))?;
                 let got = lib_canon(&l, &xml).map_err(|e| fail(&log, format!("{e} in\n{xml}")))?;
                 let want = n.canon();
                 if got != want {
                     return Err(fail(
                         &log,
-                        format!("library and naive model differ\nlibrary:\n{got}naive:\n{want}library XML:\n{xml}"),
+                        format!(
+                            "library and naive model differ\nlibrary:\n{got}naive:\n{want}library XML:\n{xml}"
+                        ),
                     ));
                 }
                 history.push((l, n, xml));
@@ -1361,19 +1463,28 @@ fn replay(actions: &[Action], robots: &Robots) -> Result<(), String> {
                 let (lib, _, xml) = history.last().expect("the start is never dropped");
                 let now = lib.to_xml_string().map_err(|e| fail(&log, e.to_string()))?;
                 if &now != xml {
-                    return Err(fail(&log, format!("the refused edit changed the value:\nwas:\n{xml}\nnow:\n{now}")));
+                    return Err(fail(
+                        &log,
+                        format!("the refused edit changed the value:\nwas:\n{xml}\nnow:\n{now}"),
+                    ));
                 }
             }
             (Ok(_), Err(why)) => {
                 return Err(fail(
                     &log,
-                    format!("{step}: {}: the library accepts what the naive model refuses ({why})", out.what),
+                    format!(
+                        "{step}: {}: the library accepts what the naive model refuses ({why})",
+                        out.what
+                    ),
                 ));
             }
             (Err(e), Ok(_)) => {
                 return Err(fail(
                     &log,
-                    format!("{step}: {}: the library refuses ({e}), the naive model accepts", out.what),
+                    format!(
+                        "{step}: {}: the library refuses ({e}), the naive model accepts",
+                        out.what
+                    ),
                 ));
             }
         }
@@ -1409,7 +1520,10 @@ proptest! {
 
 /// The path of the element named `name` (prefixed) in the naive tree.
 fn path_of(n: &Naive, name: &str) -> Vec<usize> {
-    n.paths(|x| x.name.as_deref() == Some(name)).into_iter().next().unwrap_or_else(|| panic!("no {name}"))
+    n.paths(|x| x.name.as_deref() == Some(name))
+        .into_iter()
+        .next()
+        .unwrap_or_else(|| panic!("no {name}"))
 }
 
 fn canon_of(m: &Model) -> String {
@@ -1477,8 +1591,12 @@ scopes: robot robot_1
     assert_eq!(n.canon().to_string(), EXPECTED);
 
     let m = Model::new("scene");
-    let (m, spawn) =
-        m.add(&m.worldbody(), Element::new("site").attr("name", "spawn").attr("pos", [0.0, 0.0, 0.5])).unwrap();
+    let (m, spawn) = m
+        .add(
+            &m.worldbody(),
+            Element::new("site").attr("name", "spawn").attr("pos", [0.0, 0.0, 0.5]),
+        )
+        .unwrap();
     let (m, _) = m.add(&m.worldbody(), Element::new("body").attr("name", "b")).unwrap();
     let (m, _) = m.attach(&spawn, &ROBOTS.lib[0]).unwrap();
     let (m, _) = m.attach_to_world(&ROBOTS.lib[0]).unwrap();
@@ -1552,7 +1670,8 @@ scopes: c
     assert_eq!(n.attach(&ROBOTS.naive[2], Some(&mount)), Ok("arm/robot/robot_1".to_string()));
     n.add(Some(&[0]), NNode::new("freejoint", None)).unwrap();
     n.add(Some(&[0]), NNode::new("joint", some("j"))).unwrap();
-    n.add_item("", NItem::new("actuator", "motor", some("m")).attr("joint", Val::text("j"))).unwrap();
+    n.add_item("", NItem::new("actuator", "motor", some("m")).attr("joint", Val::text("j")))
+        .unwrap();
     n.rename_scope("arm", "c").unwrap();
     assert_eq!(n.canon().to_string(), NESTED);
     n.detach("c/robot").unwrap();
@@ -1560,10 +1679,12 @@ scopes: c
 
     let (m, arm) = Model::new("scene").attach_to_world(&ROBOTS.lib[1]).unwrap();
     let (m, _) = m.attach(&m.find(Namespace::Site, "arm/base").unwrap(), &ROBOTS.lib[0]).unwrap();
-    let (m, _) = m.attach(&m.find(Namespace::Site, "arm/robot/mount").unwrap(), &ROBOTS.lib[2]).unwrap();
+    let (m, _) =
+        m.attach(&m.find(Namespace::Site, "arm/robot/mount").unwrap(), &ROBOTS.lib[2]).unwrap();
     let (m, _) = m.add(arm.frame(), Element::new("freejoint")).unwrap();
     let (m, _) = m.add(arm.frame(), Element::new("joint").attr("name", "j")).unwrap();
-    let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "j")).unwrap();
+    let (m, _) =
+        m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "j")).unwrap();
     let m = m.rename_scope("arm", "c").unwrap();
     assert_eq!(canon_of(&m), NESTED);
     assert_eq!(canon_of(&m.detach("c/robot").unwrap()), DETACHED);
@@ -1580,7 +1701,10 @@ fn refusals_follow_the_reference() {
     n.attach(&ROBOTS.naive[0], None).unwrap();
     let m = Model::new("scene");
     let (m, b) = m
-        .add(&m.worldbody(), Element::new("body").attr("name", "b").child(Element::new("site").attr("name", "s")))
+        .add(
+            &m.worldbody(),
+            Element::new("body").attr("name", "b").child(Element::new("site").attr("name", "s")),
+        )
         .unwrap();
     let (m, robot) = m.attach(&m.find(Namespace::Site, "s").unwrap(), &ROBOTS.lib[0]).unwrap();
     let (m, robot_1) = m.attach_to_world(&ROBOTS.lib[0]).unwrap();
@@ -1648,21 +1772,46 @@ fn refusals_follow_the_reference() {
         m.set_attr(robot.frame(), "name", "x"),
         n.clone().set_name(&Target::Node(frame_b.clone()), Some("x")),
     );
-    check("b renamed b", true, m.set_attr(&b, "name", "b"), n.clone().set_name(&Target::Node(vec![0]), Some("b")));
-    check("removing b, which holds a frame", false, m.remove(&b), n.clone().remove(&Target::Node(vec![0])));
+    check(
+        "b renamed b",
+        true,
+        m.set_attr(&b, "name", "b"),
+        n.clone().set_name(&Target::Node(vec![0]), Some("b")),
+    );
+    check(
+        "removing b, which holds a frame",
+        false,
+        m.remove(&b),
+        n.clone().remove(&Target::Node(vec![0])),
+    );
     let s = m.find(Namespace::Site, "s").unwrap();
     let mut n3 = n.clone();
-    check("removing the site robot is attached at", true, m.remove(&s), n3.remove(&Target::Node(vec![0, 0])));
+    check(
+        "removing the site robot is attached at",
+        true,
+        m.remove(&s),
+        n3.remove(&Target::Node(vec![0, 0])),
+    );
     assert_eq!(canon_of(&m.remove(&s).unwrap()), n3.canon().to_string());
     assert!(n3.canon().to_string().contains("body name=robot/\n"), "the frame stays");
-    check("robot renamed robot", false, m.rename_scope("robot", "robot"), n.clone().rename_scope("robot", "robot"));
+    check(
+        "robot renamed robot",
+        false,
+        m.rename_scope("robot", "robot"),
+        n.clone().rename_scope("robot", "robot"),
+    );
     check(
         "robot renamed robot_1",
         false,
         m.rename_scope("robot", "robot_1"),
         n.clone().rename_scope("robot", "robot_1"),
     );
-    check("robot_1 renamed c", true, m.rename_scope("robot_1", "c"), n.clone().rename_scope("robot_1", "c"));
+    check(
+        "robot_1 renamed c",
+        true,
+        m.rename_scope("robot_1", "c"),
+        n.clone().rename_scope("robot_1", "c"),
+    );
 }
 
 // ---------------------------------------------------------------------------------
@@ -1693,7 +1842,11 @@ fn a_frame_refuses_two_joints_of_the_same_name() {
     assert!(
         m.add(frame.frame(), Element::new("joint").attr("name", "j")).is_err(),
         "a second joint j on the frame is accepted:\n{}",
-        m.add(frame.frame(), Element::new("joint").attr("name", "j")).unwrap().0.to_xml_string().unwrap()
+        m.add(frame.frame(), Element::new("joint").attr("name", "j"))
+            .unwrap()
+            .0
+            .to_xml_string()
+            .unwrap()
     );
     assert!(m.set_attr(&k, "name", "j").is_err(), "the frame joint k can be renamed j, next to j");
 }
@@ -1710,7 +1863,10 @@ fn a_frame_refuses_two_joints_of_the_same_name() {
 fn a_frame_joint_can_be_renamed_like_a_joint_of_its_model() {
     let m = Model::new("scene");
     let (m, _) = m
-        .add(&m.worldbody(), Element::new("body").attr("name", "b").child(Element::new("joint").attr("name", "k")))
+        .add(
+            &m.worldbody(),
+            Element::new("body").attr("name", "b").child(Element::new("joint").attr("name", "k")),
+        )
         .unwrap();
     let (m, frame) = m.attach_to_world(&ROBOTS.lib[0]).unwrap();
     let (m, j) = m.add(frame.frame(), Element::new("joint").attr("name", "j")).unwrap();

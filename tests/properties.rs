@@ -19,7 +19,8 @@ mod text;
 use std::collections::{HashMap, HashSet};
 
 use mjcf::{
-    Attrs, EditError, Element, ElementRef, ErrorKind, Loc, Model, Namespace, Reference, Value, ValueError, WriteOptions,
+    Attrs, EditError, Element, ElementRef, ErrorKind, Loc, Model, Namespace, Reference, Value,
+    ValueError, WriteOptions,
 };
 use proptest::prelude::*;
 use proptest::sample::Index;
@@ -37,7 +38,8 @@ fn config() -> ProptestConfig {
     if std::env::var_os("PROPTEST_RNG_SEED").is_none() {
         c.rng_seed = RngSeed::Fixed(0x6d6a_6366);
     }
-    c.failure_persistence = Some(Box::new(FileFailurePersistence::Direct("proptest-regressions/properties.txt")));
+    c.failure_persistence =
+        Some(Box::new(FileFailurePersistence::Direct("proptest-regressions/properties.txt")));
     c
 }
 
@@ -68,7 +70,11 @@ fn name() -> impl Strategy<Value = String> {
 
 /// A name, or (when `unnamed` is allowed) sometimes none.
 fn maybe_name(unnamed: bool) -> BoxedStrategy<Option<String>> {
-    if unnamed { prop::option::weighted(0.7, name()).boxed() } else { name().prop_map(Some).boxed() }
+    if unnamed {
+        prop::option::weighted(0.7, name()).boxed()
+    } else {
+        name().prop_map(Some).boxed()
+    }
 }
 
 const GEOM_TYPES: &[&str] = &["plane", "sphere", "capsule", "ellipsoid", "cylinder", "box"];
@@ -80,7 +86,14 @@ enum Action {
     /// A body under the worldbody or a body.
     Body { parent: Index, name: Option<String>, pos: [f64; 3], childclass: Option<Index> },
     /// A geom under the worldbody or a body.
-    Geom { parent: Index, name: Option<String>, ty: &'static str, upper: bool, size: Vec<f64>, class: Option<Index> },
+    Geom {
+        parent: Index,
+        name: Option<String>,
+        ty: &'static str,
+        upper: bool,
+        size: Vec<f64>,
+        class: Option<Index>,
+    },
     /// A site under the worldbody or a body.
     Site { parent: Index, name: Option<String>, pos: [f64; 3], size: Vec<f64> },
     /// A joint under a body.
@@ -118,7 +131,8 @@ fn action(unnamed: bool) -> impl Strategy<Value = Action> {
 
 /// Actions, and the root class name (`None`: unnamed).
 fn actions(unnamed: bool) -> impl Strategy<Value = (Option<String>, Vec<Action>)> {
-    let root = if unnamed { prop::option::of(name()).boxed() } else { name().prop_map(Some).boxed() };
+    let root =
+        if unnamed { prop::option::of(name()).boxed() } else { name().prop_map(Some).boxed() };
     (root, prop::collection::vec(action(unnamed), 0..32))
 }
 
@@ -139,7 +153,12 @@ struct Mirror {
 }
 
 impl Mirror {
-    fn push(&mut self, parent: usize, tag: &'static str, attrs: Vec<(&'static str, String)>) -> usize {
+    fn push(
+        &mut self,
+        parent: usize,
+        tag: &'static str,
+        attrs: Vec<(&'static str, String)>,
+    ) -> usize {
         let i = self.nodes.len();
         self.nodes.push(XNode { tag, attrs, children: Vec::new() });
         self.nodes[parent].children.push(i);
@@ -153,7 +172,10 @@ impl Mirror {
         out.push_str(n.tag);
         for (k, v) in &n.attrs {
             // Single quotes and the spelling `&#38;`, unlike the writer.
-            out.push_str(&format!(" {k} = '{}'", v.replace('&', "&#38;").replace('<', "&lt;").replace('\'', "&apos;")));
+            out.push_str(&format!(
+                " {k} = '{}'",
+                v.replace('&', "&#38;").replace('<', "&lt;").replace('\'', "&apos;")
+            ));
         }
         if n.children.is_empty() {
             out.push_str(" />\n");
@@ -203,7 +225,8 @@ struct Built {
 impl Built {
     /// The mirror as MJCF text.
     fn text(&self) -> String {
-        let mut out = String::from("<?xml version='1.0'?>\n<!-- generated -->\n<mujoco model='m'>\n");
+        let mut out =
+            String::from("<?xml version='1.0'?>\n<!-- generated -->\n<mujoco model='m'>\n");
         for i in [self.m_default, self.m_worldbody, self.m_actuator] {
             if i == self.m_default || !self.mirror.nodes[i].children.is_empty() {
                 self.mirror.render(i, 1, &mut out);
@@ -218,7 +241,8 @@ impl Built {
 fn allowed_refusal(e: &EditError) -> bool {
     matches!(
         e.kind(),
-        ErrorKind::DuplicateIdentifier { .. } | ErrorKind::InvalidValue { error: ValueError::WorldBody, .. }
+        ErrorKind::DuplicateIdentifier { .. }
+            | ErrorKind::InvalidValue { error: ValueError::WorldBody, .. }
     )
 }
 
@@ -306,8 +330,9 @@ fn apply(b: &mut Built, a: &Action) {
                 return;
             }
             let (p, mp) = b.bodies[parent.index(b.bodies.len())].clone();
-            let mut el =
-                named(Element::new("joint"), &mut attrs, name).attr("type", kw(ty, *upper)).attr("axis", *axis);
+            let mut el = named(Element::new("joint"), &mut attrs, name)
+                .attr("type", kw(ty, *upper))
+                .attr("axis", *axis);
             attrs.push(("type", kw(ty, *upper)));
             attrs.push(("axis", ftexts(axis)));
             if let Some(r) = range {
@@ -321,7 +346,9 @@ fn apply(b: &mut Built, a: &Action) {
                 return;
             }
             let j = b.joints[joint.index(b.joints.len())].clone();
-            let el = named(Element::new("motor"), &mut attrs, name).attr("joint", j.as_str()).attr("gear", [*gear]);
+            let el = named(Element::new("motor"), &mut attrs, name)
+                .attr("joint", j.as_str())
+                .attr("gear", [*gear]);
             attrs.push(("joint", j));
             attrs.push(("gear", ftext(*gear)));
             (b.model.actuator(), b.m_actuator, el, "motor")
@@ -397,7 +424,11 @@ fn names(model: &Model) -> Vec<(Namespace, String, Loc)> {
 /// The elements of the worldbody's subtree (not the worldbody).
 fn world_elements(model: &Model) -> Vec<Loc> {
     let wb = model.worldbody();
-    elements_with_ancestry(model).into_iter().filter(|(_, above)| above.contains(&wb)).map(|(l, _)| l).collect()
+    elements_with_ancestry(model)
+        .into_iter()
+        .filter(|(_, above)| above.contains(&wb))
+        .map(|(l, _)| l)
+        .collect()
 }
 
 fn write(model: &Model) -> String {
@@ -436,12 +467,17 @@ fn write_read_write_is_a_fixed_point() {
         .run(&actions(true), |(root, acts)| {
             let b = build(&root, &acts);
             let w1 = write(&b.model);
-            let w2 = write(&Model::from_xml_str(&w1).map_err(|e| TestCaseError::fail(format!("{e}\n{w1}")))?);
+            let w2 = write(
+                &Model::from_xml_str(&w1).map_err(|e| TestCaseError::fail(format!("{e}\n{w1}")))?,
+            );
             if root.is_none() {
                 prop_assert_eq!(w2, w1);
             } else {
                 prop_assert_eq!(&w2, &text::rewrapped_root_default(&w1));
-                let w3 = write(&Model::from_xml_str(&w2).map_err(|e| TestCaseError::fail(format!("{e}\n{w2}")))?);
+                let w3 = write(
+                    &Model::from_xml_str(&w2)
+                        .map_err(|e| TestCaseError::fail(format!("{e}\n{w2}")))?,
+                );
                 prop_assert_eq!(w3, w2);
             }
             Ok(())
@@ -481,7 +517,11 @@ fn edit() -> impl Strategy<Value = Edit> {
         (any::<Index>(), floats::<3>()).prop_map(|(target, pos)| Edit::SetPos { target, pos }),
         (any::<Index>(), floats::<4>()).prop_map(|(target, rgba)| Edit::SetRgba { target, rgba }),
         any::<Index>().prop_map(|target| Edit::ClearPos { target }),
-        (any::<Index>(), maybe_name(true), float()).prop_map(|(parent, name, size)| Edit::Add { parent, name, size }),
+        (any::<Index>(), maybe_name(true), float()).prop_map(|(parent, name, size)| Edit::Add {
+            parent,
+            name,
+            size
+        }),
         any::<Index>().prop_map(|target| Edit::Remove { target }),
         (any::<Index>(), maybe_name(true)).prop_map(|(target, name)| Edit::Rename { target, name }),
         maybe_name(true).prop_map(|name| Edit::ModelName { name }),
@@ -702,19 +742,32 @@ fn characters_xml_cannot_hold_are_refused() {
         assert!(
             matches!(
                 err.kind(),
-                ErrorKind::InvalidValue { attribute: "name", error: ValueError::InvalidCharacter(_), .. }
+                ErrorKind::InvalidValue {
+                    attribute: "name",
+                    error: ValueError::InvalidCharacter(_),
+                    ..
+                }
             ),
             "{err}"
         );
         let err = m.set_attr(&m.default_class(), "class", bad).unwrap_err();
-        assert!(matches!(err.kind(), ErrorKind::InvalidValue { error: ValueError::InvalidCharacter(_), .. }), "{err}");
+        assert!(
+            matches!(
+                err.kind(),
+                ErrorKind::InvalidValue { error: ValueError::InvalidCharacter(_), .. }
+            ),
+            "{err}"
+        );
         let text = format!("<mujoco><worldbody><body name=\"{bad}\"/></worldbody></mujoco>");
         match Model::from_xml_str(&text) {
             Err(e) => assert!(e.pos().is_some(), "{e}"),
             Ok(_) => panic!("{bad:?} was read"),
         }
         let named = m.with_name(bad);
-        assert!(matches!(named.to_xml_string(), Err(mjcf::WriteError::InvalidCharacter { attribute: "model", .. })));
+        assert!(matches!(
+            named.to_xml_string(),
+            Err(mjcf::WriteError::InvalidCharacter { attribute: "model", .. })
+        ));
     }
     // Tab, newline and carriage return are XML characters: they survive as references.
     let (m, _) = m.add(&m.worldbody(), Element::new("body").attr("name", "a\tb\nc\rd")).unwrap();

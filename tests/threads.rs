@@ -27,7 +27,9 @@ fn models_locators_and_errors_are_send_and_sync() {
 fn base() -> Model {
     let mut m = Model::new("arena");
     for i in 0..10 {
-        let site = Element::new("site").attr("name", format!("spawn_{i}").as_str()).attr("pos", [i as f64, 0.0, 0.5]);
+        let site = Element::new("site")
+            .attr("name", format!("spawn_{i}").as_str())
+            .attr("pos", [i as f64, 0.0, 0.5]);
         m = m.add(&m.worldbody(), site).unwrap().0;
     }
     let r = robot("robot");
@@ -86,7 +88,8 @@ fn a_thousand_variants_built_in_parallel_from_one_base() {
         // Edits landed where they should.
         assert_eq!(m.scopes().count(), 5);
         assert!(m.attached("robot_5").is_ok(), "variant {i}: the extra robot takes scope robot_5");
-        let detached = if (i + 2) % 5 == 0 { "robot".to_string() } else { format!("robot_{}", (i + 2) % 5) };
+        let detached =
+            if (i + 2) % 5 == 0 { "robot".to_string() } else { format!("robot_{}", (i + 2) % 5) };
         assert!(m.attached(&detached).is_err(), "variant {i}");
         assert!(!xml.contains(&format!("\"{detached}/torso\"")), "variant {i}");
         // Locators stay valid across threads and versions: the spawn sites are the base's.

@@ -22,7 +22,8 @@ use mjcf::{Element, Error, Model, Namespace};
 /// live, total and peak heap bytes (read with [`live_bytes`], [`total_bytes`]), and
 /// divan's profiler inside it counts allocations per benchmark iteration.
 #[global_allocator]
-static ALLOC: cap::Cap<divan::AllocProfiler> = cap::Cap::new(divan::AllocProfiler::system(), usize::MAX);
+static ALLOC: cap::Cap<divan::AllocProfiler> =
+    cap::Cap::new(divan::AllocProfiler::system(), usize::MAX);
 
 /// Heap bytes allocated and not yet freed, over the whole process.
 pub(crate) fn live_bytes() -> usize {
@@ -52,7 +53,8 @@ pub(crate) fn models_dir() -> PathBuf {
 
 /// The quadruped, read from `benches/models/quadruped_robot.xml` (with its includes).
 pub(crate) fn read_robot() -> Model {
-    Model::from_path(models_dir().join("quadruped_robot.xml")).expect("benches/models/quadruped_robot.xml reads")
+    Model::from_path(models_dir().join("quadruped_robot.xml"))
+        .expect("benches/models/quadruped_robot.xml reads")
 }
 
 /// The arena with `n` spawn sites: `benches/models/arena_{100,1000}.xml`, or generated
@@ -181,7 +183,8 @@ pub(crate) fn chain_10k_xml() -> String {
 
 /// W3: the CMU humanoid (`benches/models/humanoid_CMU.xml`, from the conformance corpus).
 pub(crate) fn humanoid_xml() -> String {
-    std::fs::read_to_string(models_dir().join("humanoid_CMU.xml")).expect("benches/models/humanoid_CMU.xml")
+    std::fs::read_to_string(models_dir().join("humanoid_CMU.xml"))
+        .expect("benches/models/humanoid_CMU.xml")
 }
 
 /// W5: reads `xml` into quick-xml events and writes them back with `quick_xml::Writer`;
@@ -230,7 +233,12 @@ pub(crate) struct Measured<T> {
 
 /// Runs `f` repeatedly (at least `min_runs` times and until about `budget` has passed,
 /// at most `max_runs`), dropping each result except the last.
-pub(crate) fn measure<T>(min_runs: usize, max_runs: usize, budget: Duration, mut f: impl FnMut() -> T) -> Measured<T> {
+pub(crate) fn measure<T>(
+    min_runs: usize,
+    max_runs: usize,
+    budget: Duration,
+    mut f: impl FnMut() -> T,
+) -> Measured<T> {
     let mut times = Vec::new();
     let start = Instant::now();
     let mut last = None;

@@ -103,13 +103,18 @@ impl Model {
         let tag = node.kind().tag();
         let (parent_path, parent, position, body_kind, attrs) = match tag {
             "worldbody" => {
-                let kind = node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                let kind =
+                    node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 (path.clone(), node, node.children().len(), kind, Vec::new())
             }
             "site" if !path.is_empty() => {
-                let (last, parent_path) = path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
+                let (last, parent_path) =
+                    path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
                 let parent = self.node_at(&parent_path).ok_or_else(|| err(ErrorKind::NotFound))?;
-                let kind = parent.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                let kind = parent
+                    .kind()
+                    .child("body")
+                    .ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 // Right after the site, after the frames already attached there.
                 let mut pos = last + 1;
                 while parent.children().get(pos).is_some_and(|c| c.attached().is_some()) {
@@ -121,12 +126,18 @@ impl Model {
             _ => return Err(err(ErrorKind::InvalidParent(tag))),
         };
         let id = ElementId::fresh();
-        let frame = Node::frame(id, body_kind, attrs, Attached { scope: scope.clone(), model: child.clone() });
+        let frame = Node::frame(
+            id,
+            body_kind,
+            attrs,
+            Attached { scope: scope.clone(), model: child.clone() },
+        );
         // A new frame has no identifier, so indexing it cannot find a duplicate.
         let _ = index.insert_subtree(Some(parent.id()), &frame, position);
         // The merged settings: the child's folded into ours (each cached, so O(1)).
         let mut sections = settings::merged(self).map_err(err)?.to_vec();
-        settings::fold_sections(&mut sections, &settings::merged(child).map_err(err)?).map_err(err)?;
+        settings::fold_sections(&mut sections, &settings::merged(child).map_err(err)?)
+            .map_err(err)?;
         index.scopes.push(scope, id, child.index.merged.clone());
         let root = self.root.update_path(&parent_path, |p| {
             let mut children = p.children().clone();
@@ -150,7 +161,8 @@ impl Model {
     /// attached at `scope`; [`ErrorKind::InvalidScope`] for a malformed path.
     pub fn detach(&self, scope: impl ScopeRef) -> Result<Model, EditError> {
         let frames = scope.frames_in(self)?;
-        let (last, outer) = frames.split_last().ok_or_else(|| not_attached(self, scope.path_text()))?;
+        let (last, outer) =
+            frames.split_last().ok_or_else(|| not_attached(self, scope.path_text()))?;
         let (m, ()) = self.in_scope(outer, |m: &Model| {
             let missing = || not_attached(m, scope.path_text());
             let path = m.path_of(*last).ok_or_else(missing)?;
@@ -208,7 +220,10 @@ impl Model {
             // name is refused too.
             if m.index.frame_of(to).is_some() {
                 return Err(EditError::new(
-                    ErrorKind::DuplicateIdentifier { namespace: crate::Namespace::AttachmentFrame, name: to.into() },
+                    ErrorKind::DuplicateIdentifier {
+                        namespace: crate::Namespace::AttachmentFrame,
+                        name: to.into(),
+                    },
                     text.clone(),
                 ));
             }
@@ -217,7 +232,9 @@ impl Model {
             index.scopes.rename(*frame, to.into());
             let root = m.root.update_path(&path, |n| {
                 let a = n.attached().ok_or_else(|| not_attached(m, &text))?;
-                Ok::<_, EditError>(n.with_attached(Attached { scope: to.into(), model: a.model.clone() }))
+                Ok::<_, EditError>(
+                    n.with_attached(Attached { scope: to.into(), model: a.model.clone() }),
+                )
             })?;
             Ok((m.next(root, index), ()))
         })?;

@@ -44,13 +44,19 @@ impl Model {
     /// A source with attachments is refused ([`ErrorKind::SourceHasAttachments`]), as
     /// in the reference: copy what it was built from instead. The receiving model
     /// may have attachments; they stay as they are.
-    pub fn include_copy(&self, other: &Model, override_attributes: bool) -> Result<Model, EditError> {
+    pub fn include_copy(
+        &self,
+        other: &Model,
+        override_attributes: bool,
+    ) -> Result<Model, EditError> {
         if !other.index.scopes.is_empty() {
             return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
         }
         let mut c = Copier { dest: self, override_attributes, ids: HashMap::new() };
         let mut path = String::new();
-        let root = c.merge(&self.root, &other.root, &mut path).map_err(|k| EditError::new(k, path.clone()))?;
+        let root = c
+            .merge(&self.root, &other.root, &mut path)
+            .map_err(|k| EditError::new(k, path.clone()))?;
         // References anywhere (in copied and in merged elements, such as an included
         // default class naming an included material) follow the copies.
         let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
@@ -60,7 +66,10 @@ impl Model {
         let m = self.next(root, index);
         if let Err(d) = failed {
             let path = m.path_of(d.id).map(|p| m.describe(&p)).unwrap_or_default();
-            return Err(EditError::new(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, path));
+            return Err(EditError::new(
+                ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
+                path,
+            ));
         }
         crate::model::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
         Ok(m)
@@ -72,7 +81,11 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::include_copy`]; `self` is unchanged on error.
-    pub fn include_copy_mut(&mut self, other: &Model, override_attributes: bool) -> Result<(), EditError> {
+    pub fn include_copy_mut(
+        &mut self,
+        other: &Model,
+        override_attributes: bool,
+    ) -> Result<(), EditError> {
         let r = self.include_copy(other, override_attributes).map(|m| (m, ()));
         self.apply(r)
     }
@@ -103,7 +116,15 @@ impl Copier<'_> {
         ) -> Result<Merging<'s>, ErrorKind> {
             c.ids.insert(src.id(), dest.id());
             let attrs = merge_attrs(dest, src, c.override_attributes)?;
-            Ok(Merging { dest: dest.clone(), src, attrs, children: dest.children().clone(), next: 0, slot, path_len })
+            Ok(Merging {
+                dest: dest.clone(),
+                src,
+                attrs,
+                children: dest.children().clone(),
+                next: 0,
+                slot,
+                path_len,
+            })
         }
         let mut stack = vec![start(self, dest, src, 0, path.len())?];
         while let Some(top) = stack.last_mut() {
@@ -151,7 +172,9 @@ impl Copier<'_> {
         if !self.override_attributes {
             return Ok(None);
         }
-        let (Some(ns), Some(name)) = (s.kind().namespace(), s.identifier()) else { return Ok(None) };
+        let (Some(ns), Some(name)) = (s.kind().namespace(), s.identifier()) else {
+            return Ok(None);
+        };
         let Some(loc) = self.dest.find(ns, name) else { return Ok(None) };
         match children.iter().position(|c| c.id() == loc.id()) {
             Some(p) => Ok(Some(p)),
@@ -190,12 +213,20 @@ fn merge_attrs(dest: &Node, src: &Node, override_attributes: bool) -> Result<Vec
 
 /// The `model` attribute of a root node.
 fn other_name(root: &Node) -> &str {
-    ElementKind::ROOT.attr_index("model").and_then(|i| root.attr(i)).and_then(Value::as_str).unwrap_or("")
+    ElementKind::ROOT
+        .attr_index("model")
+        .and_then(|i| root.attr(i))
+        .and_then(Value::as_str)
+        .unwrap_or("")
 }
 
 /// Rewrites element references through `ids` inside the subtrees rooted at `under`
 /// (iteratively), sharing every subtree that does not change.
-pub(crate) fn remap_refs(root: &Node, ids: &HashMap<ElementId, ElementId>, under: &HashSet<ElementId>) -> Node {
+pub(crate) fn remap_refs(
+    root: &Node,
+    ids: &HashMap<ElementId, ElementId>,
+    under: &HashSet<ElementId>,
+) -> Node {
     // (node, children done, inside a remapped subtree)
     let mut stack: Vec<(&Node, bool, bool)> = vec![(root, false, under.contains(&root.id()))];
     let mut built: Vec<Node> = Vec::new();

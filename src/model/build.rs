@@ -96,7 +96,10 @@ pub(crate) struct Part {
 impl Element {
     /// An element with this tag and nothing else.
     pub fn new(tag: &str) -> Element {
-        Element { parts: vec![Part { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }], root: 0 }
+        Element {
+            parts: vec![Part { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }],
+            root: 0,
+        }
     }
 
     /// Sets an attribute (checked when the element is added).
@@ -123,15 +126,21 @@ impl Element {
     #[must_use]
     pub fn child(self, child: Element) -> Element {
         // Move the smaller arena into the larger one.
-        let (mut big, small, parent_is_big) =
-            if self.parts.len() >= child.parts.len() { (self, child, true) } else { (child, self, false) };
+        let (mut big, small, parent_is_big) = if self.parts.len() >= child.parts.len() {
+            (self, child, true)
+        } else {
+            (child, self, false)
+        };
         let offset = big.parts.len();
         big.parts.extend(small.parts.into_iter().map(|mut p| {
             p.children.iter_mut().for_each(|c| *c += offset);
             p
         }));
-        let (parent, child) =
-            if parent_is_big { (big.root, small.root + offset) } else { (small.root + offset, big.root) };
+        let (parent, child) = if parent_is_big {
+            (big.root, small.root + offset)
+        } else {
+            (small.root + offset, big.root)
+        };
         big.parts[parent].children.push(child);
         big.root = parent;
         big
@@ -161,7 +170,9 @@ impl PartialEq for Element {
             if a.tag != b.tag || a.attrs != b.attrs || a.children.len() != b.children.len() {
                 return false;
             }
-            stack.extend(a.children.iter().zip(&b.children).map(|(x, y)| (self.part(*x), other.part(*y))));
+            stack.extend(
+                a.children.iter().zip(&b.children).map(|(x, y)| (self.part(*x), other.part(*y))),
+            );
         }
         true
     }
@@ -264,7 +275,8 @@ impl ValueCtx<'_> {
         input: Option<Input<'_>>,
     ) -> Result<(usize, Option<Value>), ErrorKind> {
         let name = if name == "dclass" { "class" } else { name };
-        let index = kind.attr_index(name).ok_or_else(|| ErrorKind::unknown_attribute(kind, name))?;
+        let index =
+            kind.attr_index(name).ok_or_else(|| ErrorKind::unknown_attribute(kind, name))?;
         let spec = kind.attr(index);
         let Some(input) = input else { return Ok((index, None)) };
         let invalid = |error: ValueError| ErrorKind::InvalidValue {
@@ -294,7 +306,10 @@ impl ValueCtx<'_> {
                 let (_, contents) = self.files.read(base, text)?;
                 let asset = FileAsset::from_path_and_contents(text, contents);
                 if kind.tag() == "mesh"
-                    && !matches!(asset.extension().to_ascii_lowercase().as_str(), ".stl" | ".msh" | ".obj")
+                    && !matches!(
+                        asset.extension().to_ascii_lowercase().as_str(),
+                        ".stl" | ".msh" | ".obj"
+                    )
                 {
                     return Err(invalid(ValueError::MeshExtension));
                 }
@@ -343,13 +358,19 @@ pub(crate) fn apply_attrs(
             (Err(p), Some(v)) => attrs.insert(p, (i, v)),
             (Ok(p), None) => {
                 if kind.attr(index).required {
-                    return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: kind.attr(index).name });
+                    return Err(ErrorKind::MissingRequired {
+                        tag: kind.tag(),
+                        attribute: kind.attr(index).name,
+                    });
                 }
                 attrs.remove(p);
             }
             (Err(_), None) => {
                 if kind.attr(index).required {
-                    return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: kind.attr(index).name });
+                    return Err(ErrorKind::MissingRequired {
+                        tag: kind.tag(),
+                        attribute: kind.attr(index).name,
+                    });
                 }
             }
         }
@@ -369,12 +390,22 @@ pub(crate) fn check_required(kind: ElementKind, attrs: &[Attr]) -> Result<(), Er
 
 /// Checks that a nested default class has a name: only the root class may be unnamed
 /// (MuJoCo refuses an empty class name, and the output would hold two classes `/`).
-pub(crate) fn check_class_named(parent: ElementKind, kind: ElementKind, attrs: &[Attr]) -> Result<(), ErrorKind> {
+pub(crate) fn check_class_named(
+    parent: ElementKind,
+    kind: ElementKind,
+    attrs: &[Attr],
+) -> Result<(), ErrorKind> {
     if kind.tag() != "default" || parent.tag() != "default" {
         return Ok(());
     }
-    let named = kind.identifier().is_some_and(|i| attrs.binary_search_by_key(&(i as u16), |(k, _)| *k).is_ok());
-    if named { Ok(()) } else { Err(ErrorKind::MissingRequired { tag: "default", attribute: "class" }) }
+    let named = kind
+        .identifier()
+        .is_some_and(|i| attrs.binary_search_by_key(&(i as u16), |(k, _)| *k).is_ok());
+    if named {
+        Ok(())
+    } else {
+        Err(ErrorKind::MissingRequired { tag: "default", attribute: "class" })
+    }
 }
 
 /// Gives a nameless `mesh`, `hfield` or `texture` with a file the file's stem as name,
@@ -407,7 +438,8 @@ pub(crate) fn build(
     path: &mut String,
 ) -> Result<Node, ErrorKind> {
     let root = el.root_part();
-    let kind = parent.child(&root.tag).ok_or_else(|| ErrorKind::invalid_child(parent, &root.tag))?;
+    let kind =
+        parent.child(&root.tag).ok_or_else(|| ErrorKind::invalid_child(parent, &root.tag))?;
     if kind.multiplicity() == Multiplicity::Singleton {
         return Err(ErrorKind::DuplicateChild(kind.tag()));
     }
@@ -451,7 +483,16 @@ impl<'e> Filling<'e> {
         name_from_file(kind, &mut attrs);
         check_required(kind, &attrs)?;
         check_class_named(parent, kind, &attrs)?;
-        Ok(Filling { id: node.id(), kind, attrs, children: node.children().clone(), part, next: 0, path_len, slot })
+        Ok(Filling {
+            id: node.id(),
+            kind,
+            attrs,
+            children: node.children().clone(),
+            part,
+            next: 0,
+            path_len,
+            slot,
+        })
     }
 }
 

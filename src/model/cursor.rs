@@ -47,7 +47,10 @@ pub(crate) struct Insts<'a> {
 
 impl<'a> Insts<'a> {
     fn new(top: &'a Model) -> Insts<'a> {
-        Insts { list: vec![Inst { model: top, frames: Arc::from([]), parent: None }], by_frame: HashMap::new() }
+        Insts {
+            list: vec![Inst { model: top, frames: Arc::from([]), parent: None }],
+            by_frame: HashMap::new(),
+        }
     }
 
     /// The instance attached at `frame` (a node of instance `parent`).
@@ -59,7 +62,11 @@ impl<'a> Insts<'a> {
         let mut frames = self.list[parent].frames.to_vec();
         frames.push(frame.id());
         let i = self.list.len();
-        self.list.push(Inst { model: &a.model, frames: frames.into(), parent: Some((parent, a.scope.as_str())) });
+        self.list.push(Inst {
+            model: &a.model,
+            frames: frames.into(),
+            parent: Some((parent, a.scope.as_str())),
+        });
         self.by_frame.insert((parent, frame.id()), i);
         Some(i)
     }
@@ -83,8 +90,12 @@ impl<'a> Insts<'a> {
                 out.push(i);
             }
             let m = self.list[i].model;
-            let mut children: Vec<usize> =
-                m.index.scopes.iter().filter_map(|(_, f)| self.attached(i, m.node_by_id(f)?)).collect();
+            let mut children: Vec<usize> = m
+                .index
+                .scopes
+                .iter()
+                .filter_map(|(_, f)| self.attached(i, m.node_by_id(f)?))
+                .collect();
             children.reverse();
             stack.extend(children);
         }
@@ -144,7 +155,12 @@ impl<'a> Walk<'a> {
     /// documentation).
     pub(crate) fn expand(&mut self, item: Item<'a>) -> Vec<Item<'a>> {
         let Item { inst, node, depth, .. } = item;
-        let plain = |n: &'a Node, inst: usize, in_frame: bool| Item { inst, node: n, depth: depth + 1, in_frame };
+        let plain = |n: &'a Node, inst: usize, in_frame: bool| Item {
+            inst,
+            node: n,
+            depth: depth + 1,
+            in_frame,
+        };
         let mut out: Vec<Item<'a>> = Vec::with_capacity(node.children().len());
         if node.attached().is_some() {
             out.extend(node.children().iter().map(|c| plain(c, inst, true)));
@@ -156,12 +172,17 @@ impl<'a> Walk<'a> {
             return out;
         }
         out.extend(node.children().iter().map(|c| plain(c, inst, false)));
-        if inst != 0 || depth > 1 || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT) {
+        if inst != 0
+            || depth > 1
+            || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT)
+        {
             return out;
         }
         if depth == 0 {
             // The root: after the root default class, every attached root class.
-            let Some(p) = out.iter().position(|c| c.node.kind().tag() == "default") else { return out };
+            let Some(p) = out.iter().position(|c| c.node.kind().tag() == "default") else {
+                return out;
+            };
             let kind = out[p].node.kind();
             let siblings: Vec<Item<'a>> = self
                 .attached_under(0)
@@ -248,7 +269,8 @@ impl<'a> Iterator for Preorder<'a> {
         let step = self.walk.next()?;
         let (Step::Enter(item) | Step::Leave(item)) = step;
         let inst = &self.walk.insts.list[item.inst];
-        let view = ElementRef::new(self.walk.insts.list[0].model, inst.model, &inst.frames, item.node);
+        let view =
+            ElementRef::new(self.walk.insts.list[0].model, inst.model, &inst.frames, item.node);
         Some(match step {
             Step::Enter(_) => Event::Enter(view),
             Step::Leave(_) => Event::Leave(view),
@@ -292,8 +314,14 @@ impl Model {
         let mut walk = Walk::new(self);
         while let Some(step) = walk.next() {
             if let Step::Enter(item) = step {
-                if item.node.kind().namespace() == Some(namespace) && namespace != Namespace::AttachmentFrame {
-                    out.push(Loc::scoped(walk.insts.list[item.inst].frames.clone(), item.node.id(), name));
+                if item.node.kind().namespace() == Some(namespace)
+                    && namespace != Namespace::AttachmentFrame
+                {
+                    out.push(Loc::scoped(
+                        walk.insts.list[item.inst].frames.clone(),
+                        item.node.id(),
+                        name,
+                    ));
                 }
             }
         }
@@ -335,7 +363,12 @@ pub struct ElementRef<'a> {
 }
 
 impl<'a> ElementRef<'a> {
-    fn new(top: &'a Model, model: &'a Model, frames: &Arc<[ElementId]>, node: &'a Node) -> ElementRef<'a> {
+    fn new(
+        top: &'a Model,
+        model: &'a Model,
+        frames: &Arc<[ElementId]>,
+        node: &'a Node,
+    ) -> ElementRef<'a> {
         ElementRef { top, model, frames: frames.clone(), node }
     }
 
@@ -378,7 +411,7 @@ impl<'a> ElementRef<'a> {
     /// The name MuJoCo will give the element in the written model: the identifier
     /// with its scope prefix (`robot_1/torso`), an attachment frame's scope
     /// (`robot_1/`), or the automatic name of an unnamed element (`//unnamed_geom_0`,
-    /// `robot/unnamed_geom_2`); `None` for elements without a namespace.
+    /// `robot//unnamed_geom_2`); `None` for elements without a namespace.
     ///
     /// Time: O(levels · depth · log n) for named elements and frames; O(size of the
     /// element's model) for unnamed ones, whose number is their position.
@@ -389,6 +422,14 @@ impl<'a> ElementRef<'a> {
             return Some(format!("{prefix}{}/", a.scope));
         }
         let ns = self.node.kind().namespace()?;
+        // A frame's joint is named after its frame: `robot/` or `robot/root/`.
+        let parent = self.model.index.elems.get(&self.node.id()).and_then(|e| e.parent);
+        if let Some(frame) = parent.and_then(|p| self.model.index.scope_of(p)) {
+            return Some(match self.identifier() {
+                Some(n) => format!("{prefix}{frame}/{n}/"),
+                None => format!("{prefix}{frame}/"),
+            });
+        }
         if let Some(n) = self.identifier() {
             return Some(format!("{prefix}{n}"));
         }
@@ -437,7 +478,9 @@ impl<'a> ElementRef<'a> {
     /// gives (for a resolved reference, its target's own identifier), if set.
     pub fn string(&self, name: &str) -> Option<&'a str> {
         match self.attr(name)? {
-            Value::Reference(Reference::Element(id)) => self.model.index.elems.get(id)?.name.as_deref(),
+            Value::Reference(Reference::Element(id)) => {
+                self.model.index.elems.get(id)?.name.as_deref()
+            }
             v => v.as_str(),
         }
     }
@@ -512,25 +555,37 @@ impl fmt::Debug for ElementRef<'_> {
 
 impl Model {
     /// The value of attribute `name` of the element at `loc`.
-    fn value_at<'s>(&'s self, loc: &Loc, name: &str) -> Result<(&'static str, &'s Value), EditError> {
+    fn value_at<'s>(
+        &'s self,
+        loc: &Loc,
+        name: &str,
+    ) -> Result<(&'static str, &'s Value), EditError> {
         let e = self.get(loc)?;
         let path = || self.scope_path(loc).unwrap_or_default();
         let kind = e.kind();
-        let index =
-            kind.attr_index(name).ok_or_else(|| EditError::new(ErrorKind::unknown_attribute(kind, name), path()))?;
+        let index = kind
+            .attr_index(name)
+            .ok_or_else(|| EditError::new(ErrorKind::unknown_attribute(kind, name), path()))?;
         let spec = kind.attr(index);
-        let v = e
-            .node
-            .attr(index)
-            .ok_or_else(|| EditError::new(ErrorKind::Unset { tag: kind.tag(), attribute: spec.name }, path()))?;
+        let v = e.node.attr(index).ok_or_else(|| {
+            EditError::new(ErrorKind::Unset { tag: kind.tag(), attribute: spec.name }, path())
+        })?;
         Ok((spec.name, v))
     }
 
-    fn typed<'s, T>(&'s self, loc: &Loc, name: &str, f: impl FnOnce(&'s Value) -> Option<T>) -> Result<T, EditError> {
+    fn typed<'s, T>(
+        &'s self,
+        loc: &Loc,
+        name: &str,
+        f: impl FnOnce(&'s Value) -> Option<T>,
+    ) -> Result<T, EditError> {
         let (attribute, v) = self.value_at(loc, name)?;
         let tag = self.get(loc)?.tag();
         f(v).ok_or_else(|| {
-            EditError::new(ErrorKind::WrongType { tag, attribute }, self.scope_path(loc).unwrap_or_default())
+            EditError::new(
+                ErrorKind::WrongType { tag, attribute },
+                self.scope_path(loc).unwrap_or_default(),
+            )
         })
     }
 
@@ -589,7 +644,10 @@ impl Model {
         let tag = e.tag();
         let attribute = e.kind().attr(e.kind().attr_index(name).unwrap_or(0)).name;
         e.string(name).ok_or_else(|| {
-            EditError::new(ErrorKind::WrongType { tag, attribute }, self.scope_path(loc).unwrap_or_default())
+            EditError::new(
+                ErrorKind::WrongType { tag, attribute },
+                self.scope_path(loc).unwrap_or_default(),
+            )
         })
     }
 }

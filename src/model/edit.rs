@@ -81,7 +81,12 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::add`].
-    pub fn insert(&self, parent: &Loc, index: usize, element: Element) -> Result<(Model, Loc), EditError> {
+    pub fn insert(
+        &self,
+        parent: &Loc,
+        index: usize,
+        element: Element,
+    ) -> Result<(Model, Loc), EditError> {
         self.insert_at(parent, Some(index), element)
     }
 
@@ -91,17 +96,33 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::add`]; `self` is unchanged on error.
-    pub fn insert_mut(&mut self, parent: &Loc, index: usize, element: Element) -> Result<Loc, EditError> {
+    pub fn insert_mut(
+        &mut self,
+        parent: &Loc,
+        index: usize,
+        element: Element,
+    ) -> Result<Loc, EditError> {
         let r = self.insert(parent, index, element);
         self.apply(r)
     }
 
-    fn insert_at(&self, parent: &Loc, index: Option<usize>, element: Element) -> Result<(Model, Loc), EditError> {
-        let (m, new) = self.in_scope(parent.scope(), |m: &Model| m.insert_here(parent, index, &element))?;
+    fn insert_at(
+        &self,
+        parent: &Loc,
+        index: Option<usize>,
+        element: Element,
+    ) -> Result<(Model, Loc), EditError> {
+        let (m, new) =
+            self.in_scope(parent.scope(), |m: &Model| m.insert_here(parent, index, &element))?;
         Ok((m, new.within(parent.scope())))
     }
 
-    fn insert_here(&self, loc: &Loc, index: Option<usize>, element: &Element) -> Result<(Model, Loc), EditError> {
+    fn insert_here(
+        &self,
+        loc: &Loc,
+        index: Option<usize>,
+        element: &Element,
+    ) -> Result<(Model, Loc), EditError> {
         let path = self.locate(loc)?;
         // The element path for errors, made only when there is one: the parent's path
         // (O(width) to describe) and the new element's own part.
@@ -117,11 +138,12 @@ impl Model {
         let parent_node = self.node_at(&path).cloned().ok_or_else(|| self.stale(loc))?;
         let basepaths = self.basepaths();
         let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
-        let node =
-            build::build(&ctx, parent_node.kind(), element, &mut sub).map_err(|k| EditError::new(k, at(&sub)))?;
+        let node = build::build(&ctx, parent_node.kind(), element, &mut sub)
+            .map_err(|k| EditError::new(k, at(&sub)))?;
         if let Some(a) = parent_node.attached() {
             let grand = path.split_last().and_then(|(_, p)| self.node_at(p));
-            check_frame_child(grand, &parent_node, &node, &a.scope).map_err(|k| EditError::new(k, at(&sub)))?;
+            check_frame_child(grand, &parent_node, &node, &a.scope)
+                .map_err(|k| EditError::new(k, at(&sub)))?;
         }
         if node.kind().multiplicity() == Multiplicity::OnDemand
             && parent_node.children().iter().any(|c| c.kind() == node.kind())
@@ -129,7 +151,10 @@ impl Model {
             return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), at(&sub)));
         }
         let children = parent_node.children();
-        let singletons = children.iter().take_while(|c| c.kind().multiplicity() == Multiplicity::Singleton).count();
+        let singletons = children
+            .iter()
+            .take_while(|c| c.kind().multiplicity() == Multiplicity::Singleton)
+            .count();
         let position = match index {
             Some(i) => (singletons + i).min(children.len()),
             None => children.len(),
@@ -160,7 +185,8 @@ impl Model {
     /// required attribute, a name already taken, a setting that conflicts with an
     /// attached model's ([`ErrorKind::AttributeConflict`]), or `loc` not in this model.
     pub fn set(&self, loc: &Loc, attrs: Attrs) -> Result<Model, EditError> {
-        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.set_here(loc, &attrs).map(|m| (m, ())))?;
+        let (m, ()) =
+            self.in_scope(loc.scope(), |m: &Model| m.set_here(loc, &attrs).map(|m| (m, ())))?;
         // An edit of a global setting, on either side of an attachment, may conflict;
         // no other edit takes part in the merge.
         if self.in_settings_section(loc) {
@@ -186,7 +212,12 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`].
-    pub fn set_attr(&self, loc: &Loc, name: &str, value: impl Into<AttrInput>) -> Result<Model, EditError> {
+    pub fn set_attr(
+        &self,
+        loc: &Loc,
+        name: &str,
+        value: impl Into<AttrInput>,
+    ) -> Result<Model, EditError> {
         self.set(loc, Attrs::new().set(name, value))
     }
 
@@ -206,7 +237,12 @@ impl Model {
     /// assert_eq!(m.floats(&g, "rgba")?, [1.0, 0.0, 0.0, 1.0]);
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
-    pub fn set_attr_mut(&mut self, loc: &Loc, name: &str, value: impl Into<AttrInput>) -> Result<(), EditError> {
+    pub fn set_attr_mut(
+        &mut self,
+        loc: &Loc,
+        name: &str,
+        value: impl Into<AttrInput>,
+    ) -> Result<(), EditError> {
         self.set_mut(loc, Attrs::new().set(name, value))
     }
 
@@ -233,8 +269,13 @@ impl Model {
     /// Whether the element lies in a global settings section (`option`, ...).
     fn in_settings_section(&self, loc: &Loc) -> bool {
         let Some(m) = self.scoped_model(loc.scope()) else { return false };
-        let Some(section) = m.path_of(loc.id()).and_then(|p| p.first().copied()) else { return false };
-        m.root.children().get(section).is_some_and(|n| super::settings::is_settings_section(n.kind()))
+        let Some(section) = m.path_of(loc.id()).and_then(|p| p.first().copied()) else {
+            return false;
+        };
+        m.root
+            .children()
+            .get(section)
+            .is_some_and(|n| super::settings::is_settings_section(n.kind()))
     }
 
     fn set_here(&self, loc: &Loc, attrs: &Attrs) -> Result<Model, EditError> {
@@ -257,7 +298,10 @@ impl Model {
             let change = ctx.assign(kind, name, input.as_ref().map(Input::Given)).map_err(err)?;
             // A folder setting applies to file attributes set after it in the same call.
             if let AttrType::Basepath { path_namespace } = kind.attr(change.0).ty {
-                basepaths.set(path_namespace, change.1.as_ref().and_then(Value::as_str).map(SmolStr::from));
+                basepaths.set(
+                    path_namespace,
+                    change.1.as_ref().and_then(Value::as_str).map(SmolStr::from),
+                );
             }
             changes.push(change);
         }
@@ -273,13 +317,22 @@ impl Model {
         if old_name != new_name {
             if let (Some(ns), Some(name)) = (kind.namespace(), new_name) {
                 // A frame's joints have a namespace of their own: that frame's joints.
-                let frame = path.split_last().and_then(|(_, p)| self.node_at(p)).filter(|p| p.attached().is_some());
+                let frame = path
+                    .split_last()
+                    .and_then(|(_, p)| self.node_at(p))
+                    .filter(|p| p.attached().is_some());
                 let taken = match frame {
-                    Some(f) => f.children().iter().any(|c| c.id() != node.id() && c.identifier() == Some(name)),
+                    Some(f) => f
+                        .children()
+                        .iter()
+                        .any(|c| c.id() != node.id() && c.identifier() == Some(name)),
                     None => index.names.contains_key(&(ns, SmolStr::from(name))),
                 };
                 if taken {
-                    return Err(err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() }));
+                    return Err(err(ErrorKind::DuplicateIdentifier {
+                        namespace: ns,
+                        name: name.into(),
+                    }));
                 }
             }
             index.rename(node.id(), new_name.map(SmolStr::from));
@@ -303,7 +356,8 @@ impl Model {
     /// [`Model::detach`] first; [`ErrorKind::StaleLocator`] if `loc` is not in this
     /// model.
     pub fn remove(&self, loc: &Loc) -> Result<Model, EditError> {
-        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, false).map(|m| (m, ())))?;
+        let (m, ()) =
+            self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, false).map(|m| (m, ())))?;
         Ok(m)
     }
 
@@ -327,7 +381,8 @@ impl Model {
     /// # Errors
     /// [`ErrorKind::StaleLocator`] if `loc` is not in this model.
     pub fn remove_with_attachments(&self, loc: &Loc) -> Result<Model, EditError> {
-        let (m, ()) = self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, true).map(|m| (m, ())))?;
+        let (m, ()) =
+            self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, true).map(|m| (m, ())))?;
         Ok(m)
     }
 
@@ -355,9 +410,11 @@ impl Model {
                 None => false,
             })
         };
-        let holds_frame = !self.index.scopes.is_empty() && node.descendants().any(|n| n.attached().is_some());
+        let holds_frame =
+            !self.index.scopes.is_empty() && node.descendants().any(|n| n.attached().is_some());
         if !affect_attachments
-            && (holds_frame || (!self.index.scopes.is_empty() && in_section_chain && node.attached().is_none()))
+            && (holds_frame
+                || (!self.index.scopes.is_empty() && in_section_chain && node.attached().is_none()))
         {
             return Err(EditError::new(ErrorKind::AffectsAttachments, self.describe(&path)));
         }
@@ -365,7 +422,12 @@ impl Model {
         index.remove_subtree(&node);
         let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {
             let parent_id = self.index.elems.get(&node.id()).and_then(|e| e.parent);
-            let fresh = Node::new(node.id(), node.kind(), Vec::new(), empty_node(node.kind()).children().clone());
+            let fresh = Node::new(
+                node.id(),
+                node.kind(),
+                Vec::new(),
+                empty_node(node.kind()).children().clone(),
+            );
             // The emptied element holds no identifiers, so this finds no duplicate.
             let _ = index.insert_subtree(parent_id, &fresh, path.last().copied().unwrap_or(0));
             self.root.update_path(&path, |_| Ok::<_, EditError>(fresh))?

@@ -7,7 +7,8 @@ use crate::schema::ElementKind;
 use super::tree::{Attr, Node};
 
 /// The site attributes an attachment frame copies (reference §3.3).
-pub(crate) const FRAME_ATTRS: [&str; 7] = ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user"];
+pub(crate) const FRAME_ATTRS: [&str; 7] =
+    ["pos", "quat", "axisangle", "xyaxes", "zaxis", "euler", "user"];
 
 /// Whether a frame accepts attribute `name` after the attach: the copied ones and
 /// `mocap`.

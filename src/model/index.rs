@@ -87,19 +87,28 @@ impl Index {
         at: usize,
     ) -> Result<(), Duplicate> {
         let in_frame = parent.is_some_and(|p| self.scope_of(p).is_some());
-        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize)> = vec![(parent, node, in_frame, at)];
+        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize)> =
+            vec![(parent, node, in_frame, at)];
         while let Some((parent, n, in_frame, pos)) = stack.pop() {
             self.insert_one(parent, n, !in_frame, pos)?;
             // Reversed, so that elements are indexed in document order and a duplicate
             // is reported at its second occurrence. A frame's joints are unique per
             // frame only, so their names are not registered.
             let frame = n.attached().is_some();
-            stack.extend(n.children().iter().enumerate().rev().map(|(i, c)| (Some(n.id()), c, frame, i)));
+            stack.extend(
+                n.children().iter().enumerate().rev().map(|(i, c)| (Some(n.id()), c, frame, i)),
+            );
         }
         Ok(())
     }
 
-    fn insert_one(&mut self, parent: Option<ElementId>, n: &Node, register: bool, pos: usize) -> Result<(), Duplicate> {
+    fn insert_one(
+        &mut self,
+        parent: Option<ElementId>,
+        n: &Node,
+        register: bool,
+        pos: usize,
+    ) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
             let key = (ns, name.clone());

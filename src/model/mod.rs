@@ -27,7 +27,9 @@ use tree::{ElementId, Node};
 
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
-pub(crate) use build::{Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, name_from_file};
+pub(crate) use build::{
+    Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, name_from_file,
+};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
 pub(crate) use index::{Index, MergedCache};
@@ -177,7 +179,11 @@ impl Model {
     pub fn name(&self) -> &str {
         match &self.index.own_name {
             Some(n) => n,
-            None => self.root_attr("model").and_then(Value::as_str).filter(|n| !n.is_empty()).unwrap_or(UNNAMED),
+            None => self
+                .root_attr("model")
+                .and_then(Value::as_str)
+                .filter(|n| !n.is_empty())
+                .unwrap_or(UNNAMED),
         }
     }
 
@@ -308,11 +314,24 @@ impl Model {
                 let candidates: Vec<&str> = if namespace == Namespace::AttachmentFrame {
                     m.index.scopes.iter().map(|(s, _)| s.as_str()).collect()
                 } else {
-                    m.index.names.keys().filter(|(ns, _)| *ns == namespace).map(|(_, n)| n.as_str()).collect()
+                    m.index
+                        .names
+                        .keys()
+                        .filter(|(ns, _)| *ns == namespace)
+                        .map(|(_, n)| n.as_str())
+                        .collect()
                 };
-                let suggestions = crate::suggest::nearest(name, candidates, 3).into_iter().map(SmolStr::from).collect();
+                let suggestions = crate::suggest::nearest(name, candidates, 3)
+                    .into_iter()
+                    .map(SmolStr::from)
+                    .collect();
                 Err(EditError::new(
-                    ErrorKind::UnknownName { namespace, name: name.into(), scope: scope.into(), suggestions },
+                    ErrorKind::UnknownName {
+                        namespace,
+                        name: name.into(),
+                        scope: scope.into(),
+                        suggestions,
+                    },
                     String::new(),
                 ))
             }
@@ -377,7 +396,8 @@ impl Model {
 
     /// The error for a locator that names nothing here.
     pub(crate) fn stale(&self, loc: &Loc) -> EditError {
-        let origin = if loc.origin.is_empty() { SmolStr::from(self.name()) } else { loc.origin.clone() };
+        let origin =
+            if loc.origin.is_empty() { SmolStr::from(self.name()) } else { loc.origin.clone() };
         EditError::new(ErrorKind::StaleLocator { id: loc.id, origin }, String::new())
     }
 
@@ -387,7 +407,9 @@ impl Model {
         let Some(kind) = ElementKind::ROOT.child("compiler") else { return b };
         let Some(compiler) = self.root.child_of_kind(kind) else { return b };
         for (i, v) in compiler.attrs() {
-            if let (AttrType::Basepath { path_namespace }, Value::Basepath(p)) = (kind.attr(*i as usize).ty, v) {
+            if let (AttrType::Basepath { path_namespace }, Value::Basepath(p)) =
+                (kind.attr(*i as usize).ty, v)
+            {
                 b.set(path_namespace, Some(p.clone()));
             }
         }
@@ -406,7 +428,10 @@ impl PartialEq for Model {
 
 impl fmt::Debug for Model {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Model").field("name", &self.name()).field("elements", &self.index.elems.len()).finish()
+        f.debug_struct("Model")
+            .field("name", &self.name())
+            .field("elements", &self.index.elems.len())
+            .finish()
     }
 }
 

@@ -106,7 +106,11 @@ impl ScopeRef for Attachment {
         // Each frame must still hold an attachment.
         let mut m = model;
         for f in &frames {
-            m = &m.node_by_id(*f).and_then(Node::attached).ok_or_else(|| not_attached(m, &self.scope))?.model;
+            m = &m
+                .node_by_id(*f)
+                .and_then(Node::attached)
+                .ok_or_else(|| not_attached(m, &self.scope))?
+                .model;
         }
         Ok(frames)
     }
@@ -139,8 +143,10 @@ pub(crate) fn check_scope_path(path: &str) -> Result<(), EditError> {
 pub(crate) fn not_attached(m: &Model, scope: &str) -> EditError {
     let missing = scope.rsplit('/').next().unwrap_or(scope);
     let names: Vec<&str> = m.index.scopes.iter().map(|(s, _)| s.as_str()).collect();
-    let mut attached: Vec<SmolStr> =
-        crate::suggest::nearest(missing, names.iter().copied(), 3).into_iter().map(SmolStr::from).collect();
+    let mut attached: Vec<SmolStr> = crate::suggest::nearest(missing, names.iter().copied(), 3)
+        .into_iter()
+        .map(SmolStr::from)
+        .collect();
     for n in names.iter().take(20) {
         if !attached.iter().any(|a| a == n) {
             attached.push((*n).into());
@@ -162,7 +168,11 @@ impl Model {
         for s in scope.split('/') {
             let frame = m.index.frame_of(s).ok_or_else(|| not_attached(m, scope))?;
             frames.push(frame);
-            m = &m.node_by_id(frame).and_then(Node::attached).ok_or_else(|| not_attached(m, scope))?.model;
+            m = &m
+                .node_by_id(frame)
+                .and_then(Node::attached)
+                .ok_or_else(|| not_attached(m, scope))?
+                .model;
         }
         Ok(frames)
     }
@@ -190,13 +200,20 @@ impl Model {
         let mut chain: Vec<(&Model, Vec<usize>, SmolStr)> = Vec::with_capacity(frames.len());
         // An error inside names its path with the scopes it is in, outermost first.
         let wrap = |e: EditError, chain: &[(&Model, Vec<usize>, SmolStr)]| {
-            let path = chain.iter().rev().fold(e.path().to_string(), |p, (_, _, scope)| scoped_path(scope, &p));
+            let path = chain
+                .iter()
+                .rev()
+                .fold(e.path().to_string(), |p, (_, _, scope)| scoped_path(scope, &p));
             EditError::new(e.kind().clone(), path)
         };
         let mut m = self;
         for frame in frames {
-            let missing =
-                || EditError::new(ErrorKind::StaleLocator { id: *frame, origin: m.name().into() }, String::new());
+            let missing = || {
+                EditError::new(
+                    ErrorKind::StaleLocator { id: *frame, origin: m.name().into() },
+                    String::new(),
+                )
+            };
             let path = m.path_of(*frame).ok_or_else(|| wrap(missing(), &chain))?;
             let Some(attached) = m.node_at(&path).and_then(Node::attached) else {
                 return Err(wrap(missing(), &chain));
@@ -209,9 +226,9 @@ impl Model {
         for (outer, path, scope) in chain.into_iter().rev() {
             let mut index = outer.index.clone();
             index.scopes.note_model(path_last_id(outer, &path), &inner.index.merged);
-            let root = outer
-                .root
-                .update_path(&path, |n| Ok::<_, EditError>(n.with_attached(Attached { scope, model: inner })))?;
+            let root = outer.root.update_path(&path, |n| {
+                Ok::<_, EditError>(n.with_attached(Attached { scope, model: inner }))
+            })?;
             inner = outer.next(root, index);
         }
         Ok((inner, r))
@@ -244,7 +261,8 @@ impl Model {
     /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`].
     pub fn attachment(&self, scope: impl ScopeRef) -> Result<Attachment, EditError> {
         let frames = scope.frames_in(self)?;
-        let (last, outer) = frames.split_last().ok_or_else(|| not_attached(self, scope.path_text()))?;
+        let (last, outer) =
+            frames.split_last().ok_or_else(|| not_attached(self, scope.path_text()))?;
         let frame = self.scoped_loc(outer, *last);
         let path = self.scope_of_frame(&frame).unwrap_or_else(|| scope.path_text().to_string());
         Ok(Attachment::new(frame, path.into()))

@@ -23,7 +23,10 @@ use crate::value::{Value, number};
 /// Whether a root section takes part in the settings fold: a singleton whose whole
 /// subtree is made of singletons (`compiler`, `option`, `size`, `visual`, `statistic`).
 pub(crate) fn is_settings_section(kind: ElementKind) -> bool {
-    if kind.tag() == "default" || kind.tag() == "worldbody" || kind.multiplicity() != Multiplicity::Singleton {
+    if kind.tag() == "default"
+        || kind.tag() == "worldbody"
+        || kind.multiplicity() != Multiplicity::Singleton
+    {
         return false;
     }
     let mut stack = vec![kind];
@@ -133,7 +136,9 @@ pub(crate) fn attachments(model: &Model) -> Vec<&Model> {
         .index
         .scopes
         .iter()
-        .filter_map(|(_, frame)| model.node_by_id(frame).and_then(|n| n.attached()).map(|a| &a.model))
+        .filter_map(|(_, frame)| {
+            model.node_by_id(frame).and_then(|n| n.attached()).map(|a| &a.model)
+        })
         .collect()
 }
 
@@ -176,7 +181,9 @@ pub(crate) fn combine(
             Ok(if pick_theirs { theirs.clone() } else { ours.clone() })
         }
         Merge::MaxBytes => {
-            let (Some(a), Some(b)) = (ours.as_str(), theirs.as_str()) else { return Err(conflict()) };
+            let (Some(a), Some(b)) = (ours.as_str(), theirs.as_str()) else {
+                return Err(conflict());
+            };
             let (Some(x), Some(y)) = (number::parse_bytes(a), number::parse_bytes(b)) else {
                 return Err(conflict());
             };
@@ -190,10 +197,14 @@ pub(crate) fn combine(
 fn values_agree(a: &Value, b: &Value) -> bool {
     match (a, b) {
         (Value::Floats(x), Value::Floats(y)) => {
-            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+            x == y
+                || (x.len() == 1 && y.iter().all(|v| *v == x[0]))
+                || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
         }
         (Value::Ints(x), Value::Ints(y)) => {
-            x == y || (x.len() == 1 && y.iter().all(|v| *v == x[0])) || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
+            x == y
+                || (x.len() == 1 && y.iter().all(|v| *v == x[0]))
+                || (y.len() == 1 && x.iter().all(|v| *v == y[0]))
         }
         _ => a == b,
     }

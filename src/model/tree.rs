@@ -49,14 +49,24 @@ pub(crate) struct Attached {
 }
 
 impl Node {
-    pub(crate) fn new(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, children: Seq<Node>) -> Node {
+    pub(crate) fn new(
+        id: ElementId,
+        kind: ElementKind,
+        attrs: Vec<Attr>,
+        children: Seq<Node>,
+    ) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children, attached: None }))
     }
 
     /// An attachment frame.
-    pub(crate) fn frame(id: ElementId, kind: ElementKind, attrs: Vec<Attr>, attached: Attached) -> Node {
+    pub(crate) fn frame(
+        id: ElementId,
+        kind: ElementKind,
+        attrs: Vec<Attr>,
+        attached: Attached,
+    ) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         Node(Arc::new(NodeData {
@@ -136,7 +146,8 @@ impl Node {
         if children.get(hint).is_some_and(|c| c.id() == id) {
             return Some(hint);
         }
-        let after = children.range(hint, children.len()).position(|c| c.id() == id).map(|p| p + hint);
+        let after =
+            children.range(hint, children.len()).position(|c| c.id() == id).map(|p| p + hint);
         after.or_else(|| children.range(0, hint).rposition(|c| c.id() == id))
     }
 
@@ -170,7 +181,11 @@ impl Node {
 
     /// Rebuilds the path `path` (child indices from this node) with `f` applied to the
     /// node at its end. Time: O(depth · log width).
-    pub(crate) fn update_path<E>(&self, path: &[usize], f: impl FnOnce(&Node) -> Result<Node, E>) -> Result<Node, E> {
+    pub(crate) fn update_path<E>(
+        &self,
+        path: &[usize],
+        f: impl FnOnce(&Node) -> Result<Node, E>,
+    ) -> Result<Node, E> {
         // Iterative, so deep trees cannot overflow the stack.
         let mut chain: Vec<&Node> = Vec::with_capacity(path.len() + 1);
         chain.push(self);
@@ -200,7 +215,8 @@ impl Node {
                 stack.extend(n.children().iter().rev().map(|c| (c, false)));
                 continue;
             }
-            let children: Seq<Node> = built.split_off(built.len() - n.children().len()).into_iter().collect();
+            let children: Seq<Node> =
+                built.split_off(built.len() - n.children().len()).into_iter().collect();
             built.push(f(n, children));
         }
         built.pop().unwrap_or_else(|| self.clone())

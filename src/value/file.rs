@@ -27,7 +27,12 @@ impl FileAsset {
     pub fn new(stem: &str, extension: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
         let contents = contents.into();
         let sha1 = sha1_smol::Sha1::from(&contents[..]).digest().to_string();
-        FileAsset(Arc::new(FileData { stem: stem.into(), extension: extension.into(), contents, sha1 }))
+        FileAsset(Arc::new(FileData {
+            stem: stem.into(),
+            extension: extension.into(),
+            contents,
+            sha1,
+        }))
     }
 
     /// Creates an asset from a path as written in MJCF and the file's contents: the
@@ -85,7 +90,9 @@ impl FileAsset {
 impl PartialEq for FileAsset {
     fn eq(&self, other: &Self) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
-            || (self.0.sha1 == other.0.sha1 && self.0.stem == other.0.stem && self.0.extension == other.0.extension)
+            || (self.0.sha1 == other.0.sha1
+                && self.0.stem == other.0.stem
+                && self.0.extension == other.0.extension)
     }
 }
 

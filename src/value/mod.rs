@@ -163,8 +163,18 @@ impl From<Value> for AttrInput {
 
 /// What the reader needs beyond the text to build a value: the element's namespace (a
 /// body may not be named `world`).
-pub(crate) fn parse_text(spec: &AttrSpec, namespace: Option<Namespace>, text: &str) -> Result<Value, ValueError> {
-    if matches!(spec.ty, AttrType::String | AttrType::Identifier | AttrType::Reference(_) | AttrType::Basepath { .. }) {
+pub(crate) fn parse_text(
+    spec: &AttrSpec,
+    namespace: Option<Namespace>,
+    text: &str,
+) -> Result<Value, ValueError> {
+    if matches!(
+        spec.ty,
+        AttrType::String
+            | AttrType::Identifier
+            | AttrType::Reference(_)
+            | AttrType::Basepath { .. }
+    ) {
         check_xml_text(text)?;
     }
     match spec.ty {
@@ -247,12 +257,16 @@ pub(crate) fn from_input(
     match input {
         AttrInput::Text(t) => parse_text(spec, namespace, t).map(Some),
         AttrInput::Bool(b) => match spec.ty {
-            AttrType::Keyword(_) => parse_text(spec, namespace, if *b { "true" } else { "false" }).map(Some),
+            AttrType::Keyword(_) => {
+                parse_text(spec, namespace, if *b { "true" } else { "false" }).map(Some)
+            }
             _ => Err(ValueError::WrongType),
         },
         AttrInput::Number(x) => match spec.ty {
             AttrType::Float => Ok(Some(Value::Float(*x))),
-            AttrType::Int => number::float_to_int(*x).map(|v| Some(Value::Int(v))).ok_or(ValueError::NotInt),
+            AttrType::Int => {
+                number::float_to_int(*x).map(|v| Some(Value::Int(v))).ok_or(ValueError::NotInt)
+            }
             AttrType::Array { .. } => from_input(spec, namespace, &AttrInput::Numbers(vec![*x])),
             _ => Err(ValueError::WrongType),
         },
@@ -261,14 +275,17 @@ pub(crate) fn from_input(
                 let value = match elem {
                     ArrayType::Float => Value::Floats(xs.as_slice().into()),
                     ArrayType::Int => {
-                        let v: Option<Vec<i64>> = xs.iter().map(|x| number::float_to_int(*x)).collect();
+                        let v: Option<Vec<i64>> =
+                            xs.iter().map(|x| number::float_to_int(*x)).collect();
                         Value::Ints(v.ok_or(ValueError::NotIntArray)?.into())
                     }
                 };
                 check_len(&value, max_len)?;
                 Ok(Some(value))
             }
-            AttrType::Float | AttrType::Int if xs.len() == 1 => from_input(spec, namespace, &AttrInput::Number(xs[0])),
+            AttrType::Float | AttrType::Int if xs.len() == 1 => {
+                from_input(spec, namespace, &AttrInput::Number(xs[0]))
+            }
             _ => Err(ValueError::WrongType),
         },
         AttrInput::Value(v) => check_value(spec, namespace, v).map(Some),
@@ -276,13 +293,23 @@ pub(crate) fn from_input(
 }
 
 /// Checks that a typed value fits the attribute.
-fn check_value(spec: &AttrSpec, namespace: Option<Namespace>, v: &Value) -> Result<Value, ValueError> {
-    if let Value::String(t) | Value::Identifier(t) | Value::Basepath(t) | Value::Reference(Reference::Name(t)) = v {
+fn check_value(
+    spec: &AttrSpec,
+    namespace: Option<Namespace>,
+    v: &Value,
+) -> Result<Value, ValueError> {
+    if let Value::String(t)
+    | Value::Identifier(t)
+    | Value::Basepath(t)
+    | Value::Reference(Reference::Name(t)) = v
+    {
         check_xml_text(t)?;
     }
     let fits = match (spec.ty, v) {
         (AttrType::Float, Value::Float(_)) | (AttrType::Int, Value::Int(_)) => true,
-        (AttrType::String, Value::String(_)) | (AttrType::Basepath { .. }, Value::Basepath(_)) => true,
+        (AttrType::String, Value::String(_)) | (AttrType::Basepath { .. }, Value::Basepath(_)) => {
+            true
+        }
         (AttrType::Keyword(valid), Value::Keyword(k)) => {
             return valid
                 .iter()
@@ -457,7 +484,10 @@ mod tests {
         assert_eq!(from_input(s, ns, &4.5.into()), Err(ValueError::NotInt));
         let (s, ns) = spec(GEOM, "size");
         assert_eq!(text(&from_input(s, ns, &0.1.into()).unwrap().unwrap()), "0.1");
-        assert_eq!(from_input(s, ns, &[1.0, 2.0, 3.0, 4.0].into()), Err(ValueError::TooLong { max: 3, len: 4 }));
+        assert_eq!(
+            from_input(s, ns, &[1.0, 2.0, 3.0, 4.0].into()),
+            Err(ValueError::TooLong { max: 3, len: 4 })
+        );
         let (s, ns) = spec(GEOM, "name");
         assert_eq!(from_input(s, ns, &1.0.into()), Err(ValueError::WrongType));
         let (s, ns) = spec(&["compiler"], "inertiagrouprange");

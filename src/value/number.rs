@@ -47,7 +47,11 @@ pub(crate) fn parse_int(text: &str) -> Option<i64> {
 pub(crate) fn float_to_int(v: f64) -> Option<i64> {
     // 2^63 is exactly representable; every double below it in magnitude fits.
     const LIMIT: f64 = 9_223_372_036_854_775_808.0; // 2^63
-    if v.is_finite() && v.fract() == 0.0 && (-LIMIT..LIMIT).contains(&v) { Some(v as i64) } else { None }
+    if v.is_finite() && v.fract() == 0.0 && (-LIMIT..LIMIT).contains(&v) {
+        Some(v as i64)
+    } else {
+        None
+    }
 }
 
 /// Appends the text of `x` in the given style.

@@ -31,7 +31,8 @@ use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, Node};
 use crate::model::{
-    Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node, name_from_file,
+    Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
+    name_from_file,
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of_objtype};
 use crate::value::{Reference, Value};
@@ -126,7 +127,11 @@ impl ReadOptions {
     pub fn read_path(&self, path: impl AsRef<Path>) -> Result<Model, ReadError> {
         let path = path.as_ref();
         let bytes = std::fs::read(path).map_err(|e| {
-            ReadError::new(ErrorKind::FileNotFound { path: path.to_path_buf(), reason: e.to_string() }, None, None)
+            ReadError::new(
+                ErrorKind::FileNotFound { path: path.to_path_buf(), reason: e.to_string() },
+                None,
+                None,
+            )
         })?;
         let text = utf8(&bytes, Some(path))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -160,7 +165,8 @@ impl Model {
 }
 
 fn canonical(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path).unwrap_or_else(|_| PathBuf::from(files::normalize(&path.to_string_lossy())))
+    std::fs::canonicalize(path)
+        .unwrap_or_else(|_| PathBuf::from(files::normalize(&path.to_string_lossy())))
 }
 
 fn utf8<'b>(bytes: &'b [u8], file: Option<&Path>) -> Result<&'b str, ReadError> {
@@ -216,10 +222,12 @@ impl Reader<'_> {
                 .normalized_value(quick_xml::XmlVersion::default())
                 .map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
             let ctx = ValueCtx { files: &self.ctx, basepaths: &self.basepaths };
-            let (index, value) = ctx.assign(kind, name, Some(Input::Text(&raw))).map_err(|k| self.err(k, offset))?;
+            let (index, value) =
+                ctx.assign(kind, name, Some(Input::Text(&raw))).map_err(|k| self.err(k, offset))?;
             let spec = kind.attr(index);
             if let AttrType::Basepath { path_namespace } = spec.ty {
-                self.basepaths.set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
+                self.basepaths
+                    .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
             let i = index as u16;
             let pos = attrs.iter().position(|(k, _)| *k == i);
@@ -275,7 +283,9 @@ fn read_document(
             Event::Eof => break,
             Event::Text(t) => {
                 if stack.is_empty() && !t.as_ref().trim().is_empty() {
-                    return Err(r.err(ErrorKind::Syntax("text outside the root element".into()), offset));
+                    return Err(
+                        r.err(ErrorKind::Syntax("text outside the root element".into()), offset)
+                    );
                 }
                 continue;
             }
@@ -331,8 +341,14 @@ fn read_document(
         }
         // `<default class="/">` directly in the root `<default>` is the root class as
         // written by this crate and by dm_control: read its content into the root class.
-        if name == "default" && parent_kind == root_default && parent_kind.spec().parent == Some(ElementKind::ROOT) {
-            let slash = tag.attributes().flatten().any(|a| a.key.as_ref() == "class" && a.value.as_ref() == "/");
+        if name == "default"
+            && parent_kind == root_default
+            && parent_kind.spec().parent == Some(ElementKind::ROOT)
+        {
+            let slash = tag
+                .attributes()
+                .flatten()
+                .any(|a| a.key.as_ref() == "class" && a.value.as_ref() == "/");
             // Once only: inside the wrapper, `class="/"` is a nested class's name (and
             // refused, as `/` is in any identifier).
             if slash
@@ -455,7 +471,8 @@ fn read_include(
             return Err(r.err(ErrorKind::IncludeCycle(PathBuf::from(&file)), offset));
         }
         let text = utf8(&bytes, Some(Path::new(&file)))?;
-        let ctx = FileContext { base_dir: None, assets: r.ctx.assets.clone(), confine: r.ctx.confine };
+        let ctx =
+            FileContext { base_dir: None, assets: r.ctx.assets.clone(), confine: r.ctx.confine };
         include_stack.push(key);
         let res = read_document(text, Some(PathBuf::from(&file)), ctx, max_depth, include_stack);
         include_stack.pop();
@@ -466,8 +483,9 @@ fn read_include(
     if include_stack.contains(&key) {
         return Err(r.err(ErrorKind::IncludeCycle(full), offset));
     }
-    let bytes = std::fs::read(&full)
-        .map_err(|e| r.err(ErrorKind::FileNotFound { path: full.clone(), reason: e.to_string() }, offset))?;
+    let bytes = std::fs::read(&full).map_err(|e| {
+        r.err(ErrorKind::FileNotFound { path: full.clone(), reason: e.to_string() }, offset)
+    })?;
     let text = utf8(&bytes, Some(&full))?;
     let ctx = r.ctx.for_included(&full);
     include_stack.push(key);
@@ -482,15 +500,22 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> = HashMap::new();
     for p in &r.arena {
         if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
-            if let Some(Value::Identifier(n)) = p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v) {
+            if let Some(Value::Identifier(n)) =
+                p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v)
+            {
                 if names.insert((ns, n.clone()), p.id).is_some() {
-                    return Err(r.err(ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset));
+                    return Err(r.err(
+                        ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() },
+                        p.offset,
+                    ));
                 }
             }
         }
     }
-    if let Some(d) =
-        r.arena.iter().find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
+    if let Some(d) = r
+        .arena
+        .iter()
+        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
     {
         names.entry((crate::Namespace::Default, SmolStr::from("/"))).or_insert(d.id);
     }
@@ -499,7 +524,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
-        let name = model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| crate::model::UNNAMED.into());
+        let name =
+            model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| crate::model::UNNAMED.into());
         r.arena[0].attrs.push((i as u16, Value::String(name)));
     }
     // Bottom-up: children always have larger arena indices than their parent.
@@ -527,13 +553,19 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let mut index = Index::default();
     if let Err(d) = index.insert_subtree(None, &root, 0) {
         let offset = r.arena.iter().find(|p| p.id == d.id).map_or(0, |p| p.offset);
-        return Err(r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset));
+        return Err(
+            r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset)
+        );
     }
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
 /// Replaces every named reference that `lookup` finds by a reference to the element.
-fn resolve_attrs(kind: ElementKind, attrs: &mut [Attr], lookup: impl Fn(crate::Namespace, &str) -> Option<ElementId>) {
+fn resolve_attrs(
+    kind: ElementKind,
+    attrs: &mut [Attr],
+    lookup: impl Fn(crate::Namespace, &str) -> Option<ElementId>,
+) {
     for j in 0..attrs.len() {
         let (i, v) = &attrs[j];
         let Value::Reference(Reference::Name(n)) = v else { continue };

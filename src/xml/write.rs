@@ -46,7 +46,12 @@ pub struct WriteOptions {
 
 impl Default for WriteOptions {
     fn default() -> Self {
-        WriteOptions { precision: None, zero_threshold: 0.0, pretty_print: true, filename_with_hash: true }
+        WriteOptions {
+            precision: None,
+            zero_threshold: 0.0,
+            pretty_print: true,
+            filename_with_hash: true,
+        }
     }
 }
 
@@ -82,7 +87,10 @@ impl Model {
             insts: Vec::new(),
             merged: &merged,
             out: String::with_capacity(4096),
-            style: FloatStyle { precision: options.precision, zero_threshold: options.zero_threshold },
+            style: FloatStyle {
+                precision: options.precision,
+                zero_threshold: options.zero_threshold,
+            },
             options,
             value: String::new(),
             bad_char: None,
@@ -158,13 +166,19 @@ struct Writer<'a> {
 /// Whether a singleton writes anything: a written attribute, or a child that does.
 fn singleton_emits(node: &Node) -> bool {
     let kind = node.kind();
-    if node.attrs().iter().any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. })) {
+    if node
+        .attrs()
+        .iter()
+        .any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
+    {
         return true;
     }
     if kind.class_attr().is_some() || kind.identifier().is_some() {
         return true;
     }
-    node.children().iter().any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
+    node.children()
+        .iter()
+        .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
 }
 
 fn emits(node: &Node) -> bool {
@@ -183,7 +197,12 @@ impl<'a> Writer<'a> {
                     Some((p, scope)) => format!("{}{scope}/", self.insts[p].prefix),
                     None => String::new(),
                 };
-                self.insts.push(Inst { model: i.model, prefix, counters: HashMap::new(), auto_index: None });
+                self.insts.push(Inst {
+                    model: i.model,
+                    prefix,
+                    counters: HashMap::new(),
+                    auto_index: None,
+                });
             }
             match step {
                 Step::Enter(item) => {
@@ -292,9 +311,11 @@ impl<'a> Writer<'a> {
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
-        let child_cc = cc_here || (node.attached().is_none() && sets_childclass(self.insts[inst].model, node));
+        let child_cc =
+            cc_here || (node.attached().is_none() && sets_childclass(self.insts[inst].model, node));
         // A frame's own joints are named after the frame.
-        let frame_name = if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
+        let frame_name =
+            if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
         let frame = node.attached().map(|a| format!("{}{}/", self.insts[inst].prefix, a.scope));
         self.open.push(Open { inst, child_cc, depth, frame });
         if top && kind.tag() != "default" && kind.tag() != "worldbody" {
@@ -332,7 +353,8 @@ impl<'a> Writer<'a> {
                 }
             }
             None => {
-                let tag = if item.node.attached().is_some() { "body" } else { item.node.kind().tag() };
+                let tag =
+                    if item.node.attached().is_some() { "body" } else { item.node.kind().tag() };
                 self.indent(open.depth);
                 self.out.push_str("</");
                 self.out.push_str(tag);
@@ -471,14 +493,22 @@ impl<'a> Writer<'a> {
     }
 
     /// Writes the text of attribute `i` into `self.value`; `false` if it is not written.
-    fn value_text(&mut self, inst: usize, node: &Node, i: usize, v: &Value) -> Result<bool, WriteError> {
+    fn value_text(
+        &mut self,
+        inst: usize,
+        node: &Node,
+        i: usize,
+        v: &Value,
+    ) -> Result<bool, WriteError> {
         match v {
             Value::Basepath(_) => Ok(false),
             Value::File(f) => {
                 self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
                 Ok(true)
             }
-            Value::Reference(Reference::Element(target)) => self.reference_text(inst, node, i, *target),
+            Value::Reference(Reference::Element(target)) => {
+                self.reference_text(inst, node, i, *target)
+            }
             Value::Identifier(n) => {
                 self.value.push_str(&self.insts[inst].prefix);
                 self.value.push_str(n);
@@ -486,7 +516,10 @@ impl<'a> Writer<'a> {
             }
             Value::Reference(Reference::Name(n)) => {
                 // The one world body is `world` in every scope.
-                let to_body = matches!(node.kind().attr(i).ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
+                let to_body = matches!(
+                    node.kind().attr(i).ty,
+                    AttrType::Reference(RefTarget::Fixed(Namespace::Body))
+                );
                 if !(to_body && n == "world") {
                     self.value.push_str(&self.insts[inst].prefix);
                 }
@@ -500,7 +533,13 @@ impl<'a> Writer<'a> {
         }
     }
 
-    fn reference_text(&mut self, inst: usize, node: &Node, i: usize, target: ElementId) -> Result<bool, WriteError> {
+    fn reference_text(
+        &mut self,
+        inst: usize,
+        node: &Node,
+        i: usize,
+        target: ElementId,
+    ) -> Result<bool, WriteError> {
         let kind = node.kind();
         let model = self.insts[inst].model;
         let Some(entry) = model.index.elems.get(&target) else {
@@ -578,7 +617,9 @@ impl<'a> Writer<'a> {
 /// Whether a container section writes attributes of its own.
 fn singleton_emits_attrs(node: &Node) -> bool {
     let kind = node.kind();
-    node.attrs().iter().any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
+    node.attrs()
+        .iter()
+        .any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
 }
 
 fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
@@ -606,7 +647,8 @@ fn has_live(model: &Model, node: &Node, i: usize) -> bool {
 /// Returns the first character that XML 1.0 cannot hold at all (most control
 /// characters, U+FFFE, U+FFFF), if any; it is written as a reference all the same.
 pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
-    let clean = s.bytes().all(|b| (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"'));
+    let clean =
+        s.bytes().all(|b| (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"'));
     if clean {
         out.push_str(s);
         return None;

@@ -107,7 +107,13 @@ pub(crate) enum OpKind {
     /// `name = mjcf.RootElement(model=model)`.
     New { name: String, model: Option<String> },
     /// `parent.add(tag, **attrs)`, optionally saved as handle `as_handle`.
-    Add { model: String, parent: Loc, tag: String, attrs: Vec<(String, AttrValue)>, as_handle: Option<String> },
+    Add {
+        model: String,
+        parent: Loc,
+        tag: String,
+        attrs: Vec<(String, AttrValue)>,
+        as_handle: Option<String>,
+    },
     /// `parent.find("site", site).attach(child)` (or at the worldbody, or at
     /// a located element); the frame optionally saved as handle `as_handle`.
     Attach { parent: String, site: AttachSite, child: String, as_handle: Option<String> },
@@ -193,7 +199,9 @@ impl AttrValue {
             AttrValue::Str(text) => Some(text.clone()),
             AttrValue::Number(value) => Some(format_number(*value)),
             AttrValue::Bool(value) => Some(value.to_string()),
-            AttrValue::Numbers(values) => Some(values.iter().map(|v| format_number(*v)).collect::<Vec<_>>().join(" ")),
+            AttrValue::Numbers(values) => {
+                Some(values.iter().map(|v| format_number(*v)).collect::<Vec<_>>().join(" "))
+            }
         }
     }
 }
@@ -216,8 +224,8 @@ pub(crate) fn load_case(dir: &Path) -> Result<Case, String> {
         .ok_or_else(|| format!("{}: not a case folder name", dir.display()))?
         .to_owned();
     let path = dir.join("case.json");
-    let text =
-        std::fs::read_to_string(&path).map_err(|e| format!("case {name}: cannot read {}: {e}", path.display()))?;
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("case {name}: cannot read {}: {e}", path.display()))?;
     parse_case(&name, dir, &text)
 }
 
@@ -248,7 +256,8 @@ pub(crate) fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, Str
 /// Every immediate subfolder of `root` that holds a `case.json`, sorted by
 /// name.
 pub(crate) fn list_cases(root: &Path) -> Result<Vec<PathBuf>, String> {
-    let entries = std::fs::read_dir(root).map_err(|e| format!("cannot list {}: {e}", root.display()))?;
+    let entries =
+        std::fs::read_dir(root).map_err(|e| format!("cannot list {}: {e}", root.display()))?;
     let mut dirs = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|e| format!("cannot list {}: {e}", root.display()))?;
@@ -302,7 +311,9 @@ fn parse_op(json: &Value, index: usize) -> Result<Op, String> {
                 (Some(Value::Null), None) => AttachSite::World,
                 (Some(Value::String(name)), None) => AttachSite::Name(name.clone()),
                 (Some(_), None) => return Err("\"site\" must be a string or null".to_owned()),
-                (None, Some(loc)) => AttachSite::Loc(parse_loc(loc).map_err(|e| format!("\"site_loc\": {e}"))?),
+                (None, Some(loc)) => {
+                    AttachSite::Loc(parse_loc(loc).map_err(|e| format!("\"site_loc\": {e}"))?)
+                }
                 (None, None) => return Err("missing \"site\" or \"site_loc\"".to_owned()),
             };
             OpKind::Attach {
@@ -334,7 +345,9 @@ fn parse_op(json: &Value, index: usize) -> Result<Op, String> {
             file: op.req_str("file")?,
             options: match op.get("options") {
                 None | Some(Value::Null) => OutputOptions::default(),
-                Some(options) => parse_output_options(options).map_err(|e| format!("\"options\": {e}"))?,
+                Some(options) => {
+                    parse_output_options(options).map_err(|e| format!("\"options\": {e}"))?
+                }
             },
         },
         // All kinds were matched above.
@@ -349,11 +362,18 @@ fn parse_op(json: &Value, index: usize) -> Result<Op, String> {
     }
     let deviation = match op.opt_str("deviation")? {
         None => Vec::new(),
-        Some(text) => text.split(',').map(str::trim).filter(|label| !label.is_empty()).map(str::to_owned).collect(),
+        Some(text) => text
+            .split(',')
+            .map(str::trim)
+            .filter(|label| !label.is_empty())
+            .map(str::to_owned)
+            .collect(),
     };
     let observed_error = match op.get("observed_error") {
         None | Some(Value::Null) => None,
-        Some(json) => Some(parse_observed_error(json).map_err(|e| format!("\"observed_error\": {e}"))?),
+        Some(json) => {
+            Some(parse_observed_error(json).map_err(|e| format!("\"observed_error\": {e}"))?)
+        }
     };
     Ok(Op { kind, expect_error, deviation, observed_error, index })
 }
@@ -373,14 +393,17 @@ fn parse_loc(json: &Value) -> Result<Loc, String> {
             };
             match (key.as_str(), value) {
                 ("find", Value::Array(items)) => match items.as_slice() {
-                    [Value::String(namespace), Value::String(identifier)] => {
-                        Ok(Loc::Find { namespace: namespace.clone(), identifier: identifier.clone() })
-                    }
+                    [Value::String(namespace), Value::String(identifier)] => Ok(Loc::Find {
+                        namespace: namespace.clone(),
+                        identifier: identifier.clone(),
+                    }),
                     _ => Err("\"find\" must be [namespace, identifier] strings".to_owned()),
                 },
                 ("handle", Value::String(handle)) => Ok(Loc::Handle(handle.clone())),
                 ("frame_of", Value::String(var)) => Ok(Loc::FrameOf(var.clone())),
-                ("find" | "handle" | "frame_of", _) => Err(format!("bad value for locator {key:?}")),
+                ("find" | "handle" | "frame_of", _) => {
+                    Err(format!("bad value for locator {key:?}"))
+                }
                 _ => Err(format!("unknown locator {key:?}")),
             }
         }
@@ -408,14 +431,18 @@ fn parse_attrs(json: &Value, allow_null: bool) -> Result<Vec<(String, AttrValue)
             Value::Null if allow_null => AttrValue::Null,
             Value::Null => return Err(format!("attribute {key:?}: null is only allowed in set")),
             Value::Bool(b) => AttrValue::Bool(*b),
-            Value::Number(_) => {
-                AttrValue::Number(number(value).ok_or_else(|| format!("attribute {key:?}: number out of range"))?)
-            }
+            Value::Number(_) => AttrValue::Number(
+                number(value).ok_or_else(|| format!("attribute {key:?}: number out of range"))?,
+            ),
             Value::String(s) => AttrValue::Str(s.clone()),
             Value::Array(items) => AttrValue::Numbers(
                 items
                     .iter()
-                    .map(|item| number(item).ok_or_else(|| format!("attribute {key:?}: arrays must hold only numbers")))
+                    .map(|item| {
+                        number(item).ok_or_else(|| {
+                            format!("attribute {key:?}: arrays must hold only numbers")
+                        })
+                    })
                     .collect::<Result<_, _>>()?,
             ),
             Value::Object(_) => return Err(format!("attribute {key:?}: objects are not allowed")),
@@ -574,9 +601,21 @@ mod tests {
     #[test]
     fn json_syntax_errors_are_errors() {
         let deep = format!("{}{}", "[".repeat(1000), "]".repeat(1000));
-        for bad in
-            ["", "{", "[1,]", "{\"a\":1,}", "01", "1.", "+1", "1e999", "NaN", "\"\\ud800\"", "{a: 1}", "{} 2", &deep]
-        {
+        for bad in [
+            "",
+            "{",
+            "[1,]",
+            "{\"a\":1,}",
+            "01",
+            "1.",
+            "+1",
+            "1e999",
+            "NaN",
+            "\"\\ud800\"",
+            "{a: 1}",
+            "{} 2",
+            &deep,
+        ] {
             let e = parse(bad).map_or_else(|e| e, |case| panic!("{bad:?} loaded: {case:?}"));
             assert!(e.starts_with("case t: case.json: "), "{e}");
         }
@@ -592,7 +631,10 @@ mod tests {
         )
         .unwrap_or_else(|e| panic!("{e}"));
         let OpKind::Add { attrs, .. } = &ops[0].kind else { panic!("{:?}", ops[0]) };
-        assert_eq!(attrs, &[("a".to_owned(), AttrValue::Number(3.0)), ("b".to_owned(), AttrValue::Number(2.0))]);
+        assert_eq!(
+            attrs,
+            &[("a".to_owned(), AttrValue::Number(3.0)), ("b".to_owned(), AttrValue::Number(2.0))]
+        );
         assert_eq!(ops[1].kind, OpKind::Load { name: "y".to_owned(), file: "f".to_owned() });
     }
 
@@ -602,7 +644,10 @@ mod tests {
         assert_eq!(case.name, "hand_001_seed_example");
         assert!(case.dir.ends_with("hand_001_seed_example"));
         assert_eq!(case.ops.len(), 10);
-        assert_eq!(case.ops[0].kind, OpKind::Load { name: "arena".to_owned(), file: "arena.xml".to_owned() });
+        assert_eq!(
+            case.ops[0].kind,
+            OpKind::Load { name: "arena".to_owned(), file: "arena.xml".to_owned() }
+        );
         assert_eq!(
             case.ops[3].kind,
             OpKind::Attach {
@@ -644,7 +689,10 @@ mod tests {
     #[test]
     fn attrs_keep_json_order() {
         let case = load("hand_002_attach_worldbody_built");
-        assert_eq!(case.ops[0].kind, OpKind::New { name: "world".to_owned(), model: Some("world_model".to_owned()) });
+        assert_eq!(
+            case.ops[0].kind,
+            OpKind::New { name: "world".to_owned(), model: Some("world_model".to_owned()) }
+        );
         let OpKind::Add { model, parent, tag, attrs, as_handle } = &case.ops[1].kind else {
             panic!("{:?}", case.ops[1]);
         };
@@ -672,7 +720,10 @@ mod tests {
             panic!("{:?}", case.ops[1]);
         };
         let texts: Vec<_> = attrs.iter().map(|(_, v)| v.to_mjcf_text()).collect();
-        assert_eq!(texts, [Some("a".to_owned()), Some("1e-16 2 3e20".to_owned()), Some("-0 0.5 100".to_owned())]);
+        assert_eq!(
+            texts,
+            [Some("a".to_owned()), Some("1e-16 2 3e20".to_owned()), Some("-0 0.5 100".to_owned())]
+        );
         let OpKind::Add { attrs, .. } = &case.ops[2].kind else {
             panic!("{:?}", case.ops[2]);
         };
@@ -814,7 +865,10 @@ mod tests {
             OpKind::Set {
                 model: "a".to_owned(),
                 target: Loc::Find { namespace: "body".to_owned(), identifier: "r/t".to_owned() },
-                attrs: vec![("pos".to_owned(), AttrValue::Null), ("name".to_owned(), AttrValue::Str("n".to_owned())),],
+                attrs: vec![
+                    ("pos".to_owned(), AttrValue::Null),
+                    ("name".to_owned(), AttrValue::Str("n".to_owned())),
+                ],
             }
         );
         assert_eq!(ops[7].deviation, ["D2", "D3"]);
@@ -850,9 +904,15 @@ mod tests {
             (r#"{"name": "x"}"#, "op 1: missing field \"op\""),
             (r#"[]"#, "op 1: an op must be an object"),
             (r#"{"op": "load", "name": "x"}"#, "op 1 (load): missing field \"file\""),
-            (r#"{"op": "load", "name": "x", "file": "f", "extra": 1}"#, "op 1 (load): unknown field \"extra\""),
+            (
+                r#"{"op": "load", "name": "x", "file": "f", "extra": 1}"#,
+                "op 1 (load): unknown field \"extra\"",
+            ),
             (r#"{"op": "load", "name": 3, "file": "f"}"#, "field \"name\" must be a string"),
-            (r#"{"op": "detach", "child": "c", "expect_error": "oops"}"#, "unknown error category \"oops\""),
+            (
+                r#"{"op": "detach", "child": "c", "expect_error": "oops"}"#,
+                "unknown error category \"oops\"",
+            ),
             (
                 r#"{"op": "add", "model": "m", "parent": "worldbody", "tag": "g", "attrs": {"a": null}}"#,
                 "null is only allowed in set",
@@ -861,7 +921,10 @@ mod tests {
                 r#"{"op": "add", "model": "m", "parent": "worldbody", "tag": "g", "attrs": {"a": ["x"]}}"#,
                 "arrays must hold only numbers",
             ),
-            (r#"{"op": "add", "model": "m", "parent": "option..flag", "tag": "g"}"#, "bad section locator"),
+            (
+                r#"{"op": "add", "model": "m", "parent": "option..flag", "tag": "g"}"#,
+                "bad section locator",
+            ),
             (
                 r#"{"op": "add", "model": "m", "parent": {"find": ["body"]}, "tag": "g"}"#,
                 "\"find\" must be [namespace, identifier] strings",
@@ -870,20 +933,40 @@ mod tests {
                 r#"{"op": "add", "model": "m", "parent": {"handle": "h", "find": ["a", "b"]}, "tag": "g"}"#,
                 "exactly one key",
             ),
-            (r#"{"op": "add", "model": "m", "parent": {"nearest": "h"}, "tag": "g"}"#, "unknown locator \"nearest\""),
+            (
+                r#"{"op": "add", "model": "m", "parent": {"nearest": "h"}, "tag": "g"}"#,
+                "unknown locator \"nearest\"",
+            ),
             (r#"{"op": "set", "model": "m", "target": "worldbody"}"#, "missing field \"attrs\""),
-            (r#"{"op": "attach", "parent": "p", "child": "c"}"#, "missing \"site\" or \"site_loc\""),
+            (
+                r#"{"op": "attach", "parent": "p", "child": "c"}"#,
+                "missing \"site\" or \"site_loc\"",
+            ),
             (
                 r#"{"op": "attach", "parent": "p", "child": "c", "site": null, "site_loc": "worldbody"}"#,
                 "both \"site\" and \"site_loc\" given",
             ),
-            (r#"{"op": "attach", "parent": "p", "child": "c", "site": 1}"#, "must be a string or null"),
-            (r#"{"op": "include_copy", "parent": "p", "child": "c", "override_attributes": 1}"#, "must be a boolean"),
-            (r#"{"op": "output", "model": "m", "file": "f", "options": {"precision": 1.5}}"#, "non-negative integer"),
-            (r#"{"op": "output", "model": "m", "file": "f", "options": {"indent": 2}}"#, "unknown field \"indent\""),
+            (
+                r#"{"op": "attach", "parent": "p", "child": "c", "site": 1}"#,
+                "must be a string or null",
+            ),
+            (
+                r#"{"op": "include_copy", "parent": "p", "child": "c", "override_attributes": 1}"#,
+                "must be a boolean",
+            ),
+            (
+                r#"{"op": "output", "model": "m", "file": "f", "options": {"precision": 1.5}}"#,
+                "non-negative integer",
+            ),
+            (
+                r#"{"op": "output", "model": "m", "file": "f", "options": {"indent": 2}}"#,
+                "unknown field \"indent\"",
+            ),
         ];
         for (op, message) in cases {
-            let json = format!(r#"{{"description": "d", "ops": [{{"op": "detach", "child": "c"}}, {op}]}}"#);
+            let json = format!(
+                r#"{{"description": "d", "ops": [{{"op": "detach", "child": "c"}}, {op}]}}"#
+            );
             match parse(&json) {
                 Ok(case) => panic!("{op} loaded: {case:?}"),
                 Err(e) => {

@@ -113,7 +113,10 @@ impl Drop for XmlElement {
 /// are ignored.
 pub(crate) fn parse_xml(text: &str) -> Result<XmlElement, String> {
     if let Some((offset, c)) = text.char_indices().find(|&(_, c)| !is_xml_char(c)) {
-        return Err(format!("not well-formed (invalid character U+{:04X}) at byte {offset}", u32::from(c)));
+        return Err(format!(
+            "not well-formed (invalid character U+{:04X}) at byte {offset}",
+            u32::from(c)
+        ));
     }
     let mut reader = Reader::from_str(text);
     reader.config_mut().check_comments = true;
@@ -128,7 +131,8 @@ pub(crate) fn parse_xml(text: &str) -> Result<XmlElement, String> {
     let mut seen_doctype = false;
     loop {
         let position = reader.buffer_position();
-        let event = reader.read_event().map_err(|e| format!("{e} at byte {}", reader.error_position()))?;
+        let event =
+            reader.read_event().map_err(|e| format!("{e} at byte {}", reader.error_position()))?;
         let at = |message: &str| format!("{message} at byte {position}");
         let in_document = root.is_some() || !open.is_empty();
         match event {
@@ -169,7 +173,10 @@ pub(crate) fn parse_xml(text: &str) -> Result<XmlElement, String> {
                 let resolved = match reference.resolve_char_ref() {
                     Ok(Some(c)) if is_xml_char(c) => c.to_string(),
                     Ok(Some(c)) => {
-                        return Err(at(&format!("reference to invalid character number {}", u32::from(c))));
+                        return Err(at(&format!(
+                            "reference to invalid character number {}",
+                            u32::from(c)
+                        )));
                     }
                     Ok(None) => match quick_xml::escape::resolve_xml_entity(&reference) {
                         Some(value) => value.to_owned(),
@@ -194,7 +201,10 @@ pub(crate) fn parse_xml(text: &str) -> Result<XmlElement, String> {
         seen_markup = true;
     }
     if !open.is_empty() {
-        return Err(format!("no element found: {} unclosed element(s) at end of document", open.len()));
+        return Err(format!(
+            "no element found: {} unclosed element(s) at end of document",
+            open.len()
+        ));
     }
     root.ok_or_else(|| "no element found".to_owned())
 }
@@ -235,7 +245,12 @@ pub(crate) fn first_difference(actual: &XmlElement, expected: &XmlElement) -> Op
             if let Some(diff) = node_difference(a_child, e_child, &path) {
                 return Some(diff);
             }
-            stack.push(Frame { actual: a_child, expected: e_child, path_len: path.len(), next_child: 0 });
+            stack.push(Frame {
+                actual: a_child,
+                expected: e_child,
+                path_len: path.len(),
+                next_child: 0,
+            });
         } else {
             if let Some(diff) = child_count_difference(a, e, &path) {
                 return Some(diff);
@@ -310,7 +325,10 @@ const XMLNS_NAMESPACE: &str = "http://www.w3.org/2000/xmlns/";
 /// undeclared prefix is an error. The tag's declarations are pushed onto
 /// `bindings` (prefix, uri; `""` is the default namespace); the caller pops
 /// them when the element ends.
-fn new_element(start: &BytesStart<'_>, bindings: &mut Vec<(String, String)>) -> Result<XmlElement, String> {
+fn new_element(
+    start: &BytesStart<'_>,
+    bindings: &mut Vec<(String, String)>,
+) -> Result<XmlElement, String> {
     let mut attributes = Vec::new();
     for attr in start.attributes() {
         let attr = attr.map_err(|e| e.to_string())?;
@@ -367,7 +385,9 @@ fn new_element(start: &BytesStart<'_>, bindings: &mut Vec<(String, String)>) -> 
 fn split_qname(name: &str) -> Result<(Option<&str>, &str), String> {
     match name.split_once(':') {
         None => Ok((None, name)),
-        Some((prefix, local)) if !prefix.is_empty() && !local.is_empty() && !local.contains(':') => {
+        Some((prefix, local))
+            if !prefix.is_empty() && !local.is_empty() && !local.contains(':') =>
+        {
             Ok((Some(prefix), local))
         }
         Some(_) => Err(format!("not well-formed (invalid qualified name {name:?})")),
@@ -375,9 +395,15 @@ fn split_qname(name: &str) -> Result<(Option<&str>, &str), String> {
 }
 
 /// ElementTree's `{uri}local` form of a tag (`is_element`) or attribute name.
-fn expanded_name(name: &str, bindings: &[(String, String)], is_element: bool) -> Result<String, String> {
+fn expanded_name(
+    name: &str,
+    bindings: &[(String, String)],
+    is_element: bool,
+) -> Result<String, String> {
     let (prefix, local) = split_qname(name)?;
-    let lookup = |prefix: &str| bindings.iter().rev().find(|(p, _)| p == prefix).map(|(_, uri)| uri.as_str());
+    let lookup = |prefix: &str| {
+        bindings.iter().rev().find(|(p, _)| p == prefix).map(|(_, uri)| uri.as_str())
+    };
     let uri = match prefix {
         None if is_element => lookup("").unwrap_or_default(),
         None => "",
@@ -462,7 +488,10 @@ fn attr_map(element: &XmlElement) -> BTreeMap<&str, &str> {
 /// The checks compare.py does on one element before visiting its children.
 fn node_difference(actual: &XmlElement, expected: &XmlElement, path: &str) -> Option<String> {
     if actual.tag != expected.tag {
-        return Some(format!("{path}: tag differs: actual <{}> vs expected <{}>", actual.tag, expected.tag));
+        return Some(format!(
+            "{path}: tag differs: actual <{}> vs expected <{}>",
+            actual.tag, expected.tag
+        ));
     }
     let a_attrs = attr_map(actual);
     let e_attrs = attr_map(expected);
@@ -497,13 +526,21 @@ fn node_difference(actual: &XmlElement, expected: &XmlElement, path: &str) -> Op
     let a_text = py_strip(&actual.text);
     let e_text = py_strip(&expected.text);
     if a_text != e_text {
-        return Some(format!("{path}: text differs: actual {} vs expected {}", py_repr(a_text), py_repr(e_text)));
+        return Some(format!(
+            "{path}: text differs: actual {} vs expected {}",
+            py_repr(a_text),
+            py_repr(e_text)
+        ));
     }
     None
 }
 
 /// The check compare.py does on one element after visiting its children.
-fn child_count_difference(actual: &XmlElement, expected: &XmlElement, path: &str) -> Option<String> {
+fn child_count_difference(
+    actual: &XmlElement,
+    expected: &XmlElement,
+    path: &str,
+) -> Option<String> {
     let (a_len, e_len) = (actual.children.len(), expected.children.len());
     if a_len > e_len {
         let extra = &actual.children[e_len];
@@ -558,11 +595,12 @@ fn py_strip(text: &str) -> &str {
 /// The first code point of every run of ten Unicode decimal digits (category
 /// Nd) in Python 3.11's Unicode database (14.0).
 const DECIMAL_ZEROS: [u32; 66] = [
-    0x30, 0x660, 0x6f0, 0x7c0, 0x966, 0x9e6, 0xa66, 0xae6, 0xb66, 0xbe6, 0xc66, 0xce6, 0xd66, 0xde6, 0xe50, 0xed0,
-    0xf20, 0x1040, 0x1090, 0x17e0, 0x1810, 0x1946, 0x19d0, 0x1a80, 0x1a90, 0x1b50, 0x1bb0, 0x1c40, 0x1c50, 0xa620,
-    0xa8d0, 0xa900, 0xa9d0, 0xa9f0, 0xaa50, 0xabf0, 0xff10, 0x104a0, 0x10d30, 0x11066, 0x110f0, 0x11136, 0x111d0,
-    0x112f0, 0x11450, 0x114d0, 0x11650, 0x116c0, 0x11730, 0x118e0, 0x11950, 0x11c50, 0x11d50, 0x11da0, 0x16a60,
-    0x16ac0, 0x16b50, 0x1d7ce, 0x1d7d8, 0x1d7e2, 0x1d7ec, 0x1d7f6, 0x1e140, 0x1e2f0, 0x1e950, 0x1fbf0,
+    0x30, 0x660, 0x6f0, 0x7c0, 0x966, 0x9e6, 0xa66, 0xae6, 0xb66, 0xbe6, 0xc66, 0xce6, 0xd66,
+    0xde6, 0xe50, 0xed0, 0xf20, 0x1040, 0x1090, 0x17e0, 0x1810, 0x1946, 0x19d0, 0x1a80, 0x1a90,
+    0x1b50, 0x1bb0, 0x1c40, 0x1c50, 0xa620, 0xa8d0, 0xa900, 0xa9d0, 0xa9f0, 0xaa50, 0xabf0, 0xff10,
+    0x104a0, 0x10d30, 0x11066, 0x110f0, 0x11136, 0x111d0, 0x112f0, 0x11450, 0x114d0, 0x11650,
+    0x116c0, 0x11730, 0x118e0, 0x11950, 0x11c50, 0x11d50, 0x11da0, 0x16a60, 0x16ac0, 0x16b50,
+    0x1d7ce, 0x1d7d8, 0x1d7e2, 0x1d7ec, 0x1d7f6, 0x1e140, 0x1e2f0, 0x1e950, 0x1fbf0,
 ];
 
 /// Python's `unicodedata.decimal(c)`.
@@ -677,7 +715,10 @@ mod tests {
 
     #[test]
     fn whitespace_and_comments_are_ignored() {
-        assert_eq!(diff("<a>\n  <b/>\n  <!-- c -->\n  <c>t</c>\n</a>", "<a><b/><c>  t\n</c></a>"), None);
+        assert_eq!(
+            diff("<a>\n  <b/>\n  <!-- c -->\n  <c>t</c>\n</a>", "<a><b/><c>  t\n</c></a>"),
+            None
+        );
     }
 
     #[test]
@@ -879,8 +920,14 @@ mod tests {
             Some("/mujoco[0]/default[0](class='n')/y[0]: tag differs: actual <x> vs expected <y>")
         );
         assert_eq!(
-            diff(r#"<m><w/><w/><w/><b name="x"/></m>"#, r#"<m><w/><w/><w/><b name="robot/"><g/></b></m>"#).as_deref(),
-            Some("/m[0]/b[3](name='robot/'): attribute 'name' differs: actual 'x' vs expected 'robot/'")
+            diff(
+                r#"<m><w/><w/><w/><b name="x"/></m>"#,
+                r#"<m><w/><w/><w/><b name="robot/"><g/></b></m>"#
+            )
+            .as_deref(),
+            Some(
+                "/m[0]/b[3](name='robot/'): attribute 'name' differs: actual 'x' vs expected 'robot/'"
+            )
         );
     }
 
@@ -892,7 +939,11 @@ mod tests {
         );
         // Only the text before the first child counts (ElementTree's .text).
         assert_eq!(diff("<a>x<b/>y</a>", "<a>x<b/>z</a>"), None);
-        assert_eq!(diff("<a>x<!--c-->y<b/></a>", "<a>xy<b/></a>"), None, "comments are transparent");
+        assert_eq!(
+            diff("<a>x<!--c-->y<b/></a>", "<a>xy<b/></a>"),
+            None,
+            "comments are transparent"
+        );
         assert_eq!(diff("<a>x<![CDATA[<y>]]></a>", "<a>x&lt;y&gt;</a>"), None);
         assert_eq!(
             diff("<a>\u{e9}\ttab</a>", "<a>&#233;</a>").as_deref(),
@@ -902,8 +953,8 @@ mod tests {
 
     #[test]
     fn attribute_value_unescaping() {
-        let root =
-            parse_xml("<a b=\"1\n2\t3\r\n4&#10;5&#9;&#13;&lt;&amp;&#x41;&#232;\"/>").unwrap_or_else(|e| panic!("{e}"));
+        let root = parse_xml("<a b=\"1\n2\t3\r\n4&#10;5&#9;&#13;&lt;&amp;&#x41;&#232;\"/>")
+            .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(root.get("b"), Some("1 2 3 4\n5\t\r<&A\u{e8}"));
         assert_eq!(
             diff(r#"<a b="x&#10;y"/>"#, r#"<a b="x y"/>"#).as_deref(),
@@ -1014,8 +1065,13 @@ pairs = json.load(sys.stdin)
 print(json.dumps([run(a, e) for a, e in pairs]))
 "#;
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/conformance");
-        let child =
-            Command::new("python3").arg("-c").arg(script).arg(dir).stdin(Stdio::piped()).stdout(Stdio::piped()).spawn();
+        let child = Command::new("python3")
+            .arg("-c")
+            .arg(script)
+            .arg(dir)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn();
         let Ok(mut child) = child else {
             eprintln!("python3 not available; skipping the comparison with compare.py");
             return false;
@@ -1026,7 +1082,8 @@ print(json.dumps([run(a, e) for a, e in pairs]))
         }
         let output = child.wait_with_output().unwrap_or_else(|e| panic!("{e}"));
         assert!(output.status.success(), "compare.py failed: {output:?}");
-        let results: Vec<serde_json::Value> = serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("{e}"));
+        let results: Vec<serde_json::Value> =
+            serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(results.len(), pairs.len());
         for ((actual_xml, expected_xml), python) in pairs.iter().zip(results) {
             let ours = compare_strings(actual_xml, expected_xml);
@@ -1095,7 +1152,10 @@ print(json.dumps([run(a, e) for a, e in pairs]))
             ("<!DOCTYPE a><!DOCTYPE a><a/>", "<a/>"),
             (" <?xml version='1.0'?><a/>", "<a/>"),
             ("<a></A>", "<a/>"),
-            (r#"<a xmlns="u" xmlns:p="v" p:x="1" y="2"><p:b/><c xmlns=""/></a>"#, r#"<a xmlns="u"><b/></a>"#),
+            (
+                r#"<a xmlns="u" xmlns:p="v" p:x="1" y="2"><p:b/><c xmlns=""/></a>"#,
+                r#"<a xmlns="u"><b/></a>"#,
+            ),
             (r#"<p:a xmlns:p="v"/>"#, r#"<q:a xmlns:q="v"/>"#),
             (r#"<a xml:lang="en"/>"#, r#"<a lang="en"/>"#),
             (r#"<a xmlns:p="v" xmlns:q="v" p:x="1" q:x="2"/>"#, "<a/>"),
@@ -1132,11 +1192,15 @@ y"><p:b/></a>"#,
             ("<a>\r\nx\ry</a>", "<a>x\ny</a>"),
             (r#"<a><b/><c/></a>"#, r#"<a><b/></a>"#),
             (r#"<a><default/></a>"#, r#"<a><default><default class="c"/></default></a>"#),
-            (r#"<a><default name="n"/></a>"#, r#"<a><default name="n" class="c"><x/></default></a>"#),
+            (
+                r#"<a><default name="n"/></a>"#,
+                r#"<a><default name="n" class="c"><x/></default></a>"#,
+            ),
             (r#"<a p="1"/>"#, r#"<a q="2" r="it's"/>"#),
             (r#"<a><b name="x"/></a>"#, r#"<b/>"#),
         ];
-        let pairs: Vec<(String, String)> = pairs.iter().map(|(a, e)| (a.to_string(), e.to_string())).collect();
+        let pairs: Vec<(String, String)> =
+            pairs.iter().map(|(a, e)| (a.to_string(), e.to_string())).collect();
         agrees_with_python(&pairs);
     }
 
@@ -1165,8 +1229,10 @@ y"><p:b/></a>"#,
                 })
                 .collect();
             files.sort();
-            let texts: Vec<String> =
-                files.iter().map(|path| std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}"))).collect();
+            let texts: Vec<String> = files
+                .iter()
+                .map(|path| std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}")))
+                .collect();
             for (path, text) in files.iter().zip(&texts) {
                 match compare_strings(text, text) {
                     Ok(None) => {}

@@ -9,7 +9,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use mjcf::{
-    Attrs, EditError, Element, ErrorKind, Loc, Model, ReadError, ReadOptions, ValueError, WriteError, WriteOptions,
+    Attrs, EditError, Element, ErrorKind, Loc, Model, ReadError, ReadOptions, ValueError,
+    WriteError, WriteOptions,
 };
 
 use super::case::{self, AttachSite, AttrValue, Case, Op, OpKind};
@@ -42,16 +43,18 @@ impl OpError {
 /// The README category of an error kind.
 pub(crate) fn category(kind: &ErrorKind) -> &'static str {
     match kind {
-        ErrorKind::Syntax(_) | ErrorKind::InvalidUtf8 | ErrorKind::WrongRoot(_) | ErrorKind::TooDeep(_) => {
-            "parse_error"
-        }
+        ErrorKind::Syntax(_)
+        | ErrorKind::InvalidUtf8
+        | ErrorKind::WrongRoot(_)
+        | ErrorKind::TooDeep(_) => "parse_error",
         ErrorKind::IncludeCycle(_) => "parse_error",
         ErrorKind::InvalidChild { .. } | ErrorKind::FreejointNotTopLevel(_) => "invalid_child",
         ErrorKind::DuplicateChild(_) => "duplicate_child",
         ErrorKind::UnknownAttribute { .. } => "invalid_attribute",
-        ErrorKind::InvalidValue { error: ValueError::SlashInIdentifier | ValueError::WorldBody, .. } => {
-            "invalid_identifier"
-        }
+        ErrorKind::InvalidValue {
+            error: ValueError::SlashInIdentifier | ValueError::WorldBody,
+            ..
+        } => "invalid_identifier",
         ErrorKind::InvalidValue { .. } => "invalid_value",
         ErrorKind::DuplicateIdentifier { .. } => "duplicate_identifier",
         ErrorKind::MissingRequired { .. } => "missing_required",
@@ -126,9 +129,11 @@ pub(crate) fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
         let result = st.apply(op, marked && is_output);
         let mismatch = match (&result, &op.expect_error) {
             (Ok(()), None) => None,
-            (Ok(()), Some(want)) => {
-                Some(format!("op {} ({}): expected error {want}, but it succeeded", op.index, op.op_name()))
-            }
+            (Ok(()), Some(want)) => Some(format!(
+                "op {} ({}): expected error {want}, but it succeeded",
+                op.index,
+                op.op_name()
+            )),
             (Err(e), Some(want)) if e.category == want => None,
             (Err(e), Some(want)) => Some(format!(
                 "op {} ({}): expected error {want}, got {}: {}",
@@ -137,9 +142,13 @@ pub(crate) fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
                 e.category,
                 e.message
             )),
-            (Err(e), None) => {
-                Some(format!("op {} ({}): unexpected error {}: {}", op.index, op.op_name(), e.category, e.message))
-            }
+            (Err(e), None) => Some(format!(
+                "op {} ({}): unexpected error {}: {}",
+                op.index,
+                op.op_name(),
+                e.category,
+                e.message
+            )),
         };
         if marked && (is_output || mismatch.is_some()) {
             for d in &op.deviation {
@@ -193,7 +202,9 @@ impl State<'_> {
         if path.is_empty() {
             return Ok(m);
         }
-        m.attached(&path).ok().ok_or_else(|| OpError::new("unknown", format!("{var} lost its place {path}")))
+        m.attached(&path)
+            .ok()
+            .ok_or_else(|| OpError::new("unknown", format!("{var} lost its place {path}")))
     }
 
     fn set_root(&mut self, root: &str, m: Model) {
@@ -218,9 +229,13 @@ impl State<'_> {
             case::Loc::Section(path) => {
                 let m = self.model(var)?;
                 let first = path.first().map(String::as_str).unwrap_or("");
-                let mut l = m.section(first).ok_or_else(|| OpError::new("not_found", format!("no section {first}")))?;
+                let mut l = m
+                    .section(first)
+                    .ok_or_else(|| OpError::new("not_found", format!("no section {first}")))?;
                 for tag in &path[1..] {
-                    let el = m.element(&l).ok_or_else(|| OpError::new("not_found", "section vanished"))?;
+                    let el = m
+                        .element(&l)
+                        .ok_or_else(|| OpError::new("not_found", "section vanished"))?;
                     let child = el.children().find(|c| c.tag() == tag);
                     l = child
                         .map(|c| c.loc())
@@ -231,22 +246,32 @@ impl State<'_> {
                 Ok((root, l))
             }
             case::Loc::Find { namespace, identifier } => {
-                let ns = mjcf::Namespace::from_name(namespace)
-                    .ok_or_else(|| OpError::new("invalid_namespace", format!("{namespace:?} is not a namespace")))?;
+                let ns = mjcf::Namespace::from_name(namespace).ok_or_else(|| {
+                    OpError::new("invalid_namespace", format!("{namespace:?} is not a namespace"))
+                })?;
                 let (root, scope) = self.place(var)?;
-                let full = if scope.is_empty() { identifier.clone() } else { format!("{scope}/{identifier}") };
-                let l = self
-                    .root_model(&root)?
-                    .find(ns, &full)
-                    .ok_or_else(|| OpError::new("not_found", format!("no {namespace} named {identifier:?}")))?;
+                let full = if scope.is_empty() {
+                    identifier.clone()
+                } else {
+                    format!("{scope}/{identifier}")
+                };
+                let l = self.root_model(&root)?.find(ns, &full).ok_or_else(|| {
+                    OpError::new("not_found", format!("no {namespace} named {identifier:?}"))
+                })?;
                 Ok((root, l))
             }
             case::Loc::Handle(h) => {
-                let (v, l) = self.handles.get(h).ok_or_else(|| OpError::new("not_found", format!("no handle {h}")))?;
+                let (v, l) = self
+                    .handles
+                    .get(h)
+                    .ok_or_else(|| OpError::new("not_found", format!("no handle {h}")))?;
                 let (root, scope) = self.place(v)?;
                 let l = self.lift(&root, &scope, l)?;
                 if self.root_model(&root)?.element(&l).is_none() {
-                    return Err(OpError::new("not_found", format!("handle {h} names a removed element")));
+                    return Err(OpError::new(
+                        "not_found",
+                        format!("handle {h} names a removed element"),
+                    ));
                 }
                 Ok((root, l))
             }
@@ -255,11 +280,10 @@ impl State<'_> {
                 if scope.is_empty() {
                     return Err(OpError::new("not_attached", format!("{v} is not attached")));
                 }
-                let l = self
-                    .root_model(&root)?
-                    .frame(&scope)
-                    .ok()
-                    .ok_or_else(|| OpError::new("not_attached", format!("{v} is not attached")))?;
+                let l =
+                    self.root_model(&root)?.frame(&scope).ok().ok_or_else(|| {
+                        OpError::new("not_attached", format!("{v} is not attached"))
+                    })?;
                 Ok((root, l))
             }
         }
@@ -269,9 +293,13 @@ impl State<'_> {
     /// that holds the element.
     fn save_handle(&mut self, name: &str, root: &str, loc: &Loc) -> Result<(), OpError> {
         let m = self.root_model(root)?;
-        let inner = m.element(loc).map(|e| e.loc()).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
+        let inner = m
+            .element(loc)
+            .map(|e| e.loc())
+            .ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
         // The variable whose model holds it: the one placed at the element's scope.
-        let scope = m.scope_path(loc).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
+        let scope =
+            m.scope_path(loc).ok_or_else(|| OpError::new("not_found", "new element vanished"))?;
         let var = self
             .vars
             .keys()
@@ -323,8 +351,12 @@ impl State<'_> {
             OpKind::Remove { model, target, affect_attachments } => {
                 let (root, loc) = self.resolve(model, target)?;
                 let m = self.root_model(&root)?;
-                let m = if *affect_attachments { m.remove_with_attachments(&loc) } else { m.remove(&loc) }
-                    .map_err(edit_err)?;
+                let m = if *affect_attachments {
+                    m.remove_with_attachments(&loc)
+                } else {
+                    m.remove(&loc)
+                }
+                .map_err(edit_err)?;
                 // Models whose frames went with the removed element are standalone
                 // again, with the value they had (and models inside them move along).
                 let mut gone: Vec<(String, Vec<String>, Model)> = Vec::new();
@@ -337,9 +369,14 @@ impl State<'_> {
                 }
                 self.set_root(&root, m);
                 for (var, path, value) in &gone {
-                    let outer = gone.iter().filter(|(_, p, _)| path.starts_with(p)).min_by_key(|(_, p, _)| p.len());
+                    let outer = gone
+                        .iter()
+                        .filter(|(_, p, _)| path.starts_with(p))
+                        .min_by_key(|(_, p, _)| p.len());
                     let new = match outer {
-                        Some((o, p, _)) if o != var => Var::Placed { root: o.clone(), path: path[p.len()..].to_vec() },
+                        Some((o, p, _)) if o != var => {
+                            Var::Placed { root: o.clone(), path: path[p.len()..].to_vec() }
+                        }
                         _ => Var::Own(value.clone()),
                     };
                     self.vars.insert(var.clone(), new);
@@ -353,12 +390,15 @@ impl State<'_> {
                 } else {
                     let m = self.root_model(&root)?;
                     let m = m.rename_scope(&scope, to).map_err(edit_err)?;
-                    let m = m.edit_attached(scope_renamed(&scope, to), |c| Ok(c.with_name(to))).map_err(edit_err)?;
+                    let m = m
+                        .edit_attached(scope_renamed(&scope, to), |c| Ok(c.with_name(to)))
+                        .map_err(edit_err)?;
                     self.set_root(&root, m);
                     let depth = scope.split('/').count();
                     for v in self.vars.values_mut() {
                         if let Var::Placed { root: r, path } = v {
-                            if *r == root && path.len() >= depth && path[..depth].join("/") == scope {
+                            if *r == root && path.len() >= depth && path[..depth].join("/") == scope
+                            {
                                 path[depth - 1] = to.clone();
                             }
                         }
@@ -385,27 +425,35 @@ impl State<'_> {
                         let l = self.lift(&root, &scope, &wb)?;
                         (root, l)
                     }
-                    AttachSite::Name(name) => {
-                        self.resolve(parent, &case::Loc::Find { namespace: "site".into(), identifier: name.clone() })?
-                    }
+                    AttachSite::Name(name) => self.resolve(
+                        parent,
+                        &case::Loc::Find { namespace: "site".into(), identifier: name.clone() },
+                    )?,
                     AttachSite::Loc(l) => self.resolve(parent, l)?,
                 };
                 // The reference checks the site, then the child's state.
                 let tag = self.root_model(&root)?.element(&loc).map(|e| e.tag()).unwrap_or("");
                 if tag != "site" && tag != "worldbody" {
-                    return Err(OpError::new("invalid_parent", format!("cannot attach at a <{tag}>")));
+                    return Err(OpError::new(
+                        "invalid_parent",
+                        format!("cannot attach at a <{tag}>"),
+                    ));
                 }
                 let child_model = match self.vars.get(child) {
                     Some(Var::Own(m)) => m.clone(),
                     Some(Var::Placed { .. }) => {
-                        return Err(OpError::new("already_attached", format!("{child} is attached")));
+                        return Err(OpError::new(
+                            "already_attached",
+                            format!("{child} is attached"),
+                        ));
                     }
                     None => return Err(unknown(child)),
                 };
                 if root == *child {
                     return Err(OpError::new("attach_to_self", "a model attached into itself"));
                 }
-                let (m, frame) = self.root_model(&root)?.attach(&loc, &child_model).map_err(edit_err)?;
+                let (m, frame) =
+                    self.root_model(&root)?.attach(&loc, &child_model).map_err(edit_err)?;
                 // The scope path of the new attachment: the frame's holder, then its scope.
                 let scope = m
                     .scope_of_frame(frame.frame())
@@ -436,8 +484,11 @@ impl State<'_> {
                     return Err(OpError::new("not_attached", format!("{child} is not attached")));
                 }
                 let m = self.root_model(&root)?;
-                let value =
-                    m.attached(&scope).ok().cloned().ok_or_else(|| OpError::new("not_attached", scope.clone()))?;
+                let value = m
+                    .attached(&scope)
+                    .ok()
+                    .cloned()
+                    .ok_or_else(|| OpError::new("not_attached", scope.clone()))?;
                 let m = m.detach(&scope).map_err(edit_err)?;
                 self.set_root(&root, m);
                 let depth = scope.split('/').count();
@@ -464,7 +515,8 @@ impl State<'_> {
                 if let Some(out) = self.actual_dir {
                     let d = out.join(&self.case.name);
                     std::fs::create_dir_all(&d).map_err(|e| OpError::new("io", e.to_string()))?;
-                    std::fs::write(d.join(file), &xml).map_err(|e| OpError::new("io", e.to_string()))?;
+                    std::fs::write(d.join(file), &xml)
+                        .map_err(|e| OpError::new("io", e.to_string()))?;
                 }
                 if skip_compare {
                     return Ok(());
@@ -473,8 +525,12 @@ impl State<'_> {
                     .map_err(|e| OpError::new("io", format!("cannot read expected {file}: {e}")))?;
                 match compare::compare_strings(&xml, &expected) {
                     Ok(None) => {}
-                    Ok(Some(diff)) => return Err(OpError::new("output_differs", format!("{file}: {diff}"))),
-                    Err(e) => return Err(OpError::new("output_unparseable", format!("{file}: {e}"))),
+                    Ok(Some(diff)) => {
+                        return Err(OpError::new("output_differs", format!("{file}: {diff}")));
+                    }
+                    Err(e) => {
+                        return Err(OpError::new("output_unparseable", format!("{file}: {e}")));
+                    }
                 }
             }
         }
@@ -493,7 +549,10 @@ fn scope_renamed(scope: &str, to: &str) -> String {
 /// Runs every case under `root`, returning (name, outcome) in name order.
 // For examples/conformance.rs; tests/conformance.rs runs the cases one by one.
 #[allow(dead_code)]
-pub(crate) fn run_all(root: &Path, actual_dir: Option<&Path>) -> Result<Vec<(String, Outcome)>, String> {
+pub(crate) fn run_all(
+    root: &Path,
+    actual_dir: Option<&Path>,
+) -> Result<Vec<(String, Outcome)>, String> {
     let mut out = Vec::new();
     for dir in case::list_cases(root)? {
         let c = case::load_case(&dir)?;

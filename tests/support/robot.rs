@@ -19,6 +19,7 @@ pub(crate) fn robot(name: &str) -> Model {
                 .child(Element::new("site").attr("name", "mount")),
         )
         .unwrap();
-    let (m, _) = m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip")).unwrap();
+    let (m, _) =
+        m.add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip")).unwrap();
     m
 }
