@@ -190,6 +190,12 @@ impl Scopes {
         self.order.is_empty()
     }
 
+    /// Whether both share one attach list (O(1)): versions whose attachments did not
+    /// change do.
+    pub(crate) fn ptr_eq(&self, other: &Scopes) -> bool {
+        self.order.ptr_eq(&other.order)
+    }
+
     /// (scope, frame) in attach order.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
         self.order.values().map(|(s, f)| (s, *f))
