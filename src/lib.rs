@@ -37,6 +37,7 @@ mod value;
 mod xml;
 
 pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueError, WriteError};
+pub use crate::model::diff::Change;
 pub use crate::model::{Attrs, Element, ElementRef, Loc, Model};
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace, PathNamespace, RefTarget,

@@ -5,6 +5,7 @@
 //! pointing at the same element across versions (it holds the element's stable id).
 
 mod build;
+pub(crate) mod diff;
 mod index;
 
 use std::fmt;
