@@ -119,16 +119,17 @@ impl Model {
     /// sections' children instead. Models read from XML share nothing.)
     ///
     /// The changes come in a deterministic order: the top model's, then those inside
-    /// each differing attachment; within one model, depth first, a parent's `Removed`
-    /// children, then its added and moved ones in their new order.
+    /// each differing attachment (outer ones first); within one model, depth first:
+    /// an element's own changes, then its removed children, then its added and moved
+    /// children in their new order, then the changes inside its children.
     ///
     /// Time: O(E · (a + c + s) + (A + R) · log n). E is the number of node pairs
     /// examined: the elements that differ and their ancestors, through attachment
     /// frames (for one edit, the depth of the edited element). Per examined pair, a is
-    /// its attribute count, c the number of chunks of its children sequence (at most
-    /// about w / 32 for w children, √w past 4,096) and s the children in chunks the two
-    /// versions do not share (an edit of a children list copies one chunk, of
-    /// max(64, √w) items). A and R are the sizes of added and removed subtrees (R
+    /// its attribute count, c the number of chunks of its children sequence (w / 64 to
+    /// w / 32 for w children added one by one, √w past 4,096 children; removals can
+    /// leave smaller chunks) and s the children in chunks the two versions do not share
+    /// (an edit of a children list copies one chunk, of at most max(64, √w) items). A and R are the sizes of added and removed subtrees (R
     /// counts only when the model has attachments), each element looked up in the
     /// other version's index (log n). Moves among siblings add O(u log u) for the u
     /// siblings and shared chunks involved. Unrelated models cost O(n log n).
@@ -543,7 +544,7 @@ fn in_order(units: &[Unit<'_>]) -> Vec<bool> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::model::Element;
     use crate::schema::Namespace;
