@@ -53,6 +53,10 @@ pub enum Change {
     /// their relative order are a largest such set (counting elements); the others are
     /// reported as moved. So adding or removing siblings moves nothing, and taking one
     /// child from the front to the back reports that one child only.
+    ///
+    /// No public edit moves an element (`insert` and `add` make new ids, `remove`
+    /// drops them), so versions made with this crate's edits differ by `Removed` and
+    /// `Added` instead; `Moved` is reported only where an id itself changed place.
     Moved {
         /// The element (valid in both versions).
         loc: Loc,
