@@ -55,6 +55,7 @@ mod xml;
 
 pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueError, WriteError};
 pub use crate::id::ElementId;
+pub use crate::model::diff::Change;
 pub use crate::model::{
     Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, ScopeRef,
 };

@@ -84,6 +84,18 @@ impl<T: Clone> Seq<T> {
         Iter { chunks: middle.iter(), front: front.iter(), back: back.iter(), left: end - start }
     }
 
+    /// The chunks in order, each with the position of its first item. Versions of a
+    /// sequence share (`Arc::ptr_eq`) every chunk that the edits between them did not
+    /// copy, so a comparison can skip those without looking at their items.
+    pub(crate) fn chunks(&self) -> impl ExactSizeIterator<Item = (usize, &Arc<Vec<T>>)> + '_ {
+        self.starts.iter().copied().zip(self.chunks.iter())
+    }
+
+    /// Whether both share one chunk list, so hold the same items (O(1)).
+    pub(crate) fn ptr_eq(&self, other: &Seq<T>) -> bool {
+        Arc::ptr_eq(&self.chunks, &other.chunks)
+    }
+
     /// Recomputes the start positions from chunk `from` on.
     fn restart(&mut self, from: usize) {
         let starts = Arc::make_mut(&mut self.starts);

@@ -6,7 +6,9 @@
 
 mod build;
 mod cursor;
+pub(crate) mod diff;
 mod edit;
+mod eq;
 pub(crate) mod frame;
 mod index;
 mod scope;
@@ -418,11 +420,16 @@ impl Model {
 }
 
 impl PartialEq for Model {
-    /// Two models are equal when their trees are (same elements with the same ids,
-    /// attributes and children). Versions derived from each other compare in time
-    /// proportional to what differs.
+    /// Content equality, however and wherever the two models were built: the same
+    /// name, tree (kinds, attributes, children in order) and attachments (scope names,
+    /// attach order, attached models, recursively). Element ids are not compared, but
+    /// resolved references must point at corresponding elements (a dead reference
+    /// matches only a dead one).
+    ///
+    /// Time: proportional to what differs for versions of one model (shared subtrees
+    /// are skipped unexamined); O(n) for models built separately (`model/eq.rs`).
     fn eq(&self, other: &Model) -> bool {
-        self.root == other.root && self.name() == other.name()
+        eq::equal(self, other)
     }
 }
 
