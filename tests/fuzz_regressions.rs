@@ -168,31 +168,22 @@ fn ops_removed_default_class_leaves_the_implicit_class() {
 // second `<default class="/">` inside the root-class wrapper.
 
 /// `<default><default class="/"><default class="/">…` merged the inner class into the
-/// root class. Only the outermost wrapper is the root class; inside it, `/` is a
-/// nested class's name and refused like `/` in any identifier.
+/// root class. Only the outermost wrapper is the root class; inside it, `/` is a nested
+/// class's name (names read from XML may hold `/`), kept as that class. The root class
+/// is then written as MuJoCo's main class, so the name `/` is not given twice.
 #[test]
-fn read_xml_nested_slash_class_inside_the_root_wrapper_is_refused() {
-    let e = Model::from_xml_str(
-        r#"<mujoco><default><default class="/"><default class="/"><geom size="1"/></default></default></default></mujoco>"#,
+fn read_xml_nested_slash_class_inside_the_root_wrapper_is_a_class() {
+    let m = Model::from_xml_str(
+        r#"<mujoco><default><default class="/"><geom rgba="1 0 0 1"/><default class="/"><geom size="1"/></default></default></default><worldbody><geom class="/"/></worldbody></mujoco>"#,
     )
-    .unwrap_err();
+    .unwrap();
+    let inner = m.find(Namespace::Default, "/").expect("the nested class named /");
+    assert_eq!(m.get(&inner).unwrap().children().filter(|c| c.attrs().next().is_some()).count(), 1);
+    let w1 = write(&m);
+    assert_eq!(w1.matches(r#"class="/">"#).count(), 1, "one class named /:\n{w1}");
     assert!(
-        matches!(
-            e.kind(),
-            ErrorKind::InvalidValue {
-                tag: "default",
-                attribute: "class",
-                error: mjcf::ValueError::SlashInIdentifier,
-                ..
-            }
-        ),
-        "{e}"
+        w1.contains("<default>\n    <geom rgba=\"1 0 0 1\"/>"),
+        "the root class as main:\n{w1}"
     );
-    assert_eq!(e.pos().map(|p| (p.line, p.column)), Some((1, 37)), "{e}");
-    // The wrapper alone, and a named class inside it, still read.
-    let m = read(
-        r#"<mujoco><default><default class="/"><geom size="1"/><default class="c"/></default></default></mujoco>"#,
-    );
-    assert!(m.find(Namespace::Default, "c").is_some());
-    assert_eq!(write(&read(&write(&m))), write(&m));
+    assert_eq!(write(&read(&w1)), w1);
 }

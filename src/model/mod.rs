@@ -297,47 +297,64 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn lookup(&self, namespace: Namespace, identifier: &str) -> Result<Loc, EditError> {
-        let (scope, name) = identifier.rsplit_once('/').unwrap_or(("", identifier));
-        let frames = if scope.is_empty() && !identifier.contains('/') {
-            Vec::new()
-        } else {
-            scope::check_scope_path(identifier)?;
-            self.scope_frames(scope)?
-        };
-        let m = self.scoped_model(&frames).ok_or_else(|| scope::not_attached(self, scope))?;
-        let id = if namespace == Namespace::AttachmentFrame {
-            m.index.frame_of(name)
-        } else {
-            m.index.names.get(&(namespace, SmolStr::from(name))).copied()
-        };
-        match id {
-            Some(id) => Ok(self.scoped_loc(&frames, id)),
-            None => {
-                let candidates: Vec<&str> = if namespace == Namespace::AttachmentFrame {
-                    m.index.scopes.iter().map(|(s, _)| s.as_str()).collect()
-                } else {
-                    m.index
-                        .names
-                        .keys()
-                        .filter(|(ns, _)| *ns == namespace)
-                        .map(|(_, n)| n.as_str())
-                        .collect()
-                };
-                let suggestions = crate::suggest::nearest(name, candidates, 3)
-                    .into_iter()
-                    .map(SmolStr::from)
-                    .collect();
-                Err(EditError::new(
-                    ErrorKind::UnknownName {
-                        namespace,
-                        name: name.into(),
-                        scope: scope.into(),
-                        suggestions,
-                    },
-                    String::new(),
-                ))
+        // At each level a literal name comes first (a model read from a file may hold
+        // `robot/torso` as one name), then the first segment as an attachment's scope.
+        let own = |m: &Model, name: &str| {
+            if namespace == Namespace::AttachmentFrame {
+                m.index.frame_of(name)
+            } else {
+                m.index.names.get(&(namespace, SmolStr::from(name))).copied()
             }
+        };
+        let mut m = self;
+        let mut frames: Vec<ElementId> = Vec::new();
+        let mut rest = identifier;
+        loop {
+            if let Some(id) = own(m, rest) {
+                return Ok(self.scoped_loc(&frames, id));
+            }
+            let Some((scope, tail)) = rest.split_once('/') else { break };
+            if frames.is_empty() {
+                scope::check_scope_path(identifier)?;
+            }
+            let Some(frame) = m.index.frame_of(scope) else {
+                if m.index.scopes.is_empty() {
+                    break; // a misspelt literal name: suggest names below
+                }
+                let upto = identifier.len() - tail.len() - 1;
+                return Err(scope::not_attached(m, &identifier[..upto]));
+            };
+            frames.push(frame);
+            m = &m
+                .node_by_id(frame)
+                .and_then(Node::attached)
+                .ok_or_else(|| self.stale_id(frame))?
+                .model;
+            rest = tail;
         }
+        let scope = &identifier[..identifier.len() - rest.len()];
+        let scope = scope.strip_suffix('/').unwrap_or(scope);
+        let candidates: Vec<&str> = if namespace == Namespace::AttachmentFrame {
+            m.index.scopes.iter().map(|(s, _)| s.as_str()).collect()
+        } else {
+            m.index
+                .names
+                .keys()
+                .filter(|(ns, _)| *ns == namespace)
+                .map(|(_, n)| n.as_str())
+                .collect()
+        };
+        let suggestions =
+            crate::suggest::nearest(rest, candidates, 3).into_iter().map(SmolStr::from).collect();
+        Err(EditError::new(
+            ErrorKind::UnknownName {
+                namespace,
+                name: rest.into(),
+                scope: scope.into(),
+                suggestions,
+            },
+            String::new(),
+        ))
     }
 
     /// Whether both values share the same tree (O(1)).
@@ -394,6 +411,11 @@ impl Model {
     /// The path of `loc`'s element in this model's own tree.
     fn locate(&self, loc: &Loc) -> Result<Vec<usize>, EditError> {
         self.path_of(loc.id).ok_or_else(|| self.stale(loc))
+    }
+
+    /// The error for a frame id that names nothing here.
+    fn stale_id(&self, id: ElementId) -> EditError {
+        EditError::new(ErrorKind::StaleLocator { id, origin: self.name().into() }, String::new())
     }
 
     /// The error for a locator that names nothing here.

@@ -234,10 +234,10 @@ fn check_xml_text(text: &str) -> Result<(), ValueError> {
 }
 
 /// Checks an identifier: no `/`, and a body is not named `world`.
+/// Names read from MJCF may hold `/` (MuJoCo accepts it; a file this crate wrote holds
+/// `robot/torso`): such a name is one literal name. Names given through the API may
+/// not ([`from_input`] refuses them), as `/` separates scopes in lookups there.
 pub(crate) fn identifier(text: &str, namespace: Option<Namespace>) -> Result<Value, ValueError> {
-    if text.contains('/') {
-        return Err(ValueError::SlashInIdentifier);
-    }
     if namespace == Some(Namespace::Body) && text == "world" {
         return Err(ValueError::WorldBody);
     }
@@ -254,6 +254,14 @@ pub(crate) fn from_input(
 ) -> Result<Option<Value>, ValueError> {
     // Text that clears (empty names, references, strings) is handled by the caller,
     // `ValueCtx::assign`, the one place that decides what clears.
+    // A name given through the API cannot hold `/`, which separates scopes there.
+    let slash = match input {
+        AttrInput::Text(t) | AttrInput::Value(Value::Identifier(t)) => t.contains('/'),
+        _ => false,
+    };
+    if slash && spec.ty == AttrType::Identifier {
+        return Err(ValueError::SlashInIdentifier);
+    }
     match input {
         AttrInput::Text(t) => parse_text(spec, namespace, t).map(Some),
         AttrInput::Bool(b) => match spec.ty {
@@ -472,7 +480,17 @@ mod tests {
 
     #[test]
     fn identifiers_reject_slash_and_world_bodies() {
-        assert_eq!(parse(BODY, "name", "a/b"), Err(ValueError::SlashInIdentifier));
+        assert_eq!(
+            parse(BODY, "name", "a/b"),
+            Ok(Value::Identifier("a/b".into())),
+            "read: one literal name"
+        );
+        let (s, ns) = spec(BODY, "name");
+        assert_eq!(
+            from_input(s, ns, &"a/b".into()),
+            Err(ValueError::SlashInIdentifier),
+            "given: refused"
+        );
         assert_eq!(parse(BODY, "name", "world"), Err(ValueError::WorldBody));
         assert_eq!(parse(GEOM, "name", "world"), Ok(Value::Identifier("world".into())));
     }

@@ -258,9 +258,6 @@ fn read_document(
     let mut includes: Vec<(Model, usize)> = Vec::new();
     let mut model_name: Option<SmolStr> = None;
     let mut seen_root = false;
-    // The stack depth of the `<default class="/">` wrapper being read, if any.
-    let mut slash_wrapper: Option<usize> = None;
-    let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
     loop {
         let offset = xml.buffer_position() as usize;
         let event = match xml.read_event() {
@@ -274,9 +271,6 @@ fn read_document(
             Event::Start(t) => (t, false),
             Event::Empty(t) => (t, true),
             Event::End(_) => {
-                if slash_wrapper == Some(stack.len()) {
-                    slash_wrapper = None;
-                }
                 stack.pop();
                 continue;
             }
@@ -338,30 +332,6 @@ fn read_document(
                 stack.push(usize::MAX);
             }
             continue;
-        }
-        // `<default class="/">` directly in the root `<default>` is the root class as
-        // written by this crate and by dm_control: read its content into the root class.
-        if name == "default"
-            && parent_kind == root_default
-            && parent_kind.spec().parent == Some(ElementKind::ROOT)
-        {
-            let slash = tag
-                .attributes()
-                .flatten()
-                .any(|a| a.key.as_ref() == "class" && a.value.as_ref() == "/");
-            // Once only: inside the wrapper, `class="/"` is a nested class's name (and
-            // refused, as `/` is in any identifier).
-            if slash
-                && slash_wrapper.is_none()
-                && r.arena[parent].attrs.is_empty()
-                && r.arena[parent].children.is_empty()
-            {
-                if !empty {
-                    stack.push(parent);
-                    slash_wrapper = Some(stack.len());
-                }
-                continue;
-            }
         }
         let Some(kind) = parent_kind.child(&name) else {
             return Err(r.err(ErrorKind::invalid_child(parent_kind, &name), offset));
@@ -496,6 +466,7 @@ fn read_include(
 
 /// Turns the arena into nodes, indexes them and resolves references.
 fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
+    hoist_root_class(&mut r.arena);
     // Index names first (document order), so references can be resolved in the arena.
     let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> = HashMap::new();
     for p in &r.arena {
@@ -558,6 +529,63 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         );
     }
     Ok(Model::from_parts(root, index, r.ctx.clone()))
+}
+
+/// `<default><default class="/">…</default></default>`, the shape this crate and
+/// dm_control write a model's root default class in, reads as that root class: the
+/// content of the one class `/` becomes the root class's own. Where the root
+/// `<default>` holds other classes beside `/` (a composed model written out: the
+/// attached models' root classes `robot/` are siblings of `/`, not inside it), `/` is
+/// kept as a class of that name, so that the siblings keep inheriting nothing from it.
+fn hoist_root_class(arena: &mut [Pending]) {
+    let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
+    let Some(&(_, d)) =
+        arena.first().and_then(|root| root.unique.iter().find(|(k, _)| *k == root_default))
+    else {
+        return;
+    };
+    let [only] = arena[d].children[..] else { return };
+    let slash = arena[only].kind.identifier().and_then(|i| {
+        arena[only]
+            .attrs
+            .iter()
+            .find(|(k, _)| *k as usize == i)
+            .map(|(_, v)| v.as_str() == Some("/"))
+    });
+    if !arena[d].attrs.is_empty() || arena[only].kind.tag() != "default" || slash != Some(true) {
+        return;
+    }
+    let ident = arena[only].kind.identifier();
+    let mut attrs = std::mem::take(&mut arena[only].attrs);
+    attrs.retain(|(k, _)| Some(*k as usize) != ident);
+    arena[d].attrs = rekind(arena[only].kind, root_default, attrs);
+    let children = std::mem::take(&mut arena[only].children);
+    // The moved children are now children of the root class, whose child kinds are
+    // other schema positions (with the same tags and attribute names).
+    for &c in &children {
+        let old = arena[c].kind;
+        if let Some(new) = root_default.child(old.tag()) {
+            let attrs = std::mem::take(&mut arena[c].attrs);
+            arena[c].attrs = rekind(old, new, attrs);
+            arena[c].kind = new;
+        }
+    }
+    arena[d].unique = children
+        .iter()
+        .filter(|&&c| arena[c].kind.multiplicity() != Multiplicity::Repeated)
+        .map(|&c| (arena[c].kind, c))
+        .collect();
+    arena[d].children = children;
+}
+
+/// Attributes of an element of kind `from` as attributes of kind `to` (by name).
+fn rekind(from: ElementKind, to: ElementKind, attrs: Vec<Attr>) -> Vec<Attr> {
+    let mut out: Vec<Attr> = attrs
+        .into_iter()
+        .filter_map(|(i, v)| Some((to.attr_index(from.attr(i as usize).name)? as u16, v)))
+        .collect();
+    out.sort_by_key(|(k, _)| *k);
+    out
 }
 
 /// Replaces every named reference that `lookup` finds by a reference to the element.

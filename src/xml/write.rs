@@ -141,6 +141,10 @@ struct Open {
     depth: usize,
     /// For an attachment frame, its name (`robot/`), which its joints build on.
     frame: Option<String>,
+    /// Written without tags of its own: the root default class when it holds a class
+    /// named `/` (read from a composed file), written as MuJoCo's main class, the
+    /// `<default>` wrapper itself, so that the name `/` stays that class's.
+    transparent: bool,
 }
 
 struct Writer<'a> {
@@ -307,7 +311,21 @@ impl<'a> Writer<'a> {
         if !top && depth > 0 && !in_frame && node.attached().is_none() && !emits(node) {
             return Ok(false);
         }
-        let depth = depth + usize::from(self.in_default);
+        // The written depth: sections and the root classes at the wrapper's level,
+        // everything else one below its parent.
+        let depth = match self.open.last() {
+            Some(o) if depth > 1 => o.depth + 1,
+            _ => depth + usize::from(self.in_default),
+        };
+        let transparent = depth == 2
+            && inst == 0
+            && kind.tag() == "default"
+            && substitute
+            && node.identifier().is_none_or(str::is_empty)
+            && node
+                .children()
+                .iter()
+                .any(|c| c.kind().tag() == "default" && c.identifier() == Some("/"));
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
@@ -317,7 +335,11 @@ impl<'a> Writer<'a> {
         let frame_name =
             if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
         let frame = node.attached().map(|a| format!("{}{}/", self.insts[inst].prefix, a.scope));
-        self.open.push(Open { inst, child_cc, depth, frame });
+        if transparent {
+            self.open.push(Open { inst, child_cc, depth: depth - 1, frame, transparent });
+            return Ok(true);
+        }
+        self.open.push(Open { inst, child_cc, depth, frame, transparent });
         if top && kind.tag() != "default" && kind.tag() != "worldbody" {
             self.finish_parent()?;
             self.pending = Some((Pending::Unwritten(Inst0Section { depth }), node));
@@ -333,6 +355,9 @@ impl<'a> Writer<'a> {
 
     fn leave(&mut self, item: Item<'a>) {
         let Some(open) = self.open.pop() else { return };
+        if open.transparent {
+            return;
+        }
         if item.depth == 0 && self.in_default {
             self.indent(1);
             self.out.push_str("</default>");
