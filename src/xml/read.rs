@@ -560,6 +560,7 @@ fn hoist_root_class(arena: &mut [Pending]) {
     attrs.retain(|(k, _)| Some(*k as usize) != ident);
     arena[d].attrs = rekind(arena[only].kind, root_default, attrs);
     let children = std::mem::take(&mut arena[only].children);
+    arena[only].unique.clear();
     // The moved children are now children of the root class, whose child kinds are
     // other schema positions (with the same tags and attribute names).
     for &c in &children {
