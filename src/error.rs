@@ -348,17 +348,23 @@ impl ReadError {
     }
 
     /// What went wrong.
+    ///
+    /// Time: O(1).
     pub fn kind(&self) -> &ErrorKind {
         &self.0.kind
     }
 
     /// The file being read, when reading from a file (for an error inside an
     /// included file, the included file).
+    ///
+    /// Time: O(1).
     pub fn file(&self) -> Option<&std::path::Path> {
         self.0.file.as_deref()
     }
 
     /// Where in the text, when the error is tied to a place in it.
+    ///
+    /// Time: O(1).
     pub fn pos(&self) -> Option<TextPos> {
         self.0.pos
     }
@@ -399,12 +405,16 @@ impl EditError {
     }
 
     /// What went wrong.
+    ///
+    /// Time: O(1).
     pub fn kind(&self) -> &ErrorKind {
         &self.0.kind
     }
 
     /// The path of the element the edit was aimed at, such as
     /// `worldbody/body[name=torso]/geom[2]` (empty for the model's root).
+    ///
+    /// Time: O(1).
     pub fn path(&self) -> &str {
         &self.0.path
     }

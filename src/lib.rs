@@ -30,16 +30,38 @@
 //! before the edit keep their content.
 //!
 //! # What is shared, and what an edit costs
-//! - Nodes are `Arc`-shared and hold no parent pointers; children are a chunked
-//!   persistent sequence (`Arc`'d chunks of at most `max(64, √n)` nodes).
+//! - Nodes are `Arc`-shared and hold no parent pointers; the children of an element
+//!   are a chunked persistent sequence (`Arc`'d chunks of at most `max(64, √width)`
+//!   nodes, for `width` children).
 //! - An edit copies the path from the edited element to the root, and on that path
 //!   the chunk list and one chunk of each children sequence: O(depth · √width)
 //!   pointer copies at worst, O(depth) for narrow trees.
-//! - Each model keeps a persistent identifier index (O(log n) `find` and duplicate
-//!   checks), updated by every edit.
+//! - Each model keeps a persistent identifier index (O(log n) `find` of an existing
+//!   name, and duplicate checks), updated by every edit.
 //! - Everything that depends on where an element sits (scope prefixes, auto names,
 //!   default-class names, merged settings) is computed when the model is written or
 //!   walked, never stored.
+//!
+//! # Costs
+//! Every function states its time as `Time: O(..)`, in these terms:
+//! - `n`: the elements of the model (its own tree: an attached model's elements
+//!   count in that model's `n`); `N`: the elements of the composed model, attached
+//!   models included;
+//! - `depth`: the nesting depth of the element an operation is aimed at; `width`: the
+//!   most siblings of an element on the way down to it;
+//! - `levels`: the models on the way to that element: 1 for the model's own elements,
+//!   one more per attachment it lies inside; `a`: the attachments of the composed
+//!   model, at every level;
+//! - `s`: the elements of a subtree added, copied or removed.
+//!
+//! Two costs recur:
+//! - locating an element by its [`Loc`] follows parent links in the identifier
+//!   index and, at each level, the element's position when it was indexed:
+//!   O(depth · log n). After siblings before it were removed (or many inserted),
+//!   that position is off and finding the element scans up to O(width) at that level.
+//! - an edit copies the path: O(depth · √width), as above. Dropping a version frees
+//!   only what no other version shares; an in-place edit frees about what it copied,
+//!   plus whatever it removed that nothing else holds.
 #![forbid(unsafe_code)]
 
 mod compose;

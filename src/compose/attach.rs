@@ -22,26 +22,38 @@ impl Model {
     /// before), or at the end of the worldbody. The child's names get the scope prefix
     /// `name/` when written, where `name` is the child's model name, or `name_1`,
     /// `name_2`, ... if the model that receives it already has an attachment of that
-    /// name. The child value is shared, not copied: attaching costs O(depth · log
-    /// width) whatever its size, and one value can be attached any number of times.
+    /// name. The child value is shared, not copied, whatever its size, and one value
+    /// can be attached any number of times.
+    ///
+    /// Time: O(levels · depth · (log n + √width)), independent of the size of `child`
+    /// (plus one step per frame already attached at the same site). Two parts can
+    /// cost more: the merged global settings are folded anew, O(a · depth · log n),
+    /// when an edit since the last attach changed settings or attachments (a set
+    /// `option`, a detach); and after a detach or a scope rename, choosing the `k`-th
+    /// free name `name_k` tries the names before it, O(k · log n).
     ///
     /// # Errors
-    /// Leaving `self` unchanged: `at` is neither a site nor a worldbody
-    /// ([`ErrorKind::InvalidParent`]), it does not exist ([`ErrorKind::NotFound`]), the
-    /// child's name holds a `/`, or a global setting conflicts
-    /// ([`ErrorKind::AttributeConflict`]).
+    /// Leaving `self` unchanged:
+    /// - [`ErrorKind::InvalidParent`]: `at` is neither a site nor a worldbody;
+    /// - [`ErrorKind::StaleLocator`]: `at` is not in this model;
+    /// - [`ErrorKind::InvalidValue`] (with [`ValueError::SlashInIdentifier`]): the
+    ///   child's model name holds a `/`;
+    /// - [`ErrorKind::AttributeConflict`]: a global setting of the child (or of what
+    ///   is attached to it) disagrees with this model's merged settings.
     ///
     /// # Examples
     /// ```
-    /// use mjcf::{Element, Model, Namespace};
-    /// let arena = Model::new("arena");
-    /// let (arena, _) = arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn")).unwrap();
-    /// let robot = Model::new("robot");
-    /// let (robot, _) = robot.add(&robot.worldbody(), Element::new("body").attr("name", "torso")).unwrap();
-    /// let spawn = arena.find(Namespace::Site, "spawn").unwrap();
-    /// let (scene, _frame) = arena.attach(&spawn, &robot).unwrap();
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut arena = Model::new("arena");
+    /// let spawn = arena.add_mut(&arena.worldbody(), element!("site", name = "spawn", pos = [1.0, 0.0, 0.0]))?;
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let (scene, a) = arena.attach(&spawn, &robot)?;
+    /// assert_eq!(a.scope(), "robot");
     /// assert!(scene.find(Namespace::Body, "robot/torso").is_some());
-    /// assert_eq!(scene.detach("robot").unwrap(), arena);
+    /// assert_eq!(scene.floats(a.frame(), "pos")?, [1.0, 0.0, 0.0]); // copied from the site
+    /// assert_eq!(scene.detach(&a)?, arena); // exactly the model before the attach
+    /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn attach(&self, at: &Loc, child: &Model) -> Result<(Model, Attachment), EditError> {
         let (new, frame) = self.in_scope(at.scope(), |m: &Model| m.attach_here(at, child))?;
@@ -53,7 +65,7 @@ impl Model {
 
     /// [`Model::attach`] in place: returns the attachment (its frame and scope).
     ///
-    /// Time: O(depth · log width).
+    /// Time: as [`Model::attach`].
     ///
     /// # Errors
     /// As [`Model::attach`]; `self` is unchanged on error.
@@ -77,7 +89,7 @@ impl Model {
 
     /// Attaches `child` at the end of the worldbody (see [`Model::attach`]).
     ///
-    /// Time: O(depth · log width).
+    /// Time: as [`Model::attach`].
     ///
     /// # Errors
     /// As [`Model::attach`].
@@ -154,11 +166,28 @@ impl Model {
     /// path: `robot`, or `arena/robot` for one attached inside an attachment).
     /// `detach` of a fresh attach gives back exactly the model it was attached to.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · (log n + √width)) (the attached model is not walked).
     ///
     /// # Errors
     /// [`ErrorKind::NotAttached`] (listing the scopes attached there) if nothing is
-    /// attached at `scope`; [`ErrorKind::InvalidScope`] for a malformed path.
+    /// attached at `scope` (or the [`Attachment`] was detached already);
+    /// [`ErrorKind::InvalidScope`] for a malformed path.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let arena = Model::new("arena");
+    /// let (scene, _) = arena.attach(&arena.worldbody(), &robot)?;
+    /// let (scene, b) = scene.attach(&scene.worldbody(), &robot)?;
+    /// let one = scene.detach(&b)?; // by the handle
+    /// assert_eq!(one.scopes().collect::<Vec<_>>(), ["robot"]);
+    /// assert_eq!(one.detach("robot")?, arena); // by the scope path
+    /// assert!(one.find(Namespace::Body, "robot/torso").is_some());
+    /// assert!(one.detach(&b).is_err()); // already detached
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn detach(&self, scope: impl ScopeRef) -> Result<Model, EditError> {
         let frames = scope.frames_in(self)?;
         let (last, outer) =
@@ -192,14 +221,32 @@ impl Model {
     }
 
     /// Renames the attachment at `scope` to `to` (the attached value keeps its own
-    /// model name).
+    /// model name). Its names are written with the new prefix; locators and
+    /// [`Attachment`] handles keep working.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · (log n + √width)).
     ///
     /// # Errors
-    /// [`ErrorKind::NotAttached`] for an unknown scope; [`ErrorKind::DuplicateIdentifier`]
-    /// if an attachment of the same model already has that name (including this
-    /// one, as in the reference); an invalid identifier (`/`, or empty).
+    /// [`ErrorKind::NotAttached`] for an unknown scope; [`ErrorKind::InvalidScope`]
+    /// for a malformed path; [`ErrorKind::DuplicateIdentifier`] (in
+    /// [`Namespace::AttachmentFrame`](crate::Namespace::AttachmentFrame)) if an
+    /// attachment of the same model already has that name (including this one, as in
+    /// the reference); [`ErrorKind::InvalidValue`] if `to` is empty or holds a `/`.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let mut arena = Model::new("arena");
+    /// let a = arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let renamed = arena.rename_scope(&a, "left")?;
+    /// assert!(renamed.find(Namespace::Body, "left/torso").is_some());
+    /// assert!(renamed.find(Namespace::Body, "robot/torso").is_none());
+    /// assert_eq!(renamed.attached(&a)?.name(), "robot"); // the model keeps its name
+    /// assert!(arena.rename_scope("robot", "a/b").is_err());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn rename_scope(&self, scope: impl ScopeRef, to: &str) -> Result<Model, EditError> {
         let text = scope.path_text().to_string();
         if to.contains('/') || to.is_empty() {
@@ -256,11 +303,13 @@ impl Model {
     /// its place (path copying through the attachments): the way to rename it,
     /// `include_copy` into it, or run any edit written for a standalone model.
     ///
-    /// Time: O(levels · depth · log width) plus what `edit` costs.
+    /// Time: O(levels · depth · (log n + √width)) plus what `edit` costs, plus
+    /// O(a · depth · log n) to refold the merged settings if the edit changed them.
     ///
     /// # Errors
-    /// [`ErrorKind::NotAttached`] for an unknown scope; whatever `edit` returns; a
-    /// conflict of global settings that the edit causes.
+    /// [`ErrorKind::NotAttached`] for an unknown scope, [`ErrorKind::InvalidScope`]
+    /// for a malformed path; whatever `edit` returns; [`ErrorKind::AttributeConflict`]
+    /// for a conflict of global settings that the edit causes.
     pub fn edit_attached(
         &self,
         scope: impl ScopeRef,

@@ -36,14 +36,47 @@ impl Model {
     /// `override_attributes`, root attributes and settings are overwritten instead of
     /// checked, and named elements merge into same-named elements of this model.
     ///
-    /// Fails, leaving `self` unchanged, on a conflicting setting, a name clash, or (with
-    /// `override_attributes`) a same-named element under another parent.
+    /// The root's `model` attribute is replaced, as in the reference, but the model's
+    /// [`name`](Model::name) (the one that scopes it when attached) stays.
     ///
-    /// Time: O(size of `other` + size of `self`), as the identifier index is rebuilt.
+    /// A source with attachments is refused, as in the reference: copy what it was
+    /// built from instead. The receiving model may have attachments; they stay as
+    /// they are.
     ///
-    /// A source with attachments is refused ([`ErrorKind::SourceHasAttachments`]), as
-    /// in the reference: copy what it was built from instead. The receiving model
-    /// may have attachments; they stay as they are.
+    /// Time: O((n + m) · log(n + m)) for an `other` of `m` elements, as the
+    /// identifier index is rebuilt, plus O(a · depth · log n) to refold the merged
+    /// settings. With `override_attributes`, each named element of `other` directly
+    /// in a merged element is also looked up here: O(width) if found, O(named
+    /// elements) if not (a [`Model::find`] miss).
+    ///
+    /// # Errors
+    /// Leaving `self` unchanged:
+    /// - [`ErrorKind::SourceHasAttachments`]: `other` has attachments;
+    /// - [`ErrorKind::AttributeConflict`]: without `override_attributes`, an
+    ///   attribute of a merged element (a global setting, a root default-class
+    ///   default) that must agree does not; or the result's settings disagree with
+    ///   an attached model's;
+    /// - [`ErrorKind::DuplicateIdentifier`]: a copied element's name is taken;
+    /// - [`ErrorKind::CopyConflict`]: with `override_attributes`, a named element of
+    ///   `other` whose namesake here has another parent.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut base = Model::new("base");
+    /// base.add_mut(&base.worldbody(), element!("geom", name = "floor", type = "plane", size = [1.0, 1.0, 0.1]))?;
+    /// let mut extra = Model::new("extra");
+    /// extra.add_mut(&extra.asset(), element!("material", name = "red", rgba = [1, 0, 0, 1]))?;
+    /// let ball = extra.add_mut(&extra.worldbody(), element!("geom", name = "ball", size = [0.1], material = "red"))?;
+    /// let m = base.include_copy(&extra, false)?;
+    /// assert!(m.find(Namespace::Geom, "floor").is_some());
+    /// assert!(m.find(Namespace::Material, "red").is_some());
+    /// assert_ne!(m.find(Namespace::Geom, "ball").unwrap().id(), ball.id()); // a copy
+    /// assert_eq!(m.name(), "base");
+    /// // Copying `floor` again is a name clash; `base` stays as it was.
+    /// assert!(base.include_copy(&m, false).is_err());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn include_copy(
         &self,
         other: &Model,

@@ -29,12 +29,16 @@ pub struct Attrs {
 
 impl Attrs {
     /// No assignments.
+    ///
+    /// Time: O(1).
     pub fn new() -> Attrs {
         Attrs::default()
     }
 
     /// Adds an assignment of `value` to the attribute `name` (`"class"` for the
-    /// default class).
+    /// default class). Nothing is checked until the assignments are applied.
+    ///
+    /// Time: O(1) amortised.
     #[must_use]
     pub fn set(mut self, name: &str, value: impl Into<AttrInput>) -> Attrs {
         self.items.push((name.into(), Some(value.into())));
@@ -42,6 +46,8 @@ impl Attrs {
     }
 
     /// Adds the clearing of the attribute `name`.
+    ///
+    /// Time: O(1) amortised.
     #[must_use]
     pub fn clear(mut self, name: &str) -> Attrs {
         self.items.push((name.into(), None));
@@ -49,11 +55,15 @@ impl Attrs {
     }
 
     /// The number of assignments.
+    ///
+    /// Time: O(1).
     pub fn len(&self) -> usize {
         self.items.len()
     }
 
     /// Whether there are no assignments.
+    ///
+    /// Time: O(1).
     pub fn is_empty(&self) -> bool {
         self.items.is_empty()
     }
@@ -94,7 +104,10 @@ pub(crate) struct Part {
 }
 
 impl Element {
-    /// An element with this tag and nothing else.
+    /// An element with this tag and nothing else (the tag is checked when the
+    /// element is added).
+    ///
+    /// Time: O(1).
     pub fn new(tag: &str) -> Element {
         Element {
             parts: vec![Part { tag: tag.into(), attrs: Attrs::new(), children: Vec::new() }],
@@ -103,6 +116,8 @@ impl Element {
     }
 
     /// Sets an attribute (checked when the element is added).
+    ///
+    /// Time: O(1) amortised.
     #[must_use]
     pub fn attr(mut self, name: &str, value: impl Into<AttrInput>) -> Element {
         let root = self.root;
@@ -112,6 +127,8 @@ impl Element {
     }
 
     /// Sets several attributes.
+    ///
+    /// Time: O(k) for `k` assignments.
     #[must_use]
     pub fn attrs(mut self, attrs: Attrs) -> Element {
         let root = self.root;
@@ -147,6 +164,8 @@ impl Element {
     }
 
     /// The tag.
+    ///
+    /// Time: O(1).
     pub fn tag(&self) -> &str {
         &self.parts[self.root].tag
     }

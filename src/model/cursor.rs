@@ -283,8 +283,9 @@ impl Model {
     /// element, attached models' included, in the order they are written (see
     /// [`Model::to_xml_string`]).
     ///
-    /// Time: O(1) per event, O(n) for the whole walk of a composed model of n
-    /// elements (plus O(attachments) per top-level section).
+    /// Time: O(1) to start and amortised per event (entering an element lists its
+    /// children): O(N) for the whole walk, plus O(a · depth · log n) at the root
+    /// and at each top-level section, which gather the attached models' content.
     ///
     /// # Examples
     /// ```
@@ -307,7 +308,24 @@ impl Model {
     /// Every element of `namespace`, in the order of [`Model::walk`]: attachment
     /// frames count as bodies, their joints as joints.
     ///
-    /// Time: O(n) in the size of the composed model.
+    /// Time: as a whole [`Model::walk`]: O(N + a · depth · log n).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let mut arena = Model::new("arena");
+    /// arena.add_mut(&arena.worldbody(), element!("body", name = "table"))?;
+    /// arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let bodies: Vec<String> = arena
+    ///     .find_all(Namespace::Body)
+    ///     .iter()
+    ///     .filter_map(|loc| arena.get(loc).ok()?.full_name())
+    ///     .collect();
+    /// assert_eq!(bodies, ["table", "robot/", "robot/torso"]); // the frame is a body
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn find_all(&self, namespace: Namespace) -> Vec<Loc> {
         let mut out = Vec::new();
         let name = self.name();
@@ -330,18 +348,34 @@ impl Model {
 
     /// The view of the element at `loc`.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// [`ErrorKind::StaleLocator`] if `loc` names no element of this model (removed,
     /// or from another model).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut m = Model::new("m");
+    /// let g = m.add_mut(&m.worldbody(), element!("geom", name = "g", type = "box", size = [0.1, 0.1, 0.1]))?;
+    /// let e = m.get(&g)?;
+    /// assert_eq!((e.tag(), e.identifier()), ("geom", Some("g")));
+    /// assert_eq!(e.string("type"), Some("box"));
+    /// assert_eq!(e.floats("size"), Some(&[0.1, 0.1, 0.1][..]));
+    /// let without = m.remove(&g)?;
+    /// assert!(without.get(&g).is_err());
+    /// assert!(without.element(&g).is_none());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn get(&self, loc: &Loc) -> Result<ElementRef<'_>, EditError> {
         self.element(loc).ok_or_else(|| self.stale(loc))
     }
 
-    /// The view of the element at `loc`, if it exists in this version.
+    /// The view of the element at `loc`, if it exists in this version
+    /// ([`Model::get`] without the error).
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     pub fn element(&self, loc: &Loc) -> Option<ElementRef<'_>> {
         let m = self.scoped_model(loc.scope())?;
         let node = m.node_by_id(loc.id())?;
@@ -381,21 +415,29 @@ impl<'a> ElementRef<'a> {
     }
 
     /// The XML tag (`body` for an attachment frame).
+    ///
+    /// Time: O(1).
     pub fn tag(&self) -> &'static str {
         self.node.kind().tag()
     }
 
     /// The schema kind.
+    ///
+    /// Time: O(1).
     pub fn kind(&self) -> ElementKind {
         self.node.kind()
     }
 
     /// Whether this is an attachment frame.
+    ///
+    /// Time: O(1).
     pub fn is_frame(&self) -> bool {
         self.node.attached().is_some()
     }
 
     /// The element's own identifier (no scope prefix), if set.
+    ///
+    /// Time: O(1).
     pub fn identifier(&self) -> Option<&'a str> {
         self.node.identifier()
     }
@@ -413,8 +455,25 @@ impl<'a> ElementRef<'a> {
     /// (`robot_1/`), or the automatic name of an unnamed element (`//unnamed_geom_0`,
     /// `robot//unnamed_geom_2`); `None` for elements without a namespace.
     ///
-    /// Time: O(levels · depth · log n) for named elements and frames; O(size of the
-    /// element's model) for unnamed ones, whose number is their position.
+    /// Time: O(levels · depth · log n) for named elements and frames; O(n) more for
+    /// unnamed ones (n of the element's model), whose number is their position.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut robot = Model::new("robot");
+    /// let torso = robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// robot.add_mut(&torso, element!("geom", size = [0.1]))?;
+    /// let mut arena = Model::new("arena");
+    /// let a = arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let torso = arena.find(Namespace::Body, "robot/torso").unwrap();
+    /// assert_eq!(arena.get(&torso)?.full_name().as_deref(), Some("robot/torso"));
+    /// assert_eq!(arena.get(a.frame())?.full_name().as_deref(), Some("robot/"));
+    /// let geom = &arena.find_all(Namespace::Geom)[0];
+    /// assert_eq!(arena.get(geom)?.full_name().as_deref(), Some("robot//unnamed_geom_0"));
+    /// assert_eq!(arena.get(&arena.worldbody())?.full_name(), None); // no namespace
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn full_name(&self) -> Option<String> {
         let scope = self.scope();
         let prefix = if scope.is_empty() { String::new() } else { format!("{scope}/") };
@@ -444,38 +503,52 @@ impl<'a> ElementRef<'a> {
     }
 
     /// The value of attribute `name`, if set.
+    ///
+    /// Time: O(1) (binary searches over the element's attributes).
     pub fn attr(&self, name: &str) -> Option<&'a Value> {
         self.node.attr(self.node.kind().attr_index(name)?)
     }
 
     /// The set attributes, in schema order.
+    ///
+    /// Time: O(1) per attribute.
     pub fn attrs(&self) -> impl Iterator<Item = (&'static str, &'a Value)> + 'a {
         let kind = self.node.kind();
         self.node.attrs().iter().map(move |(i, v)| (kind.attr(*i as usize).name, v))
     }
 
     /// A float attribute, if set.
+    ///
+    /// Time: O(1), as [`ElementRef::attr`].
     pub fn float(&self, name: &str) -> Option<f64> {
         self.attr(name)?.as_float()
     }
 
     /// A float array attribute (`pos`, `size`, `rgba`), if set.
+    ///
+    /// Time: O(1), as [`ElementRef::attr`].
     pub fn floats(&self, name: &str) -> Option<&'a [f64]> {
         self.attr(name)?.as_floats()
     }
 
     /// An integer attribute, if set.
+    ///
+    /// Time: O(1), as [`ElementRef::attr`].
     pub fn int(&self, name: &str) -> Option<i64> {
         self.attr(name)?.as_int()
     }
 
     /// An integer array attribute, if set.
+    ///
+    /// Time: O(1), as [`ElementRef::attr`].
     pub fn ints(&self, name: &str) -> Option<&'a [i64]> {
         self.attr(name)?.as_ints()
     }
 
     /// A text attribute (string, keyword, name, folder), or the name a reference
     /// gives (for a resolved reference, its target's own identifier), if set.
+    ///
+    /// Time: O(1); O(log n) for a resolved reference.
     pub fn string(&self, name: &str) -> Option<&'a str> {
         match self.attr(name)? {
             Value::Reference(Reference::Element(id)) => {
@@ -490,6 +563,21 @@ impl<'a> ElementRef<'a> {
     /// that section of the outermost model; `None` for the root.
     ///
     /// Time: O(levels · depth · log n).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let mut arena = Model::new("arena");
+    /// arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let torso = arena.find(Namespace::Body, "robot/torso").unwrap();
+    /// let frame = arena.get(&torso)?.parent().unwrap(); // not the robot's worldbody
+    /// assert!(frame.is_frame());
+    /// assert_eq!(frame.parent().map(|p| p.tag()), Some("worldbody"));
+    /// assert!(arena.get(&arena.root())?.parent().is_none());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn parent(&self) -> Option<ElementRef<'a>> {
         let parent = self.model.index.elems.get(&self.node.id())?.parent?;
         let pnode = self.model.node_by_id(parent)?;
@@ -515,7 +603,25 @@ impl<'a> ElementRef<'a> {
     /// children then the attached model's bodies; a top-level section's own
     /// elements then those of every attached model.
     ///
-    /// Time: O(children), plus O(attachments) for a top-level section.
+    /// Time: O(width + levels · depth · log n), plus O(a · depth · log n) for the
+    /// root or a top-level section; the list is made when this is called.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut robot = Model::new("robot");
+    /// robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// let mut arena = Model::new("arena");
+    /// arena.add_mut(&arena.worldbody(), element!("geom", name = "floor", type = "plane", size = [1.0, 1.0, 0.1]))?;
+    /// arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let wb = arena.get(&arena.worldbody())?;
+    /// let names: Vec<String> = wb.children().filter_map(|c| c.full_name()).collect();
+    /// assert_eq!(names, ["floor", "robot/"]);
+    /// let frame = wb.children().last().unwrap(); // holds the attached model's bodies
+    /// let inside: Vec<String> = frame.children().filter_map(|c| c.full_name()).collect();
+    /// assert_eq!(inside, ["robot/torso"]);
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn children(&self) -> impl Iterator<Item = ElementRef<'a>> + 'a {
         let mut walk = Walk::new(self.top);
         let top = self.top;
@@ -540,8 +646,10 @@ impl<'a> ElementRef<'a> {
             .into_iter()
     }
 
-    /// Whether two views show the same shared node (O(1)); after an edit, every
-    /// element the edit did not touch is still the same node.
+    /// Whether two views show the same shared node; after an edit, every element
+    /// the edit did not touch is still the same node.
+    ///
+    /// Time: O(1).
     pub fn ptr_eq(&self, other: &ElementRef<'_>) -> bool {
         self.node.ptr_eq(other.node)
     }
@@ -591,7 +699,7 @@ impl Model {
 
     /// The float attribute `name` of the element at `loc`.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// [`ErrorKind::StaleLocator`], [`ErrorKind::UnknownAttribute`],
@@ -604,7 +712,7 @@ impl Model {
     /// The float array attribute `name` (`pos`, `size`, `rgba`) of the element at
     /// `loc`.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// As [`Model::float`].
@@ -614,7 +722,7 @@ impl Model {
 
     /// The integer attribute `name` of the element at `loc`.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// As [`Model::float`].
@@ -624,7 +732,7 @@ impl Model {
 
     /// The integer array attribute `name` of the element at `loc`.
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// As [`Model::float`].
@@ -634,7 +742,7 @@ impl Model {
 
     /// The text attribute `name` of the element at `loc` (see [`ElementRef::string`]).
     ///
-    /// Time: O(levels · depth · log width).
+    /// Time: O(levels · depth · log n) (locating the element).
     ///
     /// # Errors
     /// As [`Model::float`].

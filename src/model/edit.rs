@@ -1,10 +1,10 @@
 //! Element edits: add, insert, set, clear, remove, and their in-place twins.
 //!
-//! Each edit comes twice, as in `imbl`: `add(&self, ..) -> Result<(Model, Loc)>`
-//! returns a new model for functional code, and `add_mut(&mut self, ..) ->
-//! Result<Loc>` replaces `*self` with it. Both are atomic: on error nothing changes,
-//! and a clone taken before an in-place edit keeps its content (the new version is
-//! a new value; the clone still shares the old one).
+//! Each edit comes twice: `add(&self, ..) -> Result<(Model, Loc)>` returns a new
+//! model for functional code, and `add_mut(&mut self, ..) -> Result<Loc>` replaces
+//! `*self` with it. Both are atomic: on error nothing changes, and a clone taken
+//! before an in-place edit keeps its content (the new version is a new value; the
+//! clone still shares the old one).
 
 use smol_str::SmolStr;
 
@@ -29,15 +29,34 @@ impl Model {
     /// Adds `element` as the last child of `parent`; returns the new model and the new
     /// element's locator.
     ///
-    /// Time: O(depth · log width + size of the element).
+    /// `parent` may lie inside an attachment (a `Loc` found as `robot/torso`): the
+    /// attached model is edited and put back in its place. On an attachment frame
+    /// only joints, one `inertial` and (for a frame directly in the worldbody) one
+    /// `freejoint` can be added.
+    ///
+    /// Time: O(levels · depth · (log n + √width) + s · log n) for an element of `s`
+    /// elements (each is checked and indexed), plus reading the files it names; an
+    /// on-demand child (`inertial`, `freejoint`) also scans the parent's children,
+    /// O(width).
     ///
     /// # Errors
-    /// Leaving `self` unchanged: the tag is not a valid child of the parent
-    /// ([`ErrorKind::InvalidChild`], with the nearest valid tag), an attribute is
-    /// unknown ([`ErrorKind::UnknownAttribute`]) or has a bad value
-    /// ([`ErrorKind::InvalidValue`]), a required attribute is missing, a file cannot be
-    /// read, an identifier is taken ([`ErrorKind::DuplicateIdentifier`]), or `parent`
-    /// is not in this model ([`ErrorKind::StaleLocator`]).
+    /// Leaving `self` unchanged:
+    /// - [`ErrorKind::StaleLocator`]: `parent` is not in this model;
+    /// - [`ErrorKind::InvalidChild`]: a tag is not a valid child of its parent (with
+    ///   the nearest valid tag), or not a joint, inertial or freejoint on a frame;
+    /// - [`ErrorKind::DuplicateChild`]: a second `inertial`, `freejoint` or other
+    ///   on-demand child, or a singleton (`option`, `compiler`) added as a child;
+    /// - [`ErrorKind::UnknownAttribute`], [`ErrorKind::InvalidValue`]: an attribute
+    ///   that the element does not have, or a value that does not fit it;
+    /// - [`ErrorKind::MissingRequired`]: a required attribute is not set (a nested
+    ///   default class without `class`, an `inertial` without `mass`, ...);
+    /// - [`ErrorKind::FileNotFound`], [`ErrorKind::FileOutsideRoot`]: a file
+    ///   attribute names a file that cannot be read, or (confined) lies outside the
+    ///   model's folder;
+    /// - [`ErrorKind::DuplicateIdentifier`]: a name is taken in its namespace (on a
+    ///   frame: by another joint of that frame);
+    /// - [`ErrorKind::FreejointNotTopLevel`]: a freejoint on a frame that is not
+    ///   directly in the worldbody.
     ///
     /// # Examples
     /// ```
@@ -53,7 +72,7 @@ impl Model {
 
     /// [`Model::add`] in place: adds `element` to `self` and returns its locator.
     ///
-    /// Time: O(depth · log width + size of the element).
+    /// Time: as [`Model::add`].
     ///
     /// # Errors
     /// As [`Model::add`]; `self` is unchanged on error.
@@ -77,7 +96,7 @@ impl Model {
     /// (singletons always come first and are not counted); an index past the end
     /// appends.
     ///
-    /// Time: O(depth · log width + size of the element).
+    /// Time: as [`Model::add`].
     ///
     /// # Errors
     /// As [`Model::add`].
@@ -92,7 +111,7 @@ impl Model {
 
     /// [`Model::insert`] in place; returns the new element's locator.
     ///
-    /// Time: O(depth · log width + size of the element).
+    /// Time: as [`Model::add`].
     ///
     /// # Errors
     /// As [`Model::add`]; `self` is unchanged on error.
@@ -175,15 +194,31 @@ impl Model {
         Ok((self.next(root, index_), self.scoped_loc(&[], id)))
     }
 
-    /// Sets and clears attributes of the element at `loc`, all or nothing.
+    /// Sets and clears attributes of the element at `loc`, all or nothing. The
+    /// assignments apply in order (a later one for the same attribute wins), and a
+    /// folder setting (`meshdir`) applies to the file attributes after it.
     ///
-    /// Time: O(depth · log width), plus a fold of the merged settings when a global
-    /// setting changes in a model with attachments.
+    /// On an attachment frame only `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`,
+    /// `euler`, `user` and `mocap` can be set.
+    ///
+    /// Time: O(levels · depth · (log n + √width) + k) for `k` assignments, plus
+    /// reading the files they name; an edit of a global setting (`option`,
+    /// `compiler`, ...) in a composed model also refolds the merged settings:
+    /// O(a · depth · log n).
     ///
     /// # Errors
-    /// Leaving `self` unchanged: an unknown attribute or bad value, clearing a
-    /// required attribute, a name already taken, a setting that conflicts with an
-    /// attached model's ([`ErrorKind::AttributeConflict`]), or `loc` not in this model.
+    /// Leaving `self` unchanged:
+    /// - [`ErrorKind::StaleLocator`]: `loc` is not in this model;
+    /// - [`ErrorKind::UnknownAttribute`], [`ErrorKind::InvalidValue`]: an attribute
+    ///   the element does not have (or a frame does not take), or a value that does
+    ///   not fit it;
+    /// - [`ErrorKind::MissingRequired`]: clearing a required attribute (or the
+    ///   `class` of a nested default class);
+    /// - [`ErrorKind::FileNotFound`], [`ErrorKind::FileOutsideRoot`]: a file that
+    ///   cannot be read, or (confined) lies outside the model's folder;
+    /// - [`ErrorKind::DuplicateIdentifier`]: a new name that is already taken;
+    /// - [`ErrorKind::AttributeConflict`]: a global setting that no longer agrees
+    ///   with an attached model's (or, set inside an attachment, with the rest).
     pub fn set(&self, loc: &Loc, attrs: Attrs) -> Result<Model, EditError> {
         let (m, ()) =
             self.in_scope(loc.scope(), |m: &Model| m.set_here(loc, &attrs).map(|m| (m, ())))?;
@@ -212,6 +247,19 @@ impl Model {
     ///
     /// # Errors
     /// As [`Model::set`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let m0 = Model::new("m");
+    /// let (m1, g) = m0.add(&m0.worldbody(), element!("geom", name = "g", size = [0.1]))?;
+    /// let m2 = m1.set_attr(&g, "pos", [0.0, 0.0, 1.0])?;
+    /// assert_eq!(m2.floats(&g, "pos")?, [0.0, 0.0, 1.0]);
+    /// assert!(m1.floats(&g, "pos").is_err()); // not set in the older version
+    /// // Values are checked against the schema.
+    /// assert!(m2.set_attr(&g, "type", "cube").is_err());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn set_attr(
         &self,
         loc: &Loc,
@@ -348,13 +396,27 @@ impl Model {
     /// an optional one is no longer written, a required one makes writing fail. A
     /// reference held as a plain name is written as it is.
     ///
-    /// Time: O(depth · log width + size of the subtree).
+    /// Time: O(levels · depth · (log n + √width) + s · log n) for a subtree of `s`
+    /// elements.
     ///
     /// # Errors
     /// [`ErrorKind::AffectsAttachments`] if the subtree holds an attachment frame, or
     /// the element is a global section (or part of one) while models are attached: use
-    /// [`Model::detach`] first; [`ErrorKind::StaleLocator`] if `loc` is not in this
-    /// model.
+    /// [`Model::detach`] or [`Model::remove_with_attachments`];
+    /// [`ErrorKind::StaleLocator`] if `loc` is not in this model.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut m = Model::new("m");
+    /// let body = m.add_mut(&m.worldbody(), element!("body", name = "torso"))?;
+    /// m.add_mut(&body, element!("geom", name = "chest", size = [0.1]))?;
+    /// let without = m.remove(&body)?; // the body and its geom
+    /// assert!(without.find(Namespace::Geom, "chest").is_none());
+    /// assert!(m.find(Namespace::Geom, "chest").is_some()); // `m` is unchanged
+    /// assert!(without.get(&body).is_err()); // the locator names nothing there
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn remove(&self, loc: &Loc) -> Result<Model, EditError> {
         let (m, ()) =
             self.in_scope(loc.scope(), |m: &Model| m.remove_here(loc, false).map(|m| (m, ())))?;
@@ -376,7 +438,8 @@ impl Model {
     /// attachments in its subtree (their frames go with it). A global section keeps
     /// merging the attachments' settings: only this model's own are cleared.
     ///
-    /// Time: O(depth · log width + size of the subtree).
+    /// Time: O(levels · depth · (log n + √width) + s · log n) for a subtree of `s`
+    /// elements of this model (the models attached in it are not walked).
     ///
     /// # Errors
     /// [`ErrorKind::StaleLocator`] if `loc` is not in this model.

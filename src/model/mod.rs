@@ -45,13 +45,12 @@ pub use scope::{Attachment, ScopeRef};
 ///
 /// # Examples
 /// ```
-/// use mjcf::{Element, Model, Namespace};
+/// use mjcf::{Model, Namespace, element};
 /// let m0 = Model::new("arena");
-/// let (m1, _) = m0
-///     .add(&m0.worldbody(), Element::new("geom").attr("name", "floor").attr("type", "plane"))
-///     .unwrap();
+/// let (m1, _) = m0.add(&m0.worldbody(), element!("geom", name = "floor", type = "plane"))?;
 /// assert!(m0.find(Namespace::Geom, "floor").is_none()); // the old value is unchanged
 /// assert!(m1.find(Namespace::Geom, "floor").is_some());
+/// # Ok::<(), mjcf::EditError>(())
 /// ```
 #[derive(Clone)]
 pub struct Model {
@@ -101,6 +100,8 @@ impl Loc {
     }
 
     /// The element's stable id.
+    ///
+    /// Time: O(1).
     pub fn id(&self) -> ElementId {
         self.id
     }
@@ -111,6 +112,8 @@ impl Loc {
     }
 
     /// Whether the element lies inside an attachment.
+    ///
+    /// Time: O(1).
     pub fn is_scoped(&self) -> bool {
         self.scope.is_some()
     }
@@ -145,6 +148,16 @@ impl Model {
     /// A new, empty model. An empty name becomes `unnamed_model`, as in the reference.
     ///
     /// Time: O(1) (every new model shares one empty tree).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::Model;
+    /// let m = Model::new("arena");
+    /// assert_eq!(m.name(), "arena");
+    /// assert_eq!(Model::new("").name(), "unnamed_model");
+    /// assert!(m.to_xml_string()?.starts_with(r#"<mujoco model="arena">"#));
+    /// # Ok::<(), mjcf::WriteError>(())
+    /// ```
     pub fn new(name: &str) -> Model {
         let (root, index) = template().clone();
         let m = Model { root, index, files: Arc::new(FileContext::default()) };
@@ -178,6 +191,8 @@ impl Model {
     /// The model's name: its `model` attribute (`unnamed_model` if it has none, as in
     /// the reference), unless `include_copy` replaced that attribute, which does not
     /// rename the model.
+    ///
+    /// Time: O(1).
     pub fn name(&self) -> &str {
         match &self.index.own_name {
             Some(n) => n,
@@ -191,6 +206,8 @@ impl Model {
 
     /// The model with another name (its `model` attribute). An empty name becomes
     /// `unnamed_model`.
+    ///
+    /// Time: O(1).
     #[must_use]
     pub fn with_name(&self, name: &str) -> Model {
         let Some(i) = ElementKind::ROOT.attr_index("model") else { return self.clone() };
@@ -208,6 +225,8 @@ impl Model {
 
     /// The model whose relative file paths (in attributes set later) resolve against
     /// `dir`. Models read from a file start with that file's folder.
+    ///
+    /// Time: O(1).
     #[must_use]
     pub fn with_base_dir(&self, dir: impl Into<PathBuf>) -> Model {
         let mut files = FileContext::clone(&self.files);
@@ -216,11 +235,16 @@ impl Model {
     }
 
     /// The `<mujoco>` element.
+    ///
+    /// Time: O(1).
     pub fn root(&self) -> Loc {
         self.scoped_loc(&[], self.root.id())
     }
 
-    /// The top-level section with this tag (`"worldbody"`, `"asset"`, `"option"`, ...).
+    /// The top-level section with this tag (`"worldbody"`, `"asset"`, `"option"`, ...),
+    /// or `None` if the schema has no such section.
+    ///
+    /// Time: O(1) (a scan of the schema's fixed list of sections).
     pub fn section(&self, tag: &str) -> Option<Loc> {
         let kind = ElementKind::ROOT.child(tag)?;
         self.root.child_of_kind(kind).map(|n| self.scoped_loc(&[], n.id()))
@@ -232,26 +256,36 @@ impl Model {
     }
 
     /// The `<worldbody>`.
+    ///
+    /// Time: O(1).
     pub fn worldbody(&self) -> Loc {
         self.must_section("worldbody")
     }
 
     /// The `<asset>` section.
+    ///
+    /// Time: O(1).
     pub fn asset(&self) -> Loc {
         self.must_section("asset")
     }
 
     /// The `<actuator>` section.
+    ///
+    /// Time: O(1).
     pub fn actuator(&self) -> Loc {
         self.must_section("actuator")
     }
 
     /// The `<sensor>` section.
+    ///
+    /// Time: O(1).
     pub fn sensor(&self) -> Loc {
         self.must_section("sensor")
     }
 
     /// The root default class (`<default>`).
+    ///
+    /// Time: O(1).
     pub fn default_class(&self) -> Loc {
         self.must_section("default")
     }
@@ -264,13 +298,32 @@ impl Model {
 
     /// Finds the element with this identifier in `namespace`.
     ///
-    /// Time: O(log n).
-    ///
     /// An identifier with `/` looks inside attachments: `robot/torso` is `torso` in the
     /// model attached as `robot`, `arena/robot_1/hip` goes two levels down. In
     /// [`Namespace::AttachmentFrame`], `robot` finds the frame of that attachment.
     /// Joints on attachment frames are not found by name (their names are unique per
     /// frame only); [`Model::find_all`] lists them.
+    ///
+    /// Time: O(log n) for a name of this model, O(levels · depth · log n) for one with
+    /// a scope path. A miss costs as much as one of [`Model::lookup`] (whose error,
+    /// with its suggestions, `find` drops): O(named elements) string comparisons.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut arena = Model::new("arena");
+    /// let floor = arena.add_mut(&arena.worldbody(), element!("geom", name = "floor", type = "plane"))?;
+    /// assert_eq!(arena.find(Namespace::Geom, "floor"), Some(floor));
+    /// assert_eq!(arena.find(Namespace::Body, "floor"), None); // another namespace
+    ///
+    /// let mut robot = Model::new("robot");
+    /// let torso = robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// let found = arena.find(Namespace::Body, "robot/torso").unwrap();
+    /// assert_eq!(found.id(), torso.id()); // the same element, seen through the attachment
+    /// assert!(found.is_scoped());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
     pub fn find(&self, namespace: Namespace, identifier: &str) -> Option<Loc> {
         self.lookup(namespace, identifier).ok()
     }
@@ -279,13 +332,15 @@ impl Model {
     /// identifier, the scope it was looked for in and the nearest existing names
     /// there ("did you mean").
     ///
-    /// Time: O(levels · log n); a miss costs O(names in the namespace) for the
-    /// suggestions.
+    /// Time: O(log n) for a name of this model, O(levels · depth · log n) for one with
+    /// a scope path; a miss also ranks the names for suggestions: O(named elements of
+    /// the model looked in) string comparisons.
     ///
     /// # Errors
     /// [`ErrorKind::UnknownName`] when nothing has that name;
-    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`] when the scope part
-    /// of the identifier is malformed or names no attachment.
+    /// [`ErrorKind::InvalidScope`] when the scope part of the identifier is malformed
+    /// (`/torso`, `robot//torso`); [`ErrorKind::NotAttached`] when it names no
+    /// attachment.
     ///
     /// # Examples
     /// ```
@@ -357,7 +412,9 @@ impl Model {
         ))
     }
 
-    /// Whether both values share the same tree (O(1)).
+    /// Whether both values share the same tree.
+    ///
+    /// Time: O(1).
     pub fn ptr_eq(&self, other: &Model) -> bool {
         self.root.ptr_eq(&other.root)
     }

@@ -39,12 +39,16 @@ impl Attachment {
 
     /// The attachment frame (a body in the written MJCF): add joints, a freejoint or
     /// an inertial to it, or set its pose.
+    ///
+    /// Time: O(1).
     pub fn frame(&self) -> &Loc {
         &self.frame
     }
 
     /// The scope path at attach time (`robot_1`, `arena/robot`), the prefix of the
     /// attached model's names.
+    ///
+    /// Time: O(1).
     pub fn scope(&self) -> &str {
         &self.scope
     }
@@ -190,7 +194,7 @@ impl Model {
     /// the result back by path copying through each frame. Iterative, so attachments
     /// nested any number of levels deep cannot overflow the stack.
     ///
-    /// Time: O(levels · (depth · log width)) plus what `f` costs.
+    /// Time: O(levels · depth · (log n + √width)) plus what `f` costs.
     pub(crate) fn in_scope<R>(
         &self,
         frames: &[ElementId],
@@ -240,7 +244,9 @@ impl Model {
     /// Time: O(levels · depth · log n).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`].
+    /// [`ErrorKind::InvalidScope`] for a malformed scope path;
+    /// [`ErrorKind::NotAttached`] (listing what is attached there) when nothing is
+    /// attached at `scope`, or an [`Attachment`] was detached.
     pub fn attached(&self, scope: impl ScopeRef) -> Result<&Model, EditError> {
         let frames = scope.frames_in(self)?;
         self.scoped_model(&frames).ok_or_else(|| not_attached(self, scope.path_text()))
@@ -248,7 +254,7 @@ impl Model {
 
     /// The scope names of this model's own attachments, in attach order.
     ///
-    /// Time: O(1) to start, O(log n) per item.
+    /// Time: O(a) for all `a` attachments of this model (O(log a) to start).
     pub fn scopes(&self) -> impl Iterator<Item = &str> {
         self.index.scopes.iter().map(|(s, _)| s.as_str())
     }
@@ -258,7 +264,8 @@ impl Model {
     /// Time: O(levels · depth · log n).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`].
+    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`], as for
+    /// [`Model::attached`].
     pub fn attachment(&self, scope: impl ScopeRef) -> Result<Attachment, EditError> {
         let frames = scope.frames_in(self)?;
         let (last, outer) =
@@ -273,7 +280,8 @@ impl Model {
     /// Time: O(levels · depth · log n).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`].
+    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`], as for
+    /// [`Model::attached`].
     pub fn frame(&self, scope: impl ScopeRef) -> Result<Loc, EditError> {
         Ok(self.attachment(scope)?.frame)
     }
@@ -308,7 +316,8 @@ impl Model {
     /// Time: O(levels · depth · log n).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`].
+    /// [`ErrorKind::InvalidScope`] or [`ErrorKind::NotAttached`], as for
+    /// [`Model::attached`].
     pub fn locate_in(&self, scope: impl ScopeRef, inner: &Loc) -> Result<Loc, EditError> {
         let frames = scope.frames_in(self)?;
         let mut loc = inner.clone().within(&frames);

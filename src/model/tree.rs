@@ -136,10 +136,10 @@ impl Node {
         Arc::ptr_eq(&self.0, &other.0)
     }
 
-    /// The index of the child with this id.
     /// The position of the child `id`, looked for first at `hint`, then after it
     /// (where inserts before it move it), then before it. O(log width) when the hint
-    /// is right, O(distance) otherwise.
+    /// is right, O(distance) when it is behind, O(width) when it is ahead (after
+    /// removals before the child).
     pub(crate) fn child_position_near(&self, id: ElementId, hint: usize) -> Option<usize> {
         let children = &self.0.children;
         let hint = hint.min(children.len());
@@ -180,7 +180,8 @@ impl Node {
     }
 
     /// Rebuilds the path `path` (child indices from this node) with `f` applied to the
-    /// node at its end. Time: O(depth · log width).
+    /// node at its end. Time: O(depth · √width): at each level the children's chunk
+    /// list and one chunk are copied.
     pub(crate) fn update_path<E>(
         &self,
         path: &[usize],

@@ -24,6 +24,9 @@ struct FileData {
 impl FileAsset {
     /// Creates an asset from a file stem (`"cube"`), an extension with its dot
     /// (`".stl"`) and the contents.
+    ///
+    /// Time: O(size of `contents`): the SHA-1 of the contents is computed (and a
+    /// `Vec` is copied into an `Arc`).
     pub fn new(stem: &str, extension: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
         let contents = contents.into();
         let sha1 = sha1_smol::Sha1::from(&contents[..]).digest().to_string();
@@ -37,6 +40,8 @@ impl FileAsset {
 
     /// Creates an asset from a path as written in MJCF and the file's contents: the
     /// stem and extension come from the path's last component.
+    ///
+    /// Time: as [`FileAsset::new`].
     pub fn from_path_and_contents(path: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
         let file = path.rsplit(['/', '\\']).next().unwrap_or(path);
         let (stem, ext) = match file.rfind('.') {
@@ -47,27 +52,37 @@ impl FileAsset {
     }
 
     /// The file stem (`"cube"`).
+    ///
+    /// Time: O(1).
     pub fn stem(&self) -> &str {
         &self.0.stem
     }
 
     /// The extension with its dot (`".stl"`), or empty.
+    ///
+    /// Time: O(1).
     pub fn extension(&self) -> &str {
         &self.0.extension
     }
 
     /// The file's bytes.
+    ///
+    /// Time: O(1).
     pub fn contents(&self) -> &[u8] {
         &self.0.contents
     }
 
     /// The SHA-1 of the contents, as 40 lower-case hex digits.
+    ///
+    /// Time: O(1) (computed when the asset is made).
     pub fn sha1_hex(&self) -> &str {
         &self.0.sha1
     }
 
     /// The name the file gets in written MJCF: `stem-<sha1>.ext` with the hash, or
     /// `stem.ext` without (a file without a stem is named by its hash either way).
+    ///
+    /// Time: O(length of the name).
     pub fn vfs_name(&self, with_hash: bool) -> String {
         let d = &self.0;
         match (d.stem.is_empty(), with_hash) {

@@ -375,6 +375,8 @@ impl Value {
     }
 
     /// The value as a float, for float attributes.
+    ///
+    /// Time: O(1).
     pub fn as_float(&self) -> Option<f64> {
         match self {
             Value::Float(x) => Some(*x),
@@ -383,6 +385,8 @@ impl Value {
     }
 
     /// The value as an integer, for int attributes.
+    ///
+    /// Time: O(1).
     pub fn as_int(&self) -> Option<i64> {
         match self {
             Value::Int(x) => Some(*x),
@@ -392,6 +396,8 @@ impl Value {
 
     /// The value as text for string-like attributes (strings, keywords, identifiers,
     /// named references, folder settings).
+    ///
+    /// Time: O(1).
     pub fn as_str(&self) -> Option<&str> {
         match self {
             Value::String(s) | Value::Identifier(s) | Value::Basepath(s) => Some(s),
@@ -402,6 +408,8 @@ impl Value {
     }
 
     /// The value as floats, for float arrays.
+    ///
+    /// Time: O(1).
     pub fn as_floats(&self) -> Option<&[f64]> {
         match self {
             Value::Floats(v) => Some(v),
@@ -410,6 +418,8 @@ impl Value {
     }
 
     /// The value as integers, for int arrays.
+    ///
+    /// Time: O(1).
     pub fn as_ints(&self) -> Option<&[i64]> {
         match self {
             Value::Ints(v) => Some(v),
