@@ -199,7 +199,9 @@ impl Model {
     /// # Errors
     /// [`ErrorKind::NotAttached`] for an unknown scope; [`ErrorKind::DuplicateIdentifier`]
     /// if an attachment of the same model already has that name (including this
-    /// one, as in the reference); an invalid identifier (`/`, or empty).
+    /// one, as in the reference); an invalid identifier (`/`, or empty,
+    /// [`ValueError::SlashInIdentifier`]); a character XML cannot hold, such as NUL
+    /// ([`ValueError::InvalidCharacter`]).
     pub fn rename_scope(&self, scope: impl ScopeRef, to: &str) -> Result<Model, EditError> {
         let text = scope.path_text().to_string();
         if to.contains('/') || to.is_empty() {
@@ -213,6 +215,8 @@ impl Model {
                 text,
             ));
         }
+        // A scope name becomes the attached model's name prefix in every written name.
+        crate::model::check_model_name(to).map_err(|k| EditError::new(k, text.clone()))?;
         let frames = scope.frames_in(self)?;
         let (frame, outer) = frames.split_last().ok_or_else(|| not_attached(self, &text))?;
         let (m, ()) = self.in_scope(outer, |m: &Model| {
