@@ -147,6 +147,20 @@ pub enum ErrorKind {
     /// A file outside the folder that file access is confined to.
     #[error("file {0:?} is outside the model's folder")]
     FileOutsideRoot(PathBuf),
+    /// A file larger than the cap on the size of one file
+    /// ([`ReadOptions::max_file_size`](crate::ReadOptions::max_file_size), 1 GiB by
+    /// default).
+    #[error("file {path:?} is larger than the limit of {limit} bytes")]
+    FileTooLarge {
+        /// The path as resolved.
+        path: PathBuf,
+        /// The cap, in bytes.
+        limit: u64,
+    },
+    /// A path that names something other than a regular file once symlinks are
+    /// followed: a folder, a FIFO, a socket or a device such as `/dev/zero`.
+    #[error("{0:?} is not a regular file")]
+    NotAFile(PathBuf),
     /// An `<include>` that includes itself, directly or not.
     #[error("include cycle through {0:?}")]
     IncludeCycle(PathBuf),

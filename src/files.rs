@@ -4,13 +4,18 @@
 //! are read when they are set, so a model value never reads files later.
 
 use std::collections::HashMap;
+use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 use crate::error::ErrorKind;
 
+/// The default cap on the size of one file read from disk: 1 GiB, far above any real
+/// mesh, texture or model file.
+pub(crate) const DEFAULT_MAX_FILE_SIZE: u64 = 1 << 30;
+
 /// How a model finds the files its attributes and `<include>`s name.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub(crate) struct FileContext {
     /// The folder relative paths resolve against (`None`: the process's working
     /// directory).
@@ -18,8 +23,62 @@ pub(crate) struct FileContext {
     /// In-memory files, looked up before the disk by the path as written and by the
     /// path joined with the folder setting.
     pub(crate) assets: Option<Arc<HashMap<String, Arc<[u8]>>>>,
-    /// Refuse paths that leave `base_dir` (absolute paths, `..` above it).
+    /// Refuse paths that leave `base_dir`: absolute paths, `..` above it, and paths
+    /// that leave it once symlinks are followed.
     pub(crate) confine: bool,
+    /// The largest file read from disk, in bytes.
+    pub(crate) max_file_size: u64,
+}
+
+impl Default for FileContext {
+    fn default() -> Self {
+        FileContext {
+            base_dir: None,
+            assets: None,
+            confine: false,
+            max_file_size: DEFAULT_MAX_FILE_SIZE,
+        }
+    }
+}
+
+/// A file on disk: the path as resolved from the model's folder (for messages and
+/// include cycles) and the path to open (with confinement, the canonical path that
+/// was checked, so a symlink is not followed a second time).
+#[derive(Clone, Debug)]
+pub(crate) struct DiskPath {
+    pub(crate) full: PathBuf,
+    pub(crate) open: PathBuf,
+}
+
+/// Reads the regular file `open` (named `shown` in errors), refusing anything else
+/// (a folder, a FIFO, a device) before opening it, and anything over `limit` bytes.
+/// The read is bounded, so a file that grows or a device that never ends stops at
+/// `limit + 1` bytes.
+///
+/// Time: O(size of the file), at most O(limit).
+pub(crate) fn read_regular(open: &Path, shown: &Path, limit: u64) -> Result<Vec<u8>, ErrorKind> {
+    let not_found = |e: std::io::Error| ErrorKind::FileNotFound {
+        path: shown.to_path_buf(),
+        reason: e.to_string(),
+    };
+    let too_large = || ErrorKind::FileTooLarge { path: shown.to_path_buf(), limit };
+    // `metadata` follows symlinks: what is checked is what `open` would open. A FIFO
+    // without a writer would block `open` forever, so this comes first.
+    let meta = std::fs::metadata(open).map_err(not_found)?;
+    if !meta.is_file() {
+        return Err(ErrorKind::NotAFile(shown.to_path_buf()));
+    }
+    if meta.len() > limit {
+        return Err(too_large());
+    }
+    let file = std::fs::File::open(open).map_err(not_found)?;
+    // The size is a hint only (it may change, and some files report 0).
+    let mut bytes = Vec::with_capacity(usize::try_from(meta.len()).unwrap_or(0));
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes).map_err(not_found)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
 }
 
 /// Joins a folder setting (`meshdir`) and a path as MJCF does.
@@ -71,36 +130,59 @@ impl FileContext {
                 return Ok((PathBuf::from(&joined), bytes.clone()));
             }
         }
-        let full = self.disk_path(&joined)?;
-        match std::fs::read(&full) {
-            Ok(bytes) => Ok((full, bytes.into())),
-            Err(e) => Err(ErrorKind::FileNotFound { path: full, reason: e.to_string() }),
-        }
+        let path = self.disk_path(&joined)?;
+        let bytes = self.read_disk(&path)?;
+        Ok((path.full, bytes.into()))
     }
 
-    /// The path on disk for a joined MJCF path, checking confinement.
-    pub(crate) fn disk_path(&self, joined: &str) -> Result<PathBuf, ErrorKind> {
+    /// Reads a file on disk found by [`FileContext::disk_path`], within the size cap.
+    pub(crate) fn read_disk(&self, path: &DiskPath) -> Result<Vec<u8>, ErrorKind> {
+        read_regular(&path.open, &path.full, self.max_file_size)
+    }
+
+    /// The path on disk for a joined MJCF path, checking confinement: with it, the
+    /// path must not be absolute nor lead out of the folder with `..`, and once every
+    /// symlink is followed (of the file and of the folder) it must still be inside the
+    /// folder.
+    pub(crate) fn disk_path(&self, joined: &str) -> Result<DiskPath, ErrorKind> {
         let rel = Path::new(joined);
+        let outside = || ErrorKind::FileOutsideRoot(rel.to_path_buf());
         if self.confine {
             let normal = normalize(joined);
             let escapes = rel.is_absolute()
                 || Path::new(&normal).components().next() == Some(Component::ParentDir);
             if escapes {
-                return Err(ErrorKind::FileOutsideRoot(rel.to_path_buf()));
+                return Err(outside());
             }
         }
-        Ok(match &self.base_dir {
+        let full = match &self.base_dir {
             Some(dir) => dir.join(rel),
             None => rel.to_path_buf(),
-        })
+        };
+        if !self.confine {
+            return Ok(DiskPath { open: full.clone(), full });
+        }
+        let dir = match &self.base_dir {
+            Some(dir) if !dir.as_os_str().is_empty() => dir.as_path(),
+            _ => Path::new("."),
+        };
+        let canonical = |p: &Path| {
+            std::fs::canonicalize(p)
+                .map_err(|e| ErrorKind::FileNotFound { path: full.clone(), reason: e.to_string() })
+        };
+        let root = canonical(dir)?;
+        let open = canonical(&full)?;
+        if !open.starts_with(&root) {
+            return Err(outside());
+        }
+        Ok(DiskPath { full, open })
     }
 
     /// The context for a file included from `path` (its folder becomes the base).
     pub(crate) fn for_included(&self, full_path: &Path) -> FileContext {
         FileContext {
             base_dir: Some(full_path.parent().map(Path::to_path_buf).unwrap_or_default()),
-            assets: self.assets.clone(),
-            confine: self.confine,
+            ..self.clone()
         }
     }
 }
@@ -121,9 +203,30 @@ mod tests {
 
     #[test]
     fn confinement_refuses_paths_that_leave_the_folder() {
-        let ctx = FileContext { base_dir: Some("/tmp/m".into()), assets: None, confine: true };
+        let ctx = FileContext {
+            base_dir: Some("/tmp/m".into()),
+            confine: true,
+            ..FileContext::default()
+        };
         assert!(matches!(ctx.disk_path("../etc/passwd"), Err(ErrorKind::FileOutsideRoot(_))));
         assert!(matches!(ctx.disk_path("/etc/passwd"), Err(ErrorKind::FileOutsideRoot(_))));
-        assert_eq!(ctx.disk_path("a/../b.stl").unwrap(), PathBuf::from("/tmp/m/a/../b.stl"));
+        // Without confinement the path is only joined.
+        let open = FileContext { confine: false, ..ctx };
+        assert_eq!(open.disk_path("a/../b.stl").unwrap().full, PathBuf::from("/tmp/m/a/../b.stl"));
+    }
+
+    /// The cap holds while reading, not only by the size the file reports: files in
+    /// `/proc` are regular files that report size 0.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_size_cap_bounds_the_read_itself() {
+        let p = Path::new("/proc/self/status");
+        if std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.len() == 0) {
+            assert!(matches!(
+                read_regular(p, p, 10),
+                Err(ErrorKind::FileTooLarge { limit: 10, .. })
+            ));
+            assert!(read_regular(p, p, 1 << 20).is_ok_and(|b| b.len() > 10));
+        }
     }
 }

@@ -231,7 +231,9 @@ impl Model {
     /// for a malformed path; [`ErrorKind::DuplicateIdentifier`] (in
     /// [`Namespace::AttachmentFrame`](crate::Namespace::AttachmentFrame)) if an
     /// attachment of the same model already has that name (including this one, as in
-    /// the reference); [`ErrorKind::InvalidValue`] if `to` is empty or holds a `/`.
+    /// the reference); [`ErrorKind::InvalidValue`] if `to` is empty, holds a `/`
+    /// ([`ValueError::SlashInIdentifier`]) or a character XML cannot hold, such as NUL
+    /// ([`ValueError::InvalidCharacter`]).
     ///
     /// # Examples
     /// ```
@@ -260,6 +262,8 @@ impl Model {
                 text,
             ));
         }
+        // A scope name becomes the attached model's name prefix in every written name.
+        crate::model::check_model_name(to).map_err(|k| EditError::new(k, text.clone()))?;
         let frames = scope.frames_in(self)?;
         let (frame, outer) = frames.split_last().ok_or_else(|| not_attached(self, &text))?;
         let (m, ()) = self.in_scope(outer, |m: &Model| {

@@ -144,8 +144,28 @@ fn template() -> &'static (Node, Index) {
 /// The name of a model without one, as in the reference.
 pub(crate) const UNNAMED: &str = "unnamed_model";
 
+/// Refuses a model name with a character XML cannot hold (NUL, other C0 controls,
+/// U+FFFE, U+FFFF), which no written model could carry.
+pub(crate) fn check_model_name(name: &str) -> Result<(), ErrorKind> {
+    match name.chars().find(|c| !crate::value::is_xml_char(*c)) {
+        Some(c) => Err(ErrorKind::InvalidValue {
+            tag: "mujoco",
+            attribute: "model",
+            value: build::cut(name),
+            error: crate::error::ValueError::InvalidCharacter(c),
+        }),
+        None => Ok(()),
+    }
+}
+
 impl Model {
     /// A new, empty model. An empty name becomes `unnamed_model`, as in the reference.
+    ///
+    /// The name is taken as given: one with a character XML cannot hold (such as NUL)
+    /// makes writing the model fail with
+    /// [`WriteError::InvalidCharacter`](crate::WriteError::InvalidCharacter) (never a
+    /// panic). [`Model::try_new`] refuses such a name at once; use it for names that
+    /// come from outside the program.
     ///
     /// Time: O(1) (every new model shares one empty tree).
     ///
@@ -162,6 +182,26 @@ impl Model {
         let (root, index) = template().clone();
         let m = Model { root, index, files: Arc::new(FileContext::default()) };
         m.with_name(name)
+    }
+
+    /// [`Model::new`], refusing a name with a character XML cannot hold (NUL, other C0
+    /// controls, U+FFFE, U+FFFF).
+    ///
+    /// Time: O(length of the name).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidValue`] with
+    /// [`ValueError::InvalidCharacter`](crate::ValueError::InvalidCharacter) (at the
+    /// root, path `""`).
+    ///
+    /// # Examples
+    /// ```
+    /// assert_eq!(mjcf::Model::try_new("arm").unwrap().name(), "arm");
+    /// assert!(mjcf::Model::try_new("a\0b").is_err());
+    /// ```
+    pub fn try_new(name: &str) -> Result<Model, EditError> {
+        check_model_name(name).map_err(|k| EditError::new(k, String::new()))?;
+        Ok(Model::new(name))
     }
 
     pub(crate) fn from_parts(root: Node, index: Index, files: FileContext) -> Model {
@@ -205,7 +245,8 @@ impl Model {
     }
 
     /// The model with another name (its `model` attribute). An empty name becomes
-    /// `unnamed_model`.
+    /// `unnamed_model`. The name is taken as given, as in [`Model::new`];
+    /// [`Model::try_with_name`] refuses characters XML cannot hold.
     ///
     /// Time: O(1).
     #[must_use]
@@ -217,6 +258,20 @@ impl Model {
         let mut index = self.index.clone();
         index.own_name = None;
         self.next(self.root.with_attrs(attrs), index)
+    }
+
+    /// [`Model::with_name`], refusing a name with a character XML cannot hold (NUL,
+    /// other C0 controls, U+FFFE, U+FFFF).
+    ///
+    /// Time: O(length of the name + number of root attributes).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidValue`] with
+    /// [`ValueError::InvalidCharacter`](crate::ValueError::InvalidCharacter) (at the
+    /// root, path `""`); `self` is unchanged.
+    pub fn try_with_name(&self, name: &str) -> Result<Model, EditError> {
+        check_model_name(name).map_err(|k| EditError::new(k, String::new()))?;
+        Ok(self.with_name(name))
     }
 
     fn root_attr(&self, name: &str) -> Option<&Value> {

@@ -54,17 +54,24 @@ pub struct ReadOptions {
     base_dir: Option<PathBuf>,
     confine: bool,
     max_depth: usize,
+    max_file_size: u64,
 }
 
 impl Default for ReadOptions {
     fn default() -> Self {
-        ReadOptions { assets: HashMap::new(), base_dir: None, confine: false, max_depth: 1_000_000 }
+        ReadOptions {
+            assets: HashMap::new(),
+            base_dir: None,
+            confine: false,
+            max_depth: 1_000_000,
+            max_file_size: files::DEFAULT_MAX_FILE_SIZE,
+        }
     }
 }
 
 impl ReadOptions {
     /// Default options: files from disk relative to the model's folder, no limit on
-    /// where they are, nesting up to 1,000,000 levels.
+    /// where they are, nesting up to 1,000,000 levels, files up to 1 GiB each.
     ///
     /// Time: O(1).
     pub fn new() -> ReadOptions {
@@ -93,9 +100,14 @@ impl ReadOptions {
         self
     }
 
-    /// Refuses files outside the model's folder (absolute paths or `..` leading out of
-    /// it), for models from untrusted sources. Off by default, as MJCF models commonly
-    /// share assets through `../`.
+    /// Refuses files outside the model's folder, for models from untrusted sources:
+    /// absolute paths, `..` leading out of it, and paths that leave it once symlinks
+    /// are followed (a symlinked file or folder pointing outside; one that stays inside
+    /// is fine). Applies to `<include>`s and every file attribute, when reading and on
+    /// later edits of the model read ([`ErrorKind::FileOutsideRoot`]). An included
+    /// file's folder is the folder for the files it names. In-memory files
+    /// ([`ReadOptions::asset`]) are not affected. Off by default, as MJCF models
+    /// commonly share assets through `../`.
     ///
     /// Time: O(1).
     #[must_use]
@@ -114,11 +126,27 @@ impl ReadOptions {
         self
     }
 
+    /// The largest file read from disk, in bytes (default 1 GiB, which real models
+    /// never reach): the model file, `<include>`s and file attributes, when reading and
+    /// on later edits of the model read. A larger file is a
+    /// [`ErrorKind::FileTooLarge`] error; the read is bounded, so a file that grows
+    /// while being read stops at the cap. Whatever the cap, only regular files are
+    /// read: a folder, a FIFO or a device (`/dev/zero`) is a [`ErrorKind::NotAFile`]
+    /// error, found before the file is opened.
+    ///
+    /// Time: O(1).
+    #[must_use]
+    pub fn max_file_size(mut self, bytes: u64) -> ReadOptions {
+        self.max_file_size = bytes;
+        self
+    }
+
     fn context(&self, base_dir: Option<PathBuf>) -> FileContext {
         FileContext {
             base_dir,
             assets: if self.assets.is_empty() { None } else { Some(Arc::new(self.assets.clone())) },
             confine: self.confine,
+            max_file_size: self.max_file_size,
         }
     }
 
@@ -180,13 +208,8 @@ impl ReadOptions {
     /// included file) the problem is in.
     pub fn read_path(&self, path: impl AsRef<Path>) -> Result<Model, ReadError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|e| {
-            ReadError::new(
-                ErrorKind::FileNotFound { path: path.to_path_buf(), reason: e.to_string() },
-                None,
-                None,
-            )
-        })?;
+        let bytes = files::read_regular(path, path, self.max_file_size)
+            .map_err(|k| ReadError::new(k, None, None))?;
         let text = utf8(&bytes, Some(path))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let ctx = self.context(Some(dir));
@@ -522,21 +545,21 @@ fn read_include(
             return Err(r.err(ErrorKind::IncludeCycle(PathBuf::from(&file)), offset));
         }
         let text = utf8(&bytes, Some(Path::new(&file)))?;
-        let ctx =
-            FileContext { base_dir: None, assets: r.ctx.assets.clone(), confine: r.ctx.confine };
+        let ctx = FileContext { base_dir: None, ..r.ctx.clone() };
         include_stack.push(key);
         let res = read_document(text, Some(PathBuf::from(&file)), ctx, max_depth, include_stack);
         include_stack.pop();
         return res;
     }
-    let full = r.ctx.disk_path(&file).map_err(|k| r.err(k, offset))?;
+    // With confinement, the path is checked with symlinks followed; the file must be
+    // a regular file within the size cap.
+    let path = r.ctx.disk_path(&file).map_err(|k| r.err(k, offset))?;
+    let full = path.full.clone();
     let key = canonical(&full);
     if include_stack.contains(&key) {
         return Err(r.err(ErrorKind::IncludeCycle(full), offset));
     }
-    let bytes = std::fs::read(&full).map_err(|e| {
-        r.err(ErrorKind::FileNotFound { path: full.clone(), reason: e.to_string() }, offset)
-    })?;
+    let bytes = r.ctx.read_disk(&path).map_err(|k| r.err(k, offset))?;
     let text = utf8(&bytes, Some(&full))?;
     let ctx = r.ctx.for_included(&full);
     include_stack.push(key);

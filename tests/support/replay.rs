@@ -58,7 +58,10 @@ pub(crate) fn category(kind: &ErrorKind) -> &'static str {
         ErrorKind::InvalidValue { .. } => "invalid_value",
         ErrorKind::DuplicateIdentifier { .. } => "duplicate_identifier",
         ErrorKind::MissingRequired { .. } => "missing_required",
-        ErrorKind::FileNotFound { .. } | ErrorKind::FileOutsideRoot(_) => "file_not_found",
+        ErrorKind::FileNotFound { .. }
+        | ErrorKind::FileOutsideRoot(_)
+        | ErrorKind::NotAFile(_)
+        | ErrorKind::FileTooLarge { .. } => "file_not_found",
         ErrorKind::NotFound => "not_found",
         ErrorKind::AttributeConflict { .. } => "attribute_conflict",
         ErrorKind::CopyConflict { .. } => "copy_conflict",
@@ -79,7 +82,10 @@ fn read_err(e: ReadError) -> OpError {
     // Loading fails with `file_not_found` for missing files and `parse_error` for
     // everything else.
     let cat = match e.kind() {
-        ErrorKind::FileNotFound { .. } | ErrorKind::FileOutsideRoot(_) => "file_not_found",
+        ErrorKind::FileNotFound { .. }
+        | ErrorKind::FileOutsideRoot(_)
+        | ErrorKind::NotAFile(_)
+        | ErrorKind::FileTooLarge { .. } => "file_not_found",
         _ => "parse_error",
     };
     OpError::new(cat, e.to_string())
