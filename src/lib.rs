@@ -79,7 +79,8 @@ pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueErr
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
-    Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, ScopeRef,
+    Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, Problem, ProblemKind,
+    ScopeRef,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

@@ -5,6 +5,7 @@
 //! pointing at the same element across versions (it holds the element's stable id).
 
 mod build;
+mod check;
 mod cursor;
 pub(crate) mod diff;
 mod edit;
@@ -32,6 +33,7 @@ pub use build::{Attrs, Element};
 pub(crate) use build::{
     Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, name_from_file,
 };
+pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
 pub(crate) use index::{Index, MergedCache};
@@ -360,8 +362,8 @@ impl Model {
     /// frame only); [`Model::find_all`] lists them.
     ///
     /// Time: O(log n) for a name of this model, O(levels · depth · log n) for one with
-    /// a scope path. A miss costs as much as one of [`Model::lookup`] (whose error,
-    /// with its suggestions, `find` drops): O(named elements) string comparisons.
+    /// a scope path, a hit or a miss alike (a miss makes no suggestions; see
+    /// [`Model::lookup`] for those).
     ///
     /// # Examples
     /// ```
@@ -380,7 +382,7 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn find(&self, namespace: Namespace, identifier: &str) -> Option<Loc> {
-        self.lookup(namespace, identifier).ok()
+        self.resolve(namespace, identifier).ok()?.ok()
     }
 
     /// [`Model::find`] that explains a miss: the error names the namespace, the
@@ -407,43 +409,10 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn lookup(&self, namespace: Namespace, identifier: &str) -> Result<Loc, EditError> {
-        // At each level a literal name comes first (a model read from a file may hold
-        // `robot/torso` as one name), then the first segment as an attachment's scope.
-        let own = |m: &Model, name: &str| {
-            if namespace == Namespace::AttachmentFrame {
-                m.index.frame_of(name)
-            } else {
-                m.index.names.get(&(namespace, SmolStr::from(name))).copied()
-            }
+        let (m, scope, rest) = match self.resolve(namespace, identifier)? {
+            Ok(loc) => return Ok(loc),
+            Err(miss) => miss,
         };
-        let mut m = self;
-        let mut frames: Vec<ElementId> = Vec::new();
-        let mut rest = identifier;
-        loop {
-            if let Some(id) = own(m, rest) {
-                return Ok(self.scoped_loc(&frames, id));
-            }
-            let Some((scope, tail)) = rest.split_once('/') else { break };
-            if frames.is_empty() {
-                scope::check_scope_path(identifier)?;
-            }
-            let Some(frame) = m.index.frame_of(scope) else {
-                if m.index.scopes.is_empty() {
-                    break; // a misspelt literal name: suggest names below
-                }
-                let upto = identifier.len() - tail.len() - 1;
-                return Err(scope::not_attached(m, &identifier[..upto]));
-            };
-            frames.push(frame);
-            m = &m
-                .node_by_id(frame)
-                .and_then(Node::attached)
-                .ok_or_else(|| self.stale_id(frame))?
-                .model;
-            rest = tail;
-        }
-        let scope = &identifier[..identifier.len() - rest.len()];
-        let scope = scope.strip_suffix('/').unwrap_or(scope);
         let candidates: Vec<&str> = if namespace == Namespace::AttachmentFrame {
             m.index.scopes.iter().map(|(s, _)| s.as_str()).collect()
         } else {
@@ -465,6 +434,53 @@ impl Model {
             },
             String::new(),
         ))
+    }
+
+    /// The element named `identifier`, or where the search stopped: the model, the
+    /// scope path looked in and the part of the name not found there. At each level
+    /// a literal name comes first (a model read from a file may hold `robot/torso` as
+    /// one name), then the first segment as an attachment's scope.
+    #[allow(clippy::type_complexity)]
+    fn resolve<'a, 'i>(
+        &'a self,
+        namespace: Namespace,
+        identifier: &'i str,
+    ) -> Result<Result<Loc, (&'a Model, &'i str, &'i str)>, EditError> {
+        let own = |m: &Model, name: &str| {
+            if namespace == Namespace::AttachmentFrame {
+                m.index.frame_of(name)
+            } else {
+                m.index.names.get(&(namespace, SmolStr::from(name))).copied()
+            }
+        };
+        let mut m = self;
+        let mut frames: Vec<ElementId> = Vec::new();
+        let mut rest = identifier;
+        loop {
+            if let Some(id) = own(m, rest) {
+                return Ok(Ok(self.scoped_loc(&frames, id)));
+            }
+            let Some((scope, tail)) = rest.split_once('/') else { break };
+            if frames.is_empty() {
+                scope::check_scope_path(identifier)?;
+            }
+            let Some(frame) = m.index.frame_of(scope) else {
+                if m.index.scopes.is_empty() {
+                    break; // a misspelt literal name
+                }
+                let upto = identifier.len() - tail.len() - 1;
+                return Err(scope::not_attached(m, &identifier[..upto]));
+            };
+            frames.push(frame);
+            m = &m
+                .node_by_id(frame)
+                .and_then(Node::attached)
+                .ok_or_else(|| self.stale_id(frame))?
+                .model;
+            rest = tail;
+        }
+        let scope = &identifier[..identifier.len() - rest.len()];
+        Ok(Err((m, scope.strip_suffix('/').unwrap_or(scope), rest)))
     }
 
     /// Whether both values share the same tree.

@@ -1,0 +1,142 @@
+//! Reference checks before MuJoCo (`Model::check`), who refers to an element
+//! (`references_to`), and the names MuJoCo will see (`full_name`, `from_full_name`).
+
+use mjcf::{EditError, Model, Namespace, ProblemKind, element};
+
+#[path = "support/robot.rs"]
+mod robot;
+use robot::robot;
+
+#[test]
+fn a_motor_on_a_joint_that_does_not_exist_is_reported_with_a_suggestion() -> Result<(), EditError> {
+    let mut arm = robot("arm");
+    arm.add_mut(&arm.actuator(), element!("motor", name = "typo", joint = "hipp"))?;
+    let problems = arm.check();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    let p = &problems[0];
+    assert_eq!(p.path, "typo");
+    assert_eq!(p.loc, arm.lookup(Namespace::Actuator, "typo")?);
+    assert!(matches!(
+        &p.kind,
+        ProblemKind::DanglingReference { attribute: "joint", namespace: Namespace::Joint, suggestions, .. }
+            if suggestions.first().map(|s| s.as_str()) == Some("hip")
+    ));
+    // Inside an attachment the same typo is found, named with its scope.
+    let mut scene = Model::new("scene");
+    scene.attach_mut(&scene.worldbody(), &arm)?;
+    let problems = scene.check();
+    assert_eq!(problems.len(), 1);
+    assert_eq!(problems[0].path, "arm/typo");
+    assert_eq!(
+        problems[0].to_string(),
+        "arm/typo: 'joint' names joint 'hipp', which does not exist (did you mean 'hip'?)"
+    );
+    Ok(())
+}
+
+#[test]
+fn a_clean_composition_has_no_problems() -> Result<(), EditError> {
+    let mut scene = Model::new("scene");
+    let site = scene.add_mut(&scene.worldbody(), element!("site", name = "s"))?;
+    let a = scene.attach_mut(&site, &robot("robot"))?;
+    scene.add_mut(a.frame(), element!("joint", name = "slide", type = "slide"))?;
+    assert_eq!(scene.check(), vec![]);
+    Ok(())
+}
+
+#[test]
+fn a_removed_joint_leaves_the_motor_without_one() -> Result<(), EditError> {
+    // Read from MJCF, the motor's joint is resolved; removing the joint clears it.
+    let m = Model::from_xml_str(
+        r#"<mujoco><worldbody><body name="b"><joint name="j"/><geom size="1"/></body></worldbody>
+           <actuator><motor name="mo" joint="j"/></actuator></mujoco>"#,
+    )
+    .unwrap();
+    let j = m.lookup(Namespace::Joint, "j")?;
+    let mo = m.lookup(Namespace::Actuator, "mo")?;
+    assert_eq!(m.references_to(&j), vec![(mo.clone(), "joint")]);
+    let removed = m.remove(&j)?;
+    assert_eq!(removed.references_to(&mo), vec![]);
+    let problems = removed.check();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert_eq!(problems[0].kind, ProblemKind::RemovedReference { attribute: "joint" });
+    assert_eq!(problems[0].to_string(), "mo: 'joint' named an element that was removed");
+    Ok(())
+}
+
+#[test]
+fn a_moving_frame_without_mass_is_reported() -> Result<(), EditError> {
+    // A robot whose only body has a joint and a site, no geom: nothing has mass.
+    let mut ghost = Model::new("ghost");
+    let b = ghost.add_mut(&ghost.worldbody(), element!("body", name = "b"))?;
+    ghost.add_mut(&b, element!("site", name = "s"))?;
+    let mut scene = Model::new("scene");
+    let a = scene.attach_mut(&scene.worldbody(), &ghost)?;
+    assert_eq!(scene.check(), vec![], "nothing moves yet");
+    scene.add_mut(a.frame(), element!("freejoint"))?;
+    let problems = scene.check();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert_eq!(problems[0].path, "ghost/");
+    assert_eq!(problems[0].kind, ProblemKind::MasslessMovingBody);
+    // A massive body below the frame is enough.
+    let mut solid = ghost.clone();
+    solid.add_mut(&b, element!("geom", size = [0.1]))?;
+    let mut scene2 = Model::new("scene");
+    let a2 = scene2.attach_mut(&scene2.worldbody(), &solid)?;
+    scene2.add_mut(a2.frame(), element!("freejoint"))?;
+    assert_eq!(scene2.check(), vec![]);
+    Ok(())
+}
+
+#[test]
+fn keys_that_do_not_fit_the_composed_model_are_reported() -> Result<(), EditError> {
+    // The robot's own key fits the robot (one hinge, one motor) ...
+    let mut r = robot("robot");
+    r.add_mut(
+        &r.section("keyframe").unwrap(),
+        element!("key", name = "home", qpos = [0.5], ctrl = [0.0]),
+    )?;
+    assert_eq!(r.check(), vec![]);
+    // ... but not a scene of two robots on free frames (nq = 2 * (7 + 1)).
+    let mut scene = Model::new("scene");
+    for _ in 0..2 {
+        let a = scene.attach_mut(&scene.worldbody(), &r)?;
+        scene.add_mut(a.frame(), element!("freejoint"))?;
+    }
+    let lengths: Vec<(&str, usize, usize)> = scene
+        .check()
+        .iter()
+        .filter_map(|p| match p.kind {
+            ProblemKind::KeyLength { attribute, expected, found } => {
+                Some((attribute, expected, found))
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(lengths, [("qpos", 16, 1), ("ctrl", 2, 1), ("qpos", 16, 1), ("ctrl", 2, 1)]);
+    Ok(())
+}
+
+#[test]
+fn full_names_go_both_ways() -> Result<(), EditError> {
+    let mut scene = Model::new("scene");
+    let s = scene.add_mut(&scene.worldbody(), element!("site", name = "s"))?;
+    scene.attach_mut(&s, &robot("robot"))?;
+    let a = scene.attach_mut(&s, &robot("robot"))?;
+    scene.add_mut(a.frame(), element!("freejoint", name = "root"))?;
+    let xml = scene.to_xml_string().unwrap();
+    for (ns, name) in [
+        (Namespace::Body, "robot_1/torso"),
+        (Namespace::Body, "robot_1/"),
+        (Namespace::Joint, "robot_1/root/"),
+        (Namespace::Geom, "robot//unnamed_geom_1"),
+        (Namespace::Geom, "robot_1//unnamed_geom_1"),
+        (Namespace::Actuator, "robot_1/m"),
+    ] {
+        assert!(xml.contains(&format!("name=\"{name}\"")), "{name} is written:\n{xml}");
+        let loc = scene.from_full_name(ns, name).unwrap_or_else(|| panic!("{name} not found"));
+        assert_eq!(scene.full_name(&loc).as_deref(), Some(name));
+    }
+    assert_eq!(scene.from_full_name(Namespace::Geom, "robot_2//unnamed_geom_1"), None);
+    Ok(())
+}
