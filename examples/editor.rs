@@ -1,5 +1,5 @@
 //! An editor session: versions (O(1) clones), undo/redo as a cursor, the library's diff.
-use mjcf::Namespace::{Geom, Joint, Site};
+use mjcf::Namespace::{Body, Geom, Joint, Site};
 use mjcf::{EditError, Model, element};
 
 fn edit(
@@ -63,7 +63,7 @@ fn main() -> Result<(), mjcf::Error> {
         m.set_attr_mut(&m.lookup(Geom, "dog/torso")?, "mass", 20)
     })?;
     edit(&mut versions, &mut cursor, |m| m.remove_mut(&m.lookup(Joint, "dog/yaw_front_left")?))?;
-    let xml = versions[cursor].to_xml_string()?;
-    println!("{} versions; the last writes {} bytes of MJCF", versions.len(), xml.len());
+    let again = Model::from_xml_str(&versions[cursor].to_xml_string()?)?; // names with '/' read
+    println!("{} versions; read back: {} bodies", versions.len(), again.find_all(Body).len());
     Ok(())
 }
