@@ -7,6 +7,8 @@
 //!   was aimed at (`worldbody/body[name=torso]/geom[2]`).
 //! - [`WriteError`]: a model that cannot be written (a required reference whose target
 //!   was removed).
+//! - [`ExportError`]: a model and its files that cannot be exported to a folder; an
+//!   I/O failure carries the path and the operating system's reason.
 //!
 //! Reading and editing fail for the same reasons, so both carry an [`ErrorKind`].
 //! Every failing operation leaves every model value unchanged.
@@ -481,6 +483,37 @@ pub enum WriteError {
         /// The character.
         character: char,
     },
+    /// Two different files that would be written under one name, which is possible
+    /// only when files are named without their hash (`filename_with_hash: false`), or
+    /// an exported file named like the exported MJCF file.
+    #[error(
+        "two different files would both be written as '{name}' (name files with their hash to tell them apart)"
+    )]
+    FileNameClash {
+        /// The file name.
+        name: String,
+    },
+}
+
+/// Exporting a model with its files to a folder failed.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExportError {
+    /// The model cannot be written (including two different files that would get one
+    /// name); nothing was written.
+    #[error(transparent)]
+    Write(#[from] WriteError),
+    /// A folder or file could not be created or written, or a name is not a plain
+    /// file name (`InvalidInput`).
+    #[error("cannot write {}: {reason}", .path.display())]
+    Io {
+        /// The folder, or the file as named in the folder (never a temporary name).
+        path: PathBuf,
+        /// The kind of the operating system's error.
+        kind: std::io::ErrorKind,
+        /// The operating system's reason.
+        reason: String,
+    },
 }
 
 /// Any error of this crate, for callers that just want `?`.
@@ -496,6 +529,9 @@ pub enum Error {
     /// Writing failed.
     #[error(transparent)]
     Write(#[from] WriteError),
+    /// Exporting to a folder failed.
+    #[error(transparent)]
+    Export(#[from] ExportError),
 }
 
 #[cfg(test)]

@@ -75,7 +75,9 @@ mod suggest;
 mod value;
 mod xml;
 
-pub use crate::error::{EditError, Error, ErrorKind, ReadError, TextPos, ValueError, WriteError};
+pub use crate::error::{
+    EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
+};
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{

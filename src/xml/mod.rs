@@ -1,5 +1,6 @@
 //! MJCF text: reading and writing.
 
+mod export;
 mod read;
 mod write;
 
