@@ -284,7 +284,8 @@ impl Input<'_> {
 impl ValueCtx<'_> {
     /// Checks one assignment, the same for the reader and the builder: `Ok(None)`
     /// clears the attribute (no input, empty text for a name, reference, string,
-    /// folder or file, or an auto name such as `//unnamed_geom_0`, which means
+    /// folder or file (the reader also reads an automatic name such as
+    /// `//unnamed_geom_0` as "unnamed", see `xml::read`), which means
     /// "unnamed"); `dclass` is `class`; a file attribute reads its file; a mesh file
     /// must have an extension MuJoCo reads.
     pub(crate) fn assign(
@@ -317,7 +318,7 @@ impl ValueCtx<'_> {
                         | AttrType::Basepath { .. }
                         | AttrType::File { .. }
                 );
-            if clears || (spec.ty == AttrType::Identifier && text.starts_with("//unnamed_")) {
+            if clears {
                 return Ok((index, None));
             }
             if let AttrType::File { path_namespace } = spec.ty {

@@ -14,6 +14,7 @@ use smol_str::SmolStr;
 #[derive(Clone)]
 pub struct FileAsset(Arc<FileData>);
 
+#[derive(Clone)]
 struct FileData {
     stem: SmolStr,
     extension: SmolStr,
@@ -39,7 +40,9 @@ impl FileAsset {
     }
 
     /// Creates an asset from a path as written in MJCF and the file's contents: the
-    /// stem and extension come from the path's last component.
+    /// stem and extension come from the path's last component. A stem that ends in
+    /// `-` and the SHA-1 of the contents (a name the writer gave the file) is read
+    /// without that suffix, so a written model reads back with its files' names.
     ///
     /// Time: as [`FileAsset::new`].
     pub fn from_path_and_contents(path: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
@@ -48,7 +51,15 @@ impl FileAsset {
             Some(i) if i > 0 => (&file[..i], &file[i..]),
             _ => (file, ""),
         };
-        FileAsset::new(stem, ext, contents)
+        let asset = FileAsset::new(stem, ext, contents);
+        // A name this crate (or dm_control) wrote, `stem-<sha1 of the contents>`, is
+        // read as `stem`, so writing it again gives the same name, not a second hash.
+        match stem.strip_suffix(asset.sha1_hex()).and_then(|s| s.strip_suffix('-')) {
+            Some(original) if !original.is_empty() => {
+                FileAsset(Arc::new(FileData { stem: original.into(), ..FileData::clone(&asset.0) }))
+            }
+            _ => asset,
+        }
     }
 
     /// The file stem (`"cube"`).

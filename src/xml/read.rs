@@ -570,7 +570,9 @@ fn read_include(
 
 /// Turns the arena into nodes, indexes them and resolves references.
 fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
-    hoist_root_class(&mut r.arena);
+    if !hoist_root_class(&mut r.arena) {
+        forget_auto_names(&mut r.arena);
+    }
     // Index names first (document order), so references can be resolved in the arena.
     let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> = HashMap::new();
     for p in &r.arena {
@@ -641,23 +643,31 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
 /// `<default>` holds other classes beside `/` (a composed model written out: the
 /// attached models' root classes `robot/` are siblings of `/`, not inside it), `/` is
 /// kept as a class of that name, so that the siblings keep inheriting nothing from it.
-fn hoist_root_class(arena: &mut [Pending]) {
+///
+/// Returns whether the file is a composed model written out (a class `/` beside
+/// other classes).
+fn hoist_root_class(arena: &mut [Pending]) -> bool {
     let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
     let Some(&(_, d)) =
         arena.first().and_then(|root| root.unique.iter().find(|(k, _)| *k == root_default))
     else {
-        return;
+        return false;
     };
-    let [only] = arena[d].children[..] else { return };
-    let slash = arena[only].kind.identifier().and_then(|i| {
-        arena[only]
-            .attrs
-            .iter()
-            .find(|(k, _)| *k as usize == i)
-            .map(|(_, v)| v.as_str() == Some("/"))
+    let is_slash = |p: &Pending| {
+        p.kind.tag() == "default"
+            && p.kind.identifier().is_some_and(|i| {
+                p.attrs.iter().any(|(k, v)| *k as usize == i && v.as_str() == Some("/"))
+            })
+    };
+    // A class `/` beside other classes, at any level (under a named root class too).
+    let composed = arena.iter().any(|p| {
+        p.kind.tag() == "default"
+            && p.children.iter().any(|&c| is_slash(&arena[c]))
+            && p.children.iter().filter(|&&c| arena[c].kind.tag() == "default").count() > 1
     });
-    if !arena[d].attrs.is_empty() || arena[only].kind.tag() != "default" || slash != Some(true) {
-        return;
+    let [only] = arena[d].children[..] else { return composed };
+    if !arena[d].attrs.is_empty() || !is_slash(&arena[only]) {
+        return composed;
     }
     let ident = arena[only].kind.identifier();
     let mut attrs = std::mem::take(&mut arena[only].attrs);
@@ -681,6 +691,20 @@ fn hoist_root_class(arena: &mut [Pending]) {
         .map(|&c| (arena[c].kind, c))
         .collect();
     arena[d].children = children;
+    composed
+}
+
+/// Automatic names (`//unnamed_geom_0`, written by this crate and by dm_control) mean
+/// "unnamed": they are derived again when the model is written. (In a composed model
+/// written out they are kept: there they were counted over the outer model's own
+/// elements, which the flat model read back no longer tells apart.)
+fn forget_auto_names(arena: &mut [Pending]) {
+    for p in arena.iter_mut() {
+        let Some(ident) = p.kind.identifier() else { continue };
+        p.attrs.retain(|(k, v)| {
+            !(*k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_")))
+        });
+    }
 }
 
 /// Attributes of an element of kind `from` as attributes of kind `to` (by name).

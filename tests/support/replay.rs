@@ -517,12 +517,22 @@ impl State<'_> {
                     pretty_print: options.pretty_print.unwrap_or(true),
                     filename_with_hash: options.filename_with_hash.unwrap_or(true),
                 };
-                let xml = self.model(model)?.to_xml_string_with(&opts).map_err(write_err)?;
+                let m = self.model(model)?;
+                let xml = m.to_xml_string_with(&opts).map_err(write_err)?;
+                let back = read_back(m, &xml, &opts)
+                    .map_err(|e| OpError::new("read_back", format!("{file}: {e}")))?;
                 if let Some(out) = self.actual_dir {
                     let d = out.join(&self.case.name);
                     std::fs::create_dir_all(&d).map_err(|e| OpError::new("io", e.to_string()))?;
                     std::fs::write(d.join(file), &xml)
                         .map_err(|e| OpError::new("io", e.to_string()))?;
+                    // The output and its read-back, each with its files, for
+                    // tools/readback_check (MuJoCo compiles both the same).
+                    let pairs = out.join("readback").join(&self.case.name);
+                    let io = |e: mjcf::ExportError| OpError::new("io", e.to_string());
+                    m.export(&pairs, file, &opts).map_err(io)?;
+                    let again = file.replace(".xml", ".readback.xml");
+                    back.export(&pairs, &again, &opts).map_err(io)?;
                 }
                 if skip_compare {
                     return Ok(());
@@ -542,6 +552,32 @@ impl State<'_> {
         }
         Ok(())
     }
+}
+
+/// Reads `xml` (written from `m` with `opts`) back, with `m`'s files under their
+/// written names, and checks that writing the result is a fixed point: written again
+/// and read again, it writes the same text.
+fn read_back(m: &Model, xml: &str, opts: &WriteOptions) -> Result<Model, String> {
+    let mut read = mjcf::ReadOptions::new();
+    for (name, file) in m.assets(opts).map_err(|e| e.to_string())? {
+        read = read.asset(&name, file.contents().to_vec());
+    }
+    let back = read.read_str(xml).map_err(|e| format!("does not read back: {e}"))?;
+    let w2 = back.to_xml_string_with(opts).map_err(|e| e.to_string())?;
+    let w3 = read
+        .read_str(&w2)
+        .map(|again| again.to_xml_string_with(opts).unwrap_or_default())
+        .map_err(|e| format!("its read-back does not read back: {e}"))?;
+    if w3 != w2 {
+        let line = w2.lines().zip(w3.lines()).position(|(a, b)| a != b).unwrap_or(0);
+        return Err(format!(
+            "read-back is not a fixed point; line {}: {:?} vs {:?}",
+            line + 1,
+            w2.lines().nth(line),
+            w3.lines().nth(line)
+        ));
+    }
+    Ok(back)
 }
 
 /// `a/b/c` with its last segment replaced by `to`.
