@@ -810,7 +810,14 @@ fn parse_xml(xml: &str) -> Result<XNode, String> {
                 a.normalized_value(quick_xml::XmlVersion::default()).map_err(|e| e.to_string())?;
             attrs.push((a.key.as_ref().to_string(), v.to_string()));
         }
-        Ok(XNode { tag: t.name().as_ref().to_string(), attrs, children: Vec::new() })
+        // An attachment frame written as MuJoCo's `<frame>` (DESIGN D10: its model's
+        // top-level bodies carry freejoints) is the same attachment frame as a `<body>`
+        // here: the naive model knows no D10, and these models hold no other frames.
+        let tag = match t.name().as_ref() {
+            "frame" => "body".to_string(),
+            other => other.to_string(),
+        };
+        Ok(XNode { tag, attrs, children: Vec::new() })
     }
     let mut reader = quick_xml::Reader::from_str(xml);
     let mut stack = vec![XNode::default()];

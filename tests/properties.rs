@@ -491,11 +491,17 @@ fn written_empty_models_read_back_unchanged() {
     let m = Model::new("m");
     let w = write(&m);
     assert_eq!(write(&Model::from_xml_str(&w).unwrap()), w);
-    let m = m.set_attr(&m.default_class(), "class", "main").unwrap();
+    let m = m.set_attr(&m.default_class(), "class", "root_class").unwrap();
     let w = write(&m);
     let again = write(&Model::from_xml_str(&w).unwrap());
     assert_eq!(again, text::rewrapped_root_default(&w));
     assert_eq!(write(&Model::from_xml_str(&again).unwrap()), again);
+    // A root class named `main` is MuJoCo's main class itself (DESIGN D9): written as
+    // the outer `<default>`, it reads back as the unnamed root class.
+    let main = m.set_attr(&m.default_class(), "class", "main").unwrap();
+    let w = write(&main);
+    assert!(!w.contains("class=\"main\""), "{w}");
+    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), write(&Model::new("m")));
 }
 
 // ---------------------------------------------------------------------------------

@@ -594,7 +594,10 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         .iter()
         .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
     {
+        // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name)
+        // both name the root class, unless a class has that name.
         names.entry((crate::Namespace::Default, SmolStr::from("/"))).or_insert(d.id);
+        names.entry((crate::Namespace::Default, SmolStr::from("main"))).or_insert(d.id);
     }
     for p in &mut r.arena {
         resolve_attrs(p.kind, &mut p.attrs, |ns, n| names.get(&(ns, SmolStr::from(n))).copied());
@@ -607,18 +610,24 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     // Bottom-up: children always have larger arena indices than their parent.
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
+    let r_offsets: Vec<usize> = r.arena.iter().map(|p| p.offset).collect();
     for i in (0..r.arena.len()).rev() {
         let p = &mut r.arena[i];
-        let mut children: Seq<Node> = Seq::new();
+        // Singletons in schema order, each with where it was read (if it was).
+        let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
         for k in p.kind.spec().children {
             if k.multiplicity() == Multiplicity::Singleton {
                 let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
-                match found.and_then(|c| built[c].take()) {
-                    Some(n) => children.push_back(n),
-                    None => children.push_back(empty_node(*k)),
+                match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
+                    Some((n, offset)) => singles.push((n, Some(offset))),
+                    None => singles.push((empty_node(*k), None)),
                 }
             }
         }
+        if p.kind.tag() == "default" {
+            keep_actuator_default_order(&mut singles);
+        }
+        let mut children: Seq<Node> = singles.into_iter().map(|(n, _)| n).collect();
         for c in &p.children {
             if let Some(n) = built[*c].take() {
                 children.push_back(n);
@@ -704,6 +713,23 @@ fn forget_auto_names(arena: &mut [Pending]) {
         p.attrs.retain(|(k, v)| {
             !(*k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_")))
         });
+    }
+}
+
+/// In a default class, `<position>`, `<velocity>`, `<motor>`, `<general>`, ... all set
+/// the class's one actuator default, applied by MuJoCo in document order: their
+/// order as read is kept (DESIGN D11), among the places the schema gives them, so a
+/// later `<position kp>` still overrides an earlier `<velocity kv>`.
+fn keep_actuator_default_order(singles: &mut [(Node, Option<usize>)]) {
+    let actuators = ElementKind::ROOT.child("actuator").map(|a| a.spec().children).unwrap_or(&[]);
+    let is_actuator = |n: &Node| actuators.iter().any(|a| a.tag() == n.kind().tag());
+    let places: Vec<usize> = (0..singles.len()).filter(|&i| is_actuator(&singles[i].0)).collect();
+    let mut ordered: Vec<(Node, Option<usize>)> =
+        places.iter().map(|&i| singles[i].clone()).collect();
+    // Stable: read ones in document order, then the unread (empty) ones.
+    ordered.sort_by_key(|(_, offset)| offset.unwrap_or(usize::MAX));
+    for (place, item) in places.into_iter().zip(ordered) {
+        singles[place] = item;
     }
 }
 

@@ -168,9 +168,16 @@ struct Open {
     depth: usize,
     /// For an attachment frame, its name (`robot/`), which its joints build on.
     frame: Option<String>,
-    /// Written without tags of its own: the root default class when it holds a class
-    /// named `/` (read from a composed file), written as MuJoCo's main class, the
-    /// `<default>` wrapper itself, so that the name `/` stays that class's.
+    /// The tag written (`body` or `frame` for an attachment frame).
+    tag: &'static str,
+    /// In the world: the worldbody, or a frame written as MuJoCo's `<frame>` there,
+    /// whose bodies are top-level bodies for MuJoCo.
+    world_level: bool,
+    /// Written without tags of its own: the root default class when it is named
+    /// `main` (MuJoCo's name for the outermost class: `<default class="main">` inside
+    /// it is refused as a repeated name; DESIGN D9) or holds a class named `/` (read
+    /// from a composed file), written as MuJoCo's main class, the `<default>` wrapper
+    /// itself, so that the name stays that class's.
     transparent: bool,
 }
 
@@ -286,10 +293,11 @@ impl<'a> Writer<'a> {
         childclass: bool,
         frame: Option<&str>,
     ) -> Result<(), WriteError> {
+        let tag = self.open.last().map_or("", |o| o.tag);
         self.indent(depth);
         self.out.push('<');
         if let Some(a) = node.attached() {
-            self.out.push_str("body");
+            self.out.push_str(tag);
             let name = format!("{}{}/", self.insts[inst].prefix, a.scope);
             self.write_frame_attrs(inst, node, &name);
             return Ok(());
@@ -348,11 +356,12 @@ impl<'a> Writer<'a> {
             && inst == 0
             && kind.tag() == "default"
             && substitute
-            && node.identifier().is_none_or(str::is_empty)
-            && node
-                .children()
-                .iter()
-                .any(|c| c.kind().tag() == "default" && c.identifier() == Some("/"));
+            && (node.identifier() == Some("main")
+                || (node.identifier().is_none_or(str::is_empty)
+                    && node
+                        .children()
+                        .iter()
+                        .any(|c| c.kind().tag() == "default" && c.identifier() == Some("/"))));
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
@@ -362,11 +371,27 @@ impl<'a> Writer<'a> {
         let frame_name =
             if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
         let frame = node.attached().map(|a| format!("{}{}/", self.insts[inst].prefix, a.scope));
+        let parent_world = self.open.last().is_some_and(|o| o.world_level);
+        let as_frame = parent_world && frame_keeps_bodies_top_level(node);
+        let tag = match node.attached() {
+            Some(_) if as_frame => "frame",
+            Some(_) => "body",
+            None => kind.tag(),
+        };
+        let world_level = (kind.tag() == "worldbody" && inst == 0 && substitute) || as_frame;
         if transparent {
-            self.open.push(Open { inst, child_cc, depth: depth - 1, frame, transparent });
+            self.open.push(Open {
+                inst,
+                child_cc,
+                depth: depth - 1,
+                frame,
+                tag,
+                world_level,
+                transparent,
+            });
             return Ok(true);
         }
-        self.open.push(Open { inst, child_cc, depth, frame, transparent });
+        self.open.push(Open { inst, child_cc, depth, frame, tag, world_level, transparent });
         if top && kind.tag() != "default" && kind.tag() != "worldbody" {
             self.finish_parent()?;
             self.pending = Some((Pending::Unwritten(Inst0Section { depth }), node));
@@ -405,11 +430,9 @@ impl<'a> Writer<'a> {
                 }
             }
             None => {
-                let tag =
-                    if item.node.attached().is_some() { "body" } else { item.node.kind().tag() };
                 self.indent(open.depth);
                 self.out.push_str("</");
-                self.out.push_str(tag);
+                self.out.push_str(open.tag);
                 self.out.push('>');
                 self.newline();
             }
@@ -664,6 +687,39 @@ impl<'a> Writer<'a> {
         }
         self.out.push('"');
     }
+}
+
+/// Whether an attachment frame in the world is written as MuJoCo's `<frame>` rather
+/// than a `<body>` (DESIGN D10): when the attached model's top-level bodies carry
+/// freejoints, which MuJoCo accepts only on top-level bodies, and the frame itself
+/// neither moves nor has mass (no joints, no inertial) nor carries body-only
+/// attributes (`user`, `mocap`). Any other frame stays a body, as in the reference.
+fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
+    let Some(a) = frame.attached() else { return false };
+    if !frame.children().is_empty() {
+        return false;
+    }
+    let kind = frame.kind();
+    let body_only = ["user", "mocap"]
+        .iter()
+        .any(|n| kind.attr_index(n).is_some_and(|i| frame.attr(i).is_some()));
+    if body_only {
+        return false;
+    }
+    let Some(wb) = section_of(&a.model, "worldbody") else { return false };
+    wb.children().iter().any(|b| {
+        b.kind().tag() == "body"
+            && b.attached().is_none()
+            && b.children().iter().any(|j| match j.kind().tag() {
+                "freejoint" => true,
+                "joint" => j
+                    .kind()
+                    .attr_index("type")
+                    .and_then(|i| j.attr(i))
+                    .is_some_and(|t| t.as_str() == Some("free")),
+                _ => false,
+            })
+    })
 }
 
 /// Whether a container section writes attributes of its own.
