@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use mjcf::{Model, element};
+use mjcf::{Model, ProblemKind, WriteOptions, element};
 
 fn write(
     out: &Path,
@@ -20,14 +20,25 @@ fn write(
     m: &Model,
     expect: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    std::fs::write(out.join(format!("{name}.xml")), m.to_xml_string()?)?;
+    write_with(out, name, m, expect, &WriteOptions::default())
+}
+
+fn write_with(
+    out: &Path,
+    name: &str,
+    m: &Model,
+    expect: &str,
+    options: &WriteOptions,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let xml = m.to_xml_string_with(options)?;
+    std::fs::write(out.join(format!("{name}.xml")), &xml)?;
     std::fs::write(out.join(format!("{name}.expect.json")), expect)?;
     if name.starts_with("d10") {
         // Not yet: the reader does not know MuJoCo's `<frame>`, which this output holds.
         return Ok(());
     }
     // What the written text reads back as must compile the same (names with `/`).
-    let back = Model::from_xml_str(&m.to_xml_string()?)?;
+    let back = Model::from_xml_str(&xml)?;
     std::fs::write(out.join(format!("{name}.readback.xml")), back.to_xml_string()?)?;
     std::fs::write(out.join(format!("{name}.readback.expect.json")), expect)?;
     Ok(())
@@ -83,6 +94,56 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         r#"{"nbody": 3, "njnt": 2, "body_names": ["world", "ball/ball", "ball_1/ball"],
             "joint_names": ["ball/free", "ball_1/free"], "jnt_type[0]": 0, "body_parentid[1]": 0,
             "body_parentid[2]": 0, "qpos0[0]": 1, "qpos0[1]": 2, "qpos0[2]": 1}"#,
+    )?;
+    // Composed keyframes: four robots on free frames, three with a `home` key of their
+    // own (hinge at 0.1, 0.2, 0.3; control 1, 2, 3), the fourth without one (MuJoCo's
+    // defaults: hinge 0, control 0); the arena's part is each frame's pose.
+    let mut fleet = Model::new("fleet");
+    for i in 0..4 {
+        let mut robot = Model::new("robot");
+        let b = robot
+            .add_mut(&robot.worldbody(), element!("body", name = "b", pos = [0.0, 0.0, 0.5]))?;
+        robot.add_mut(&b, element!("joint", name = "hinge", axis = [0, 0, 1]))?;
+        robot.add_mut(&b, element!("geom", size = [0.1]))?;
+        robot.add_mut(&robot.actuator(), element!("motor", name = "m", joint = "hinge"))?;
+        if i < 3 {
+            let home = element!(
+                "key",
+                name = "home",
+                qpos = [0.1 * (i + 1) as f64],
+                ctrl = [(i + 1) as f64]
+            );
+            robot.add_mut(&robot.section("keyframe").ok_or("no keyframe section")?, home)?;
+        }
+        let site = element!("site", name = format!("s{i}"), pos = [i as f64, 0.0, 1.0]);
+        let site = fleet.add_mut(&fleet.worldbody(), site)?;
+        let a = fleet.attach_mut(&site, &robot)?;
+        fleet.add_mut(a.frame(), element!("freejoint"))?;
+        // The robot's body moves on its hinge: the free frame needs mass of its own.
+        let inertial = element!("inertial", pos = [0, 0, 0], mass = 0.1, diaginertia = [1e-3; 3]);
+        fleet.add_mut(a.frame(), inertial)?;
+        // check() agrees with MuJoCo here (its keys fit only once merged).
+        assert!(fleet.check().iter().all(|p| matches!(p.kind, ProblemKind::KeyLength { .. })));
+    }
+    let mut massless = fleet.clone();
+    let frame = massless.frame("robot")?;
+    let inertial =
+        massless.get(&frame)?.children().find(|c| c.tag() == "inertial").ok_or("inertial")?;
+    massless.remove_mut(&inertial.loc())?;
+    let massless =
+        massless.check().into_iter().filter(|p| p.kind == ProblemKind::MasslessMovingBody);
+    assert_eq!(massless.count(), 1, "a free frame over a hinged body has no mass of its own");
+    let merge = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
+    write_with(
+        &out,
+        "keys_composed",
+        &fleet,
+        r#"{"nkey": 1, "key_names": ["home"], "nq": 32,
+            "key_qpos[0][0]": 0, "key_qpos[0][2]": 1, "key_qpos[0][3]": 1, "key_qpos[0][7]": 0.1,
+            "key_qpos[0][8]": 1, "key_qpos[0][15]": 0.2, "key_qpos[0][23]": 0.3,
+            "key_qpos[0][24]": 3, "key_qpos[0][31]": 0,
+            "key_ctrl[0][0]": 1, "key_ctrl[0][1]": 2, "key_ctrl[0][2]": 3, "key_ctrl[0][3]": 0}"#,
+        &merge,
     )?;
     println!("wrote the cases to {}", out.display());
     Ok(())

@@ -40,6 +40,13 @@ fn a_clean_composition_has_no_problems() -> Result<(), EditError> {
     let site = scene.add_mut(&scene.worldbody(), element!("site", name = "s"))?;
     let a = scene.attach_mut(&site, &robot("robot"))?;
     scene.add_mut(a.frame(), element!("joint", name = "slide", type = "slide"))?;
+    // The robot's torso moves on its own hinge, so the sliding frame needs mass of its
+    // own (MuJoCo refuses it otherwise; `a_moving_frame_without_mass_is_reported`).
+    assert_eq!(scene.check().len(), 1);
+    scene.add_mut(
+        a.frame(),
+        element!("inertial", pos = [0, 0, 0], mass = 1, diaginertia = [0.1; 3]),
+    )?;
     assert_eq!(scene.check(), vec![]);
     Ok(())
 }

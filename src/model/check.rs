@@ -54,8 +54,9 @@ pub enum ProblemKind {
         attribute: &'static str,
     },
     /// A body (or attachment frame) that moves (it has joints or a freejoint) but has
-    /// no mass: no inertial, no geom, and no body below it with mass. MuJoCo refuses
-    /// it ("mass and inertia of moving bodies must be larger than mjMINVAL").
+    /// no mass: no inertial, no geom, and no body welded to it (below it, with no
+    /// joint between) with mass. MuJoCo refuses it ("mass and inertia of moving bodies
+    /// must be larger than mjMINVAL").
     MasslessMovingBody,
     /// A keyframe whose array does not fit the composed model.
     KeyLength {
@@ -118,7 +119,7 @@ fn builtin(ns: Namespace, name: &str) -> bool {
 
 /// The joint type of a joint element, as written or as its classes set it: `free`,
 /// `ball`, `slide` or `hinge` (the default).
-fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
+pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
     if node.kind().tag() == "freejoint" {
         return "free";
     }
@@ -150,8 +151,8 @@ impl Model {
     /// What MuJoCo would refuse in the composed model, found before it is written:
     /// references that name nothing in their model (the `joint="hinj"` typo, with the
     /// nearest names), references whose element was removed, moving bodies
-    /// and attachment frames without mass (no inertial, no geom, nothing massive
-    /// below), and keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
+    /// and attachment frames without mass (no inertial, no geom, no massive body
+    /// welded below), and keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
     /// composed model. Empty when none is found; this is not a full MuJoCo compile
     /// (classes are followed for joint types only; `act`, `mpos` and `mquat` of keys
     /// are not checked).
@@ -335,8 +336,10 @@ impl Model {
                             .unwrap_or_else(|| "body".into());
                         problems.push(Problem { loc, path, kind: ProblemKind::MasslessMovingBody });
                     }
-                    // Mass below counts for the parent.
-                    if massive {
+                    // Mass below counts for the parent only through a body that does
+                    // not move on its own (welded to it): MuJoCo wants a moving body's
+                    // own mass, or that of bodies welded to it, above zero.
+                    if massive && !(is_body && moves) {
                         if let Some(top) = open.last_mut() {
                             top.3 = true;
                         }

@@ -5,7 +5,7 @@
 //! pointing at the same element across versions (it holds the element's stable id).
 
 mod build;
-mod check;
+pub(crate) mod check;
 mod cursor;
 pub(crate) mod diff;
 mod edit;

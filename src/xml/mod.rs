@@ -1,6 +1,7 @@
 //! MJCF text: reading and writing.
 
 mod export;
+mod keys;
 mod read;
 mod write;
 

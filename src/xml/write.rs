@@ -42,6 +42,14 @@ pub struct WriteOptions {
     pub pretty_print: bool,
     /// Name files `stem-<sha1>.ext` (default `true`) or `stem.ext`.
     pub filename_with_hash: bool,
+    /// Write one key per key name over the whole composed model (default `false`,
+    /// as the reference, which keeps each attached model's keys as separate keys that
+    /// no longer fit the composed model): the model's key and the attached models'
+    /// keys of that name laid out in the composed `qpos`, `qvel`, `act`, `ctrl`,
+    /// `mpos` and `mquat` order, MuJoCo's defaults where a model has no key of that
+    /// name. Joint types follow default classes; a class's `ref` and activation
+    /// settings do not (the element's own are read).
+    pub merge_keyframes: bool,
 }
 
 impl Default for WriteOptions {
@@ -51,6 +59,7 @@ impl Default for WriteOptions {
             zero_threshold: 0.0,
             pretty_print: true,
             filename_with_hash: true,
+            merge_keyframes: false,
         }
     }
 }
@@ -243,6 +252,15 @@ impl<'a> Writer<'a> {
                 });
             }
             match step {
+                Step::Enter(item)
+                    if substitute
+                        && self.options.merge_keyframes
+                        && item.depth == 1
+                        && item.node.kind().tag() == "keyframe" =>
+                {
+                    walk.skip_subtree();
+                    self.write_merged_keys()?;
+                }
                 Step::Enter(item) => {
                     if !self.enter(item, substitute)? {
                         walk.skip_subtree();
@@ -264,6 +282,50 @@ impl<'a> Writer<'a> {
                 Step::Leave(item) => self.leave(item),
             }
         }
+        Ok(())
+    }
+
+    /// Writes the composed keys in place of the keyframe section.
+    fn write_merged_keys(&mut self) -> Result<(), WriteError> {
+        let compiler = self.merged.iter().find(|n| n.kind().tag() == "compiler");
+        let keys = super::keys::merged_keys(self.insts[0].model, compiler);
+        if keys.is_empty() {
+            return Ok(());
+        }
+        self.finish_parent()?;
+        if self.in_default {
+            self.indent(1);
+            self.out.push_str("</default>");
+            self.newline();
+            self.in_default = false;
+        }
+        self.indent(1);
+        self.out.push_str("<keyframe>");
+        self.newline();
+        for key in keys {
+            self.indent(2);
+            self.out.push_str("<key");
+            if let Some(name) = &key.name {
+                self.value.clear();
+                self.value.push_str(name);
+                self.emit_attr("key", "name");
+            }
+            if let Some(t) = key.time {
+                self.value.clear();
+                Value::Float(t).write_plain(&mut self.value, self.style);
+                self.emit_attr("key", "time");
+            }
+            for (field, values) in key.fields {
+                self.value.clear();
+                Value::Floats(values.into()).write_plain(&mut self.value, self.style);
+                self.emit_attr("key", field);
+            }
+            self.out.push_str("/>");
+            self.newline();
+        }
+        self.indent(1);
+        self.out.push_str("</keyframe>");
+        self.newline();
         Ok(())
     }
 

@@ -516,6 +516,7 @@ impl State<'_> {
                     zero_threshold: options.zero_threshold.unwrap_or(0.0),
                     pretty_print: options.pretty_print.unwrap_or(true),
                     filename_with_hash: options.filename_with_hash.unwrap_or(true),
+                    ..WriteOptions::default()
                 };
                 let m = self.model(model)?;
                 let xml = m.to_xml_string_with(&opts).map_err(write_err)?;
