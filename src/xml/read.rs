@@ -304,6 +304,11 @@ struct Reader<'t> {
     ctx: FileContext,
     arena: Vec<Pending>,
     basepaths: Basepaths,
+    /// Where each global setting (an attribute of an element inside `compiler`,
+    /// `option`, `size`, `visual` or `statistic`) was last set in this file, by
+    /// element kind and attribute index: an `<include>` that sets it too is merged
+    /// as MuJoCo reads includes, the later one in the document winning.
+    settings_set_at: HashMap<(ElementKind, u16), usize>,
 }
 
 impl Reader<'_> {
@@ -334,6 +339,9 @@ impl Reader<'_> {
                     .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
             let i = index as u16;
+            if in_settings(kind) {
+                self.settings_set_at.insert((kind, i), offset);
+            }
             let pos = attrs.iter().position(|(k, _)| *k == i);
             match (pos, value) {
                 (Some(p), Some(v)) => attrs[p].1 = v,
@@ -357,7 +365,14 @@ fn read_document(
     include_stack: &mut Vec<PathBuf>,
 ) -> Result<Model, ReadError> {
     let mut xml = quick_xml::Reader::from_str(text);
-    let mut r = Reader { text, file, ctx, arena: Vec::new(), basepaths: Basepaths::default() };
+    let mut r = Reader {
+        text,
+        file,
+        ctx,
+        arena: Vec::new(),
+        basepaths: Basepaths::default(),
+        settings_set_at: HashMap::new(),
+    };
     let mut stack: Vec<usize> = Vec::new();
     let mut includes: Vec<(Model, usize)> = Vec::new();
     let mut model_name: Option<SmolStr> = None;
@@ -499,7 +514,9 @@ fn read_document(
     let mut model = model;
     for (inc, offset) in includes {
         let inc = inc.with_name(model.name());
-        model = model.include_copy(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
+        let (model2, inc) = settings_in_document_order(&model, &inc, offset, &r.settings_set_at)
+            .map_err(|e| r.err(e.kind().clone(), offset))?;
+        model = model2.include_copy(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
     }
     Ok(resolve_all(&model))
 }
@@ -701,6 +718,63 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
         .collect();
     arena[d].children = children;
     composed
+}
+
+/// Whether elements of `kind` hold global settings (they sit in `compiler`, `option`,
+/// `size`, `visual` or `statistic`).
+fn in_settings(kind: ElementKind) -> bool {
+    let mut k = kind;
+    while let Some(p) = k.spec().parent {
+        if p == ElementKind::ROOT {
+            return crate::model::settings::is_settings_section(k);
+        }
+        k = p;
+    }
+    false
+}
+
+/// A global setting that both the file and an `<include>` at `offset` set is taken
+/// as MuJoCo reads includes (their text in place of the tag): from the one later in
+/// the document. Returns the model and the include with the losing values dropped,
+/// so that merging them finds no conflict.
+fn settings_in_document_order(
+    model: &Model,
+    inc: &Model,
+    offset: usize,
+    set_at: &HashMap<(ElementKind, u16), usize>,
+) -> Result<(Model, Model), crate::EditError> {
+    let (mut model, mut inc) = (model.clone(), inc.clone());
+    let sections: Vec<Node> =
+        inc.root.children().iter().filter(|c| in_settings(c.kind())).cloned().collect();
+    for section in sections {
+        for n in section.descendants() {
+            let kind = n.kind();
+            for (i, v) in n.attrs() {
+                let Some(&main_at) = set_at.get(&(kind, *i)) else { continue };
+                let own = model
+                    .root
+                    .children()
+                    .iter()
+                    .filter(|c| in_settings(c.kind()))
+                    .flat_map(Node::descendants)
+                    .find(|m| m.kind() == kind);
+                let Some(own) = own else { continue };
+                let name = kind.attr(*i as usize).name;
+                let own_loc = model.scoped_loc(&[], own.id());
+                if main_at > offset {
+                    // The file's own value comes later: the include's is overridden.
+                    let inc_loc = inc.scoped_loc(&[], n.id());
+                    inc = inc.clear_attr(&inc_loc, name)?;
+                } else {
+                    model = model.set(
+                        &own_loc,
+                        crate::Attrs::new().set(name, crate::AttrInput::Value(v.clone())),
+                    )?;
+                }
+            }
+        }
+    }
+    Ok((model, inc))
 }
 
 /// Automatic names (`//unnamed_geom_0`, written by this crate and by dm_control) mean
