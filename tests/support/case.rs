@@ -234,7 +234,8 @@ pub(crate) fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, Str
     let fail = |message: String| format!("case {name}: {message}");
     let root: Value = serde_json::from_str(json).map_err(|e| fail(format!("case.json: {e}")))?;
     let root = Fields::new(&root, "case.json").map_err(fail)?;
-    root.check_keys(&["description", "ops", "source", "roundtrip", "reference_fails"]).map_err(fail)?;
+    root.check_keys(&["description", "ops", "source", "roundtrip", "reference_fails"])
+        .map_err(fail)?;
     let description = root.req_str("description").map_err(fail)?;
     let ops_json = match root.get("ops") {
         Some(Value::Array(items)) => items,
