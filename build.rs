@@ -58,6 +58,8 @@ struct Attr {
     array_type: Option<String>,
     array_size: Option<u32>,
     reference_namespace: Option<String>,
+    /// For a reference: the attribute that, when set, makes it a name in another model.
+    reference_unless: Option<String>,
     path_namespace: Option<String>,
     default: Option<String>,
 }
@@ -135,6 +137,7 @@ fn parse(text: &str) -> Vec<Elem> {
                     array_type: get(&m, "array_type").map(str::to_string),
                     array_size: get(&m, "array_size").map(|v| v.parse().expect("array_size")),
                     reference_namespace: get(&m, "reference_namespace").map(str::to_string),
+                    reference_unless: None,
                     path_namespace: get(&m, "path_namespace").map(str::to_string),
                     default: get(&m, "default").map(str::to_string),
                 });
@@ -264,6 +267,7 @@ fn main() {
                 "float" => "AttrType::Float".to_string(),
                 "int" => "AttrType::Int".to_string(),
                 "string" => "AttrType::String".to_string(),
+                "prefix" => "AttrType::NamePrefix".to_string(),
                 "identifier" => "AttrType::Identifier".to_string(),
                 "keyword" => {
                     let vals = a.valid_values.as_deref().expect("keyword without valid_values");
@@ -292,6 +296,17 @@ fn main() {
                             .position(|x| x.name == src)
                             .unwrap_or_else(|| panic!("schema: {src} missing on {}", e.name));
                         format!("AttrType::Reference(RefTarget::ByAttribute({pos}))")
+                    } else if let Some(u) = &a.reference_unless {
+                        ns_index(rn);
+                        let pos = e
+                            .attrs
+                            .iter()
+                            .position(|x| x.name == *u)
+                            .unwrap_or_else(|| panic!("schema: {u} missing on {}", e.name));
+                        format!(
+                            "AttrType::Reference(RefTarget::Unless(Namespace::{}, {pos}))",
+                            camel(rn)
+                        )
                     } else {
                         ns_index(rn);
                         format!("AttrType::Reference(RefTarget::Fixed(Namespace::{}))", camel(rn))
@@ -477,7 +492,10 @@ fn typed_attr(name: &str, ty: &str, flags: &[&str], at: &str) -> Attr {
     for f in flags {
         match *f {
             "required" => a.required = true,
-            other => panic!("{at}: unknown flag {other}"),
+            other => match other.strip_prefix("unless=") {
+                Some(u) if ty.starts_with("ref:") => a.reference_unless = Some(u.to_string()),
+                _ => panic!("{at}: unknown flag {other}"),
+            },
         }
     }
     if let Some(values) = ty.strip_prefix("keyword:") {
@@ -497,7 +515,10 @@ fn typed_attr(name: &str, ty: &str, flags: &[&str], at: &str) -> Attr {
         a.array_size = (!size.is_empty())
             .then(|| size.parse().unwrap_or_else(|_| panic!("{at}: bad array size {ty}")));
     } else {
-        assert!(matches!(ty, "float" | "int" | "string" | "identifier"), "{at}: unknown type {ty}");
+        assert!(
+            matches!(ty, "float" | "int" | "string" | "prefix" | "identifier"),
+            "{at}: unknown type {ty}"
+        );
         a.ty = ty.to_string();
     }
     a

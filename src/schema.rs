@@ -17,6 +17,8 @@
 //! A kind may be the child of several kinds: `<frame>` is a child of the worldbody, of
 //! bodies, of frames and of `<replicate>`, and holds the same child kinds as a body.
 
+use crate::value::Value;
+
 /// How often an element may appear under its parent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Multiplicity {
@@ -45,6 +47,28 @@ pub enum RefTarget {
     /// The namespace named by the current value of another attribute of the same
     /// element, given by its index (`objname` follows `objtype`).
     ByAttribute(usize),
+    /// This namespace of this model, unless the attribute of the same element at that
+    /// index is set: then a name in another model, kept as written and never
+    /// prefixed (`<attach body=…>` names a body of the asset model that `model`
+    /// names, or of this model when `model` is not set).
+    Unless(Namespace, usize),
+}
+
+impl RefTarget {
+    /// The namespace a reference names into, given the value of the element's
+    /// attribute at an index (`None` where the reference names nothing of this model).
+    pub(crate) fn namespace<'v>(
+        self,
+        attr: impl Fn(usize) -> Option<&'v Value>,
+    ) -> Option<Namespace> {
+        match self {
+            RefTarget::Fixed(ns) => Some(ns),
+            RefTarget::ByAttribute(k) => {
+                attr(k).and_then(Value::as_str).and_then(namespace_of_objtype)
+            }
+            RefTarget::Unless(ns, k) => attr(k).is_none().then_some(ns),
+        }
+    }
 }
 
 /// The folder setting that applies to a file attribute (`compiler/@meshdir`, ...).
@@ -67,6 +91,10 @@ pub enum AttrType {
     Int,
     /// Free text, kept verbatim.
     String,
+    /// Free text that starts the names of elements the element makes (`<attach
+    /// prefix>`): written after the scope prefix of its model, so that what an attached
+    /// model's `<attach>` makes is named inside the scope too (`robot/` + `hand_`).
+    NamePrefix,
     /// One of a fixed set of words, matched case-insensitively and written in the
     /// schema's spelling.
     Keyword(&'static [&'static str]),
@@ -347,7 +375,7 @@ mod tests {
         let model = attach.attr(attach.attr_index("model").unwrap());
         assert_eq!(model.ty, AttrType::Reference(RefTarget::Fixed(Namespace::Model)));
         let f = attach.attr(attach.attr_index("frame").unwrap());
-        assert_eq!(f.ty, AttrType::Reference(RefTarget::Fixed(Namespace::Frame)));
+        assert_eq!(f.ty, AttrType::Reference(RefTarget::Unless(Namespace::Frame, 0)));
         let asset_model = ElementKind::ROOT.child("asset").unwrap().child("model").unwrap();
         assert_eq!(asset_model.namespace(), Some(Namespace::Model));
     }

@@ -315,6 +315,7 @@ impl ValueCtx<'_> {
                     AttrType::Identifier
                         | AttrType::Reference(_)
                         | AttrType::String
+                        | AttrType::NamePrefix
                         | AttrType::Basepath { .. }
                         | AttrType::File { .. }
                 );
