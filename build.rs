@@ -1,16 +1,30 @@
-//! Generates the static MJCF schema tables from `schema/schema.xml`.
+//! Generates the static MJCF schema tables from the schema data in `schema/`.
 //!
-//! The schema is data (dm_control's `schema.xml`, itself generated from MuJoCo's schema).
-//! This script turns it into `$OUT_DIR/schema_tables.rs`, which `src/schema/mod.rs`
-//! includes. No element or attribute list is written by hand anywhere in the crate.
+//! The schema is data, from three files (see `schema/README.md`):
+//! - `schema.xml`: dm_control's schema (itself generated from MuJoCo's): every element
+//!   and attribute dm_control knows, with types, namespaces and merge rules;
+//! - `mujoco-4.0.0-schema.txt`: MuJoCo 4.0's own element tree with every attribute name
+//!   (`mj_printSchema`), which has no types;
+//! - `mujoco-4.0-types.txt`: the types of what MuJoCo 4.0 has beyond dm_control's
+//!   schema (and of `<frame>` and `<replicate>`, which MuJoCo does not print), decided
+//!   from MuJoCo's XML reference.
+//!
+//! dm_control's schema comes first and is kept as it is (its elements, their order and
+//! their attributes' order); the types file adds elements and attributes after it; and
+//! every element and attribute of MuJoCo's printed schema must then have a type, or
+//! the build fails. This script turns the result into `$OUT_DIR/schema_tables.rs`,
+//! which `src/schema.rs` includes. No element or attribute list is written by hand
+//! anywhere in the crate's code.
 //!
 //! Output:
 //! - `enum Namespace` with one variant per identifier namespace (an element's
 //!   `namespace` attribute, or its tag when it has an identifier attribute), plus
 //!   `AttachmentFrame`, which the reference also accepts in `find`;
-//! - `static ELEMENTS: [ElementSpec; N]`, one entry per `<element>` in the schema, in
-//!   document order (index 0 is `<mujoco>`); recursive elements list themselves as a
-//!   child;
+//! - `static ELEMENTS: [ElementSpec; N]`, one entry per `<element>` in `schema.xml`, in
+//!   document order (index 0 is `<mujoco>`), then the types file's new elements;
+//!   recursive elements list themselves as a child, and an element may be the child
+//!   of several (`<frame>` is a child of the worldbody, of bodies, of frames and of
+//!   `<replicate>`);
 //! - per element, its attributes (schema order) and a name-sorted index into them.
 
 use std::collections::BTreeSet;
@@ -29,6 +43,8 @@ struct Elem {
     attrs: Vec<Attr>,
     children: Vec<usize>,
     parent: Option<usize>,
+    /// The element's path as MuJoCo 4.0's printed schema names it (see `key_of`).
+    key: String,
 }
 
 #[derive(Debug, Default, Clone)]
@@ -42,6 +58,8 @@ struct Attr {
     array_type: Option<String>,
     array_size: Option<u32>,
     reference_namespace: Option<String>,
+    /// For a reference: the attribute that, when set, makes it a name in another model.
+    reference_unless: Option<String>,
     path_namespace: Option<String>,
     default: Option<String>,
 }
@@ -119,6 +137,7 @@ fn parse(text: &str) -> Vec<Elem> {
                     array_type: get(&m, "array_type").map(str::to_string),
                     array_size: get(&m, "array_size").map(|v| v.parse().expect("array_size")),
                     reference_namespace: get(&m, "reference_namespace").map(str::to_string),
+                    reference_unless: None,
                     path_namespace: get(&m, "path_namespace").map(str::to_string),
                     default: get(&m, "default").map(str::to_string),
                 });
@@ -165,10 +184,15 @@ fn namespace_of(e: &Elem) -> Option<String> {
 fn main() {
     let path = Path::new("schema/schema.xml");
     println!("cargo::rerun-if-changed=schema/schema.xml");
+    println!("cargo::rerun-if-changed={MUJOCO40_SCHEMA}");
+    println!("cargo::rerun-if-changed={MUJOCO40_TYPES}");
     println!("cargo::rerun-if-changed=build.rs");
     let text = std::fs::read_to_string(path).expect("read schema/schema.xml");
-    let elems = parse(&text);
+    let mut elems = parse(&text);
     assert_eq!(elems[0].name, "mujoco", "schema root must be <mujoco>");
+    let printed = std::fs::read_to_string(MUJOCO40_SCHEMA).expect("read MuJoCo 4.0 schema");
+    let types = std::fs::read_to_string(MUJOCO40_TYPES).expect("read MuJoCo 4.0 types");
+    merge_mujoco40(&mut elems, &parse_printed(&printed), &types);
 
     let namespaces: BTreeSet<String> = elems.iter().filter_map(namespace_of).collect();
     let ns_list: Vec<&String> = namespaces.iter().collect();
@@ -243,6 +267,7 @@ fn main() {
                 "float" => "AttrType::Float".to_string(),
                 "int" => "AttrType::Int".to_string(),
                 "string" => "AttrType::String".to_string(),
+                "prefix" => "AttrType::NamePrefix".to_string(),
                 "identifier" => "AttrType::Identifier".to_string(),
                 "keyword" => {
                     let vals = a.valid_values.as_deref().expect("keyword without valid_values");
@@ -271,6 +296,17 @@ fn main() {
                             .position(|x| x.name == src)
                             .unwrap_or_else(|| panic!("schema: {src} missing on {}", e.name));
                         format!("AttrType::Reference(RefTarget::ByAttribute({pos}))")
+                    } else if let Some(u) = &a.reference_unless {
+                        ns_index(rn);
+                        let pos = e
+                            .attrs
+                            .iter()
+                            .position(|x| x.name == *u)
+                            .unwrap_or_else(|| panic!("schema: {u} missing on {}", e.name));
+                        format!(
+                            "AttrType::Reference(RefTarget::Unless(Namespace::{}, {pos}))",
+                            camel(rn)
+                        )
                     } else {
                         ns_index(rn);
                         format!("AttrType::Reference(RefTarget::Fixed(Namespace::{}))", camel(rn))
@@ -359,5 +395,286 @@ fn path_ns(p: Option<&str>) -> &'static str {
         Some("texture") => "Some(PathNamespace::Texture)",
         Some("asset") => "Some(PathNamespace::Asset)",
         Some(o) => panic!("schema: path namespace {o}"),
+    }
+}
+
+/// MuJoCo 4.0's own element tree (`mujoco.mj_printSchema`): every element and the
+/// names of its attributes, no types.
+const MUJOCO40_SCHEMA: &str = "schema/mujoco-4.0.0-schema.txt";
+/// The types of what MuJoCo 4.0 has beyond dm_control's schema, decided from MuJoCo's
+/// XML reference (the file says how to read it).
+const MUJOCO40_TYPES: &str = "schema/mujoco-4.0-types.txt";
+
+/// One element of MuJoCo's printed schema.
+struct Printed {
+    /// Its path (see `key_of`).
+    key: String,
+    /// `!`, `?`, `*` or `R`.
+    marker: char,
+    attrs: Vec<String>,
+}
+
+/// Reads MuJoCo's printed schema: an element per line (three spaces of indent per
+/// level, its name, its marker in parentheses, the first of its attribute names);
+/// lines indented further continue the attribute names.
+fn parse_printed(text: &str) -> Vec<Printed> {
+    let mut out: Vec<Printed> = Vec::new();
+    let mut stack: Vec<String> = Vec::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.is_empty() {
+            continue;
+        }
+        let indent = line.len() - line.trim_start().len();
+        let marker = words
+            .get(1)
+            .and_then(|m| m.strip_prefix('('))
+            .and_then(|m| m.strip_suffix(')'))
+            .filter(|m| m.len() == 1)
+            .and_then(|m| m.chars().next());
+        match marker {
+            Some(marker) if indent < 30 => {
+                let depth = indent / 3;
+                assert!(depth <= stack.len(), "{MUJOCO40_SCHEMA}: bad indent: {line}");
+                stack.truncate(depth);
+                stack.push(words[0].to_string());
+                let key = if depth == 0 { "mujoco".to_string() } else { stack[1..].join("/") };
+                let attrs = words[2..].iter().map(|w| w.to_string()).collect();
+                out.push(Printed { key, marker, attrs });
+            }
+            _ => {
+                let last = out.last_mut().unwrap_or_else(|| panic!("{MUJOCO40_SCHEMA}: {line}"));
+                last.attrs.extend(words.iter().map(|w| w.to_string()));
+            }
+        }
+    }
+    out
+}
+
+/// The path of an element as MuJoCo's printed schema names it, from its tags below
+/// `<mujoco>`: `mujoco` for the root; a recursive element nested in itself is the
+/// element (`default/default/joint` is `default/joint`); `(world)body` is the body
+/// (`worldbody/body`), and `worldbody/X` is `(world)body/X` (the worldbody is the
+/// top-level body), except the worldbody itself, which MuJoCo's printed schema merges
+/// with the body although it takes no attributes.
+fn key_of(tags: &[&str]) -> String {
+    let mut rest: Vec<&str> = Vec::new();
+    for t in tags {
+        if rest.last() != Some(t) {
+            rest.push(t);
+        }
+    }
+    match rest.as_slice() {
+        [] => "mujoco".to_string(),
+        ["worldbody"] => "worldbody".to_string(),
+        ["worldbody", "body", tail @ ..] | ["worldbody", tail @ ..] => {
+            std::iter::once("(world)body").chain(tail.iter().copied()).collect::<Vec<_>>().join("/")
+        }
+        _ => rest.join("/"),
+    }
+}
+
+fn dm_key(elems: &[Elem], i: usize) -> String {
+    let mut tags = Vec::new();
+    let mut cur = Some(i);
+    while let Some(c) = cur {
+        tags.push(elems[c].name.as_str());
+        cur = elems[c].parent;
+    }
+    tags.pop(); // <mujoco>
+    tags.reverse();
+    key_of(&tags)
+}
+
+/// An attribute from a type in the types file.
+fn typed_attr(name: &str, ty: &str, flags: &[&str], at: &str) -> Attr {
+    let mut a = Attr { name: name.to_string(), ..Attr::default() };
+    for f in flags {
+        match *f {
+            "required" => a.required = true,
+            other => match other.strip_prefix("unless=") {
+                Some(u) if ty.starts_with("ref:") => a.reference_unless = Some(u.to_string()),
+                _ => panic!("{at}: unknown flag {other}"),
+            },
+        }
+    }
+    if let Some(values) = ty.strip_prefix("keyword:") {
+        a.ty = "keyword".into();
+        a.valid_values = Some(values.replace(',', " "));
+    } else if let Some(ns) = ty.strip_prefix("ref:") {
+        a.ty = "reference".into();
+        a.reference_namespace = Some(ns.to_string());
+    } else if ty == "file" || ty.starts_with("file:") {
+        a.ty = "file".into();
+        a.path_namespace = ty.strip_prefix("file:").map(str::to_string);
+    } else if let Some((elem, size)) = ty.split_once('[') {
+        let size = size.strip_suffix(']').unwrap_or_else(|| panic!("{at}: bad array type {ty}"));
+        assert!(elem == "float" || elem == "int", "{at}: bad array type {ty}");
+        a.ty = "array".into();
+        a.array_type = Some(elem.to_string());
+        a.array_size = (!size.is_empty())
+            .then(|| size.parse().unwrap_or_else(|_| panic!("{at}: bad array size {ty}")));
+    } else {
+        assert!(
+            matches!(ty, "float" | "int" | "string" | "prefix" | "identifier"),
+            "{at}: unknown type {ty}"
+        );
+        a.ty = ty.to_string();
+    }
+    a
+}
+
+/// Adds what MuJoCo 4.0 has beyond dm_control's schema: the elements and attributes of
+/// the types file, each under every element at its path; then checks that every
+/// element and attribute of MuJoCo's printed schema is there. dm_control's elements
+/// keep their indices and their attributes' order; new ones come after.
+fn merge_mujoco40(elems: &mut Vec<Elem>, printed: &[Printed], types: &str) {
+    for i in 0..elems.len() {
+        elems[i].key = dm_key(elems, i);
+    }
+    let with_key = |elems: &[Elem], key: &str| -> Vec<usize> {
+        (0..elems.len()).filter(|&i| elems[i].key == key).collect()
+    };
+    let printed_of = |key: &str| printed.iter().find(|p| p.key == key);
+    // (new kinds, the path whose children they take, tags left out)
+    let mut take_children: Vec<(Vec<usize>, String, Vec<String>)> = Vec::new();
+    for (n, line) in types.lines().enumerate() {
+        let at = format!("{MUJOCO40_TYPES}:{}", n + 1);
+        if line.trim_start().starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let (spec, source) = line.split_once('|').unwrap_or_else(|| panic!("{at}: no source"));
+        assert!(!source.trim().is_empty(), "{at}: no source");
+        let w: Vec<&str> = spec.split_whitespace().collect();
+        match w.as_slice() {
+            ["element", key, multiplicity, opts @ ..] => {
+                let (parent_key, tag) = key.rsplit_once('/').unwrap_or(("mujoco", key));
+                let parents = with_key(elems, parent_key);
+                assert!(!parents.is_empty(), "{at}: no element at {parent_key}");
+                let (repeated, on_demand) = match *multiplicity {
+                    "repeated" => (true, false),
+                    "on_demand" => (false, true),
+                    "singleton" => (false, false),
+                    other => panic!("{at}: multiplicity {other}"),
+                };
+                if let Some(p) = printed_of(key) {
+                    let fits = match p.marker {
+                        '*' | 'R' => repeated,
+                        '?' | '!' => !repeated,
+                        _ => false,
+                    };
+                    assert!(fits, "{at}: {multiplicity} but MuJoCo marks it ({})", p.marker);
+                }
+                let mut namespace_attr = None;
+                let mut children_of = None;
+                let mut without = Vec::new();
+                for o in opts {
+                    if let Some(ns) = o.strip_prefix("ns=") {
+                        namespace_attr = Some(ns.to_string());
+                    } else if let Some(c) = o.strip_prefix("children=") {
+                        children_of = Some(c.to_string());
+                    } else if let Some(t) = o.strip_prefix('-') {
+                        without.push(t.to_string());
+                    } else {
+                        panic!("{at}: unknown option {o}");
+                    }
+                }
+                let mut new = Vec::new();
+                for p in parents {
+                    assert!(
+                        elems[p].children.iter().all(|&c| elems[c].name != *tag),
+                        "{at}: {key} is in dm_control's schema already"
+                    );
+                    let i = elems.len();
+                    elems.push(Elem {
+                        name: tag.to_string(),
+                        repeated,
+                        on_demand,
+                        namespace_attr: namespace_attr.clone(),
+                        parent: Some(p),
+                        key: key.to_string(),
+                        ..Elem::default()
+                    });
+                    elems[p].children.push(i);
+                    new.push(i);
+                }
+                if let Some(c) = children_of {
+                    take_children.push((new, c, without));
+                }
+            }
+            ["attr", key, name, ty, flags @ ..] => {
+                let targets = with_key(elems, key);
+                assert!(!targets.is_empty(), "{at}: no element at {key}");
+                if let Some(p) = printed_of(key) {
+                    assert!(
+                        p.attrs.iter().any(|a| a == name),
+                        "{at}: MuJoCo 4.0 lists no {name} on {key}"
+                    );
+                }
+                let attr = typed_attr(name, ty, flags, &at);
+                for t in targets {
+                    assert!(
+                        elems[t].attrs.iter().all(|a| a.name != *name),
+                        "{at}: {key} has {name} in dm_control's schema already"
+                    );
+                    elems[t].attrs.push(attr.clone());
+                }
+            }
+            ["folder", key, name, folder] => {
+                let targets = with_key(elems, key);
+                assert!(!targets.is_empty(), "{at}: no element at {key}");
+                for t in targets {
+                    let a = elems[t].attrs.iter_mut().find(|a| a.name == *name);
+                    let a = a.unwrap_or_else(|| panic!("{at}: {key} has no {name}"));
+                    assert!(a.ty == "file" && a.path_namespace.is_none(), "{at}: {key}@{name}");
+                    a.path_namespace = Some(folder.to_string());
+                }
+            }
+            ["child", parent_key, key] => {
+                let kinds = with_key(elems, key);
+                let [kind] = kinds[..] else { panic!("{at}: {key} is not one element") };
+                let parents = with_key(elems, parent_key);
+                assert!(!parents.is_empty(), "{at}: no element at {parent_key}");
+                for p in parents {
+                    let tag = &elems[kind].name;
+                    assert!(
+                        elems[p].children.iter().all(|&c| elems[c].name != *tag),
+                        "{at}: {parent_key} has a {tag} already"
+                    );
+                    elems[p].children.push(kind);
+                }
+            }
+            _ => panic!("{at}: cannot read: {line}"),
+        }
+    }
+    for (new, from, without) in take_children {
+        let kinds = with_key(elems, &from);
+        let [src] = kinds[..] else { panic!("{MUJOCO40_TYPES}: {from} is not one element") };
+        let children: Vec<usize> = elems[src]
+            .children
+            .iter()
+            .copied()
+            .filter(|&c| !without.contains(&elems[c].name))
+            .collect();
+        for i in new {
+            elems[i].children = children.clone();
+        }
+    }
+    for p in printed {
+        let kinds = with_key(elems, &p.key);
+        assert!(
+            !kinds.is_empty(),
+            "{MUJOCO40_SCHEMA}: {} is in neither schema.xml nor {MUJOCO40_TYPES}",
+            p.key
+        );
+        for k in kinds {
+            for a in &p.attrs {
+                assert!(
+                    elems[k].attrs.iter().any(|x| x.name == *a),
+                    "{MUJOCO40_SCHEMA}: {}@{a} has no type: add it to {MUJOCO40_TYPES}",
+                    p.key
+                );
+            }
+        }
     }
 }

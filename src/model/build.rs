@@ -315,6 +315,7 @@ impl ValueCtx<'_> {
                     AttrType::Identifier
                         | AttrType::Reference(_)
                         | AttrType::String
+                        | AttrType::NamePrefix
                         | AttrType::Basepath { .. }
                         | AttrType::File { .. }
                 );
@@ -429,22 +430,48 @@ pub(crate) fn check_class_named(
 }
 
 /// Gives a nameless `mesh`, `hfield` or `texture` with a file the file's stem as name,
-/// as the reference does.
+/// as the reference does; and a nameless asset `model` the name of the model its file
+/// holds, as MuJoCo does (`<attach model=…>` names it so).
 pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
-    if !matches!(kind.tag(), "mesh" | "hfield" | "texture") {
-        return;
-    }
+    let from_stem = match kind.tag() {
+        "mesh" | "hfield" | "texture" => true,
+        "model" => false,
+        _ => return,
+    };
     let (Some(ident), Some(file)) = (kind.identifier(), kind.attr_index("file")) else { return };
     let has_name = attrs.iter().any(|(i, _)| *i as usize == ident);
-    let stem = attrs.iter().find_map(|(i, v)| match v {
-        Value::File(f) if *i as usize == file => Some(SmolStr::from(f.stem())),
+    let name = attrs.iter().find_map(|(i, v)| match v {
+        Value::File(f) if *i as usize == file => {
+            if from_stem {
+                Some(SmolStr::from(f.stem()))
+            } else {
+                model_name_in(f.contents())
+            }
+        }
         _ => None,
     });
-    if let (false, Some(stem)) = (has_name, stem) {
-        if let Ok(v) = value::identifier(&stem, kind.namespace()) {
+    if let (false, Some(name)) = (has_name, name) {
+        if let Ok(v) = value::identifier(&name, kind.namespace()) {
             let i = ident as u16;
             let p = attrs.binary_search_by_key(&i, |(k, _)| *k).unwrap_or_else(|p| p);
             attrs.insert(p, (i, v));
+        }
+    }
+}
+
+/// The `model` attribute of the root element of an MJCF file, if it has one.
+fn model_name_in(contents: &[u8]) -> Option<SmolStr> {
+    let mut xml = quick_xml::Reader::from_reader(contents);
+    let mut buf = Vec::new();
+    loop {
+        match xml.read_event_into(&mut buf).ok()? {
+            quick_xml::events::Event::Start(t) | quick_xml::events::Event::Empty(t) => {
+                let a = t.try_get_attribute("model").ok()??;
+                let v = a.normalized_value(quick_xml::XmlVersion::default()).ok()?;
+                return (!v.is_empty()).then(|| SmolStr::from(v.as_ref()));
+            }
+            quick_xml::events::Event::Eof => return None,
+            _ => buf.clear(),
         }
     }
 }

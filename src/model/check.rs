@@ -6,7 +6,7 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, ElementKind, Namespace, RefTarget, namespace_of_objtype};
+use crate::schema::{AttrType, ElementKind, Namespace};
 use crate::value::{Reference, Value};
 
 use super::cursor::{Step, Walk};
@@ -103,10 +103,7 @@ impl fmt::Display for Problem {
 fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
     let kind = node.kind();
     match kind.attr(i).ty {
-        AttrType::Reference(RefTarget::Fixed(ns)) => Some(ns),
-        AttrType::Reference(RefTarget::ByAttribute(k)) => {
-            node.attr(k).and_then(Value::as_str).and_then(namespace_of_objtype)
-        }
+        AttrType::Reference(target) => target.namespace(|k| node.attr(k)),
         _ => None,
     }
 }

@@ -171,6 +171,7 @@ pub(crate) fn parse_text(
     if matches!(
         spec.ty,
         AttrType::String
+            | AttrType::NamePrefix
             | AttrType::Identifier
             | AttrType::Reference(_)
             | AttrType::Basepath { .. }
@@ -180,7 +181,7 @@ pub(crate) fn parse_text(
     match spec.ty {
         AttrType::Float => number::parse_float(text).map(Value::Float).ok_or(ValueError::NotFloat),
         AttrType::Int => number::parse_int(text).map(Value::Int).ok_or(ValueError::NotInt),
-        AttrType::String => Ok(Value::String(text.into())),
+        AttrType::String | AttrType::NamePrefix => Ok(Value::String(text.into())),
         AttrType::Keyword(valid) => valid
             .iter()
             .find(|v| v.eq_ignore_ascii_case(text.trim()))
@@ -315,9 +316,8 @@ fn check_value(
     }
     let fits = match (spec.ty, v) {
         (AttrType::Float, Value::Float(_)) | (AttrType::Int, Value::Int(_)) => true,
-        (AttrType::String, Value::String(_)) | (AttrType::Basepath { .. }, Value::Basepath(_)) => {
-            true
-        }
+        (AttrType::String | AttrType::NamePrefix, Value::String(_))
+        | (AttrType::Basepath { .. }, Value::Basepath(_)) => true,
         (AttrType::Keyword(valid), Value::Keyword(k)) => {
             return valid
                 .iter()

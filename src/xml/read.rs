@@ -34,7 +34,7 @@ use crate::model::{
     Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
     name_from_file,
 };
-use crate::schema::{AttrType, ElementKind, Multiplicity, RefTarget, namespace_of_objtype};
+use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::{Reference, Value};
 
 /// How many `<include>`s may nest inside each other.
@@ -827,14 +827,7 @@ fn resolve_attrs(
         let (i, v) = &attrs[j];
         let Value::Reference(Reference::Name(n)) = v else { continue };
         let AttrType::Reference(target) = kind.attr(*i as usize).ty else { continue };
-        let ns = match target {
-            RefTarget::Fixed(ns) => Some(ns),
-            RefTarget::ByAttribute(k) => attrs
-                .iter()
-                .find(|(x, _)| *x as usize == k)
-                .and_then(|(_, v)| v.as_str())
-                .and_then(namespace_of_objtype),
-        };
+        let ns = target.namespace(|k| attrs.iter().find(|(x, _)| *x as usize == k).map(|(_, v)| v));
         if let Some(id) = ns.and_then(|ns| lookup(ns, n)) {
             attrs[j].1 = Value::Reference(Reference::Element(id));
         }

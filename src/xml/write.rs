@@ -149,8 +149,9 @@ struct Inst<'a> {
     prefix: String,
     /// Running auto-name counters (document order of this model's own elements).
     counters: HashMap<Namespace, usize>,
-    /// Auto-name indices of every element, counted once when a reference needs one.
-    auto_index: Option<HashMap<ElementId, usize>>,
+    /// Auto-name indices of every element (and whether it is inside a `<replicate>`),
+    /// counted once when a reference needs one.
+    auto_index: Option<HashMap<ElementId, (usize, bool)>>,
 }
 
 /// An element whose start tag is not finished yet.
@@ -188,6 +189,9 @@ struct Open {
     /// from a composed file), written as MuJoCo's main class, the `<default>` wrapper
     /// itself, so that the name stays that class's.
     transparent: bool,
+    /// Inside a `<replicate>` of its own model (or one itself, for its children).
+    replicated: bool,
+    replicates: bool,
 }
 
 struct Writer<'a> {
@@ -440,20 +444,27 @@ impl<'a> Writer<'a> {
             Some(_) => "body",
             None => kind.tag(),
         };
-        let world_level = (kind.tag() == "worldbody" && inst == 0 && substitute) || as_frame;
+        // MuJoCo's own `<frame>`s in the world pass the world on too.
+        let world_level = (kind.tag() == "worldbody" && inst == 0 && substitute)
+            || as_frame
+            || (parent_world && kind.tag() == "frame");
+        let replicated = self.open.last().is_some_and(|o| o.inst == inst && o.replicates);
+        let replicates = replicated || kind.tag() == "replicate";
+        let depth = if transparent { depth - 1 } else { depth };
+        self.open.push(Open {
+            inst,
+            child_cc,
+            depth,
+            frame,
+            tag,
+            world_level,
+            transparent,
+            replicated,
+            replicates,
+        });
         if transparent {
-            self.open.push(Open {
-                inst,
-                child_cc,
-                depth: depth - 1,
-                frame,
-                tag,
-                world_level,
-                transparent,
-            });
             return Ok(true);
         }
-        self.open.push(Open { inst, child_cc, depth, frame, tag, world_level, transparent });
         if top && kind.tag() != "default" && kind.tag() != "worldbody" {
             self.finish_parent()?;
             self.pending = Some((Pending::Unwritten(Inst0Section { depth }), node));
@@ -587,7 +598,8 @@ impl<'a> Writer<'a> {
                     } else if is_default {
                         self.default_class_name(inst, node.identifier());
                     } else if let Some((_, ns, index)) = auto_name {
-                        self.auto_name(inst, ns, index);
+                        let replicated = self.open.last().is_some_and(|o| o.replicated);
+                        self.auto_name(inst, ns, index, replicated);
                     }
                 } else {
                     // Implicit class: the model's root class.
@@ -622,11 +634,17 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`.
-    fn auto_name(&mut self, inst: usize, ns: Namespace, index: usize) {
+    /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`, and a `_` after it
+    /// for an element inside a `<replicate>`: MuJoCo appends the copy's number to the
+    /// name (`//unnamed_geom_1` + `0`), which must not make another element's name
+    /// (`//unnamed_geom_10`).
+    fn auto_name(&mut self, inst: usize, ns: Namespace, index: usize, replicated: bool) {
         let prefix = &self.insts[inst].prefix;
         let p = if prefix.is_empty() { "/" } else { prefix.as_str() };
         let _ = write!(self.value, "{p}/unnamed_{}_{}", ns.as_str(), index);
+        if replicated {
+            self.value.push('_');
+        }
     }
 
     /// Writes the text of attribute `i` into `self.value`; `false` if it is not written.
@@ -651,13 +669,18 @@ impl<'a> Writer<'a> {
                 self.value.push_str(n);
                 Ok(true)
             }
+            Value::String(n) if node.kind().attr(i).ty == AttrType::NamePrefix => {
+                self.value.push_str(&self.insts[inst].prefix);
+                self.value.push_str(n);
+                Ok(true)
+            }
             Value::Reference(Reference::Name(n)) => {
-                // The one world body is `world` in every scope.
-                let to_body = matches!(
-                    node.kind().attr(i).ty,
-                    AttrType::Reference(RefTarget::Fixed(Namespace::Body))
-                );
-                if !(to_body && n == "world") {
+                // The one world body is `world` in every scope; a name in another
+                // model (`RefTarget::Unless`) is not this model's.
+                let ty = node.kind().attr(i).ty;
+                let to_body = matches!(ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
+                let elsewhere = matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
+                if !(elsewhere || to_body && n == "world") {
                     self.value.push_str(&self.insts[inst].prefix);
                 }
                 self.value.push_str(n);
@@ -714,29 +737,33 @@ impl<'a> Writer<'a> {
                 self.value.push_str(n);
             }
             (None, Some(ns)) => {
-                let index = self.auto_index_of(inst, target);
-                self.auto_name(inst, ns, index);
+                let (index, replicated) = self.auto_index_of(inst, target);
+                self.auto_name(inst, ns, index, replicated);
             }
             (None, None) => return Ok(false),
         }
         Ok(true)
     }
 
-    fn auto_index_of(&mut self, inst: usize, id: ElementId) -> usize {
+    fn auto_index_of(&mut self, inst: usize, id: ElementId) -> (usize, bool) {
         let it = &mut self.insts[inst];
         if it.auto_index.is_none() {
             let mut counts: HashMap<Namespace, usize> = HashMap::new();
             let mut map = HashMap::new();
-            for n in it.model.root.descendants() {
+            // Document order (pre-order), with whether a `<replicate>` is above.
+            let mut stack = vec![(&it.model.root, false)];
+            while let Some((n, replicated)) = stack.pop() {
                 if let Some(ns) = n.kind().namespace() {
                     let c = counts.entry(ns).or_insert(0);
-                    map.insert(n.id(), *c);
+                    map.insert(n.id(), (*c, replicated));
                     *c += 1;
                 }
+                let below = replicated || n.kind().tag() == "replicate";
+                stack.extend(n.children().iter().rev().map(|c| (c, below)));
             }
             it.auto_index = Some(map);
         }
-        it.auto_index.as_ref().and_then(|m| m.get(&id).copied()).unwrap_or(0)
+        it.auto_index.as_ref().and_then(|m| m.get(&id).copied()).unwrap_or((0, false))
     }
 
     /// Appends ` name="<escaped self.value>"`.

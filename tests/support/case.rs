@@ -58,6 +58,10 @@ pub(crate) struct Case {
     pub description: String,
     /// The ops, in execution order.
     pub ops: Vec<Op>,
+    /// Why dm_control cannot read or write the model (the real-model corpus's
+    /// `reference_fails`): such a case has no expected text of dm_control's, and MuJoCo
+    /// judges its outputs instead.
+    pub reference_fails: Option<String>,
 }
 
 /// One op of a case.
@@ -251,7 +255,8 @@ pub(crate) fn parse_case(name: &str, dir: &Path, json: &str) -> Result<Case, Str
         })?;
         ops.push(op);
     }
-    Ok(Case { name: name.to_owned(), dir: dir.to_path_buf(), description, ops })
+    let reference_fails = root.opt_str("reference_fails").map_err(fail)?;
+    Ok(Case { name: name.to_owned(), dir: dir.to_path_buf(), description, ops, reference_fails })
 }
 
 /// Every immediate subfolder of `root` that holds a `case.json`, sorted by
