@@ -145,6 +145,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "key_ctrl[0][0]": 1, "key_ctrl[0][1]": 2, "key_ctrl[0][2]": 3, "key_ctrl[0][3]": 0}"#,
         &merge,
     )?;
+    // An `<include>` inside a body: the included file's elements in its place (a
+    // frame and a site, with the class of the including file's default).
+    std::fs::write(
+        out.join("include_part.xml"),
+        r#"<mujoco><geom name="g2" size="0.2"/><site name="s2"/></mujoco>"#,
+    )?;
+    let main = r#"<mujoco model="inc"><default><geom rgba="0 1 0 1"/></default><worldbody>
+        <body name="b"><joint/><include file="include_part.xml"/><geom name="g1" size="0.1"/></body>
+        </worldbody></mujoco>"#;
+    std::fs::write(out.join("include_in_body.xml"), main)?;
+    let expect = r#"{"ngeom": 2, "geom_names": ["g2", "g1"], "nsite": 1, "geom_rgba[0][1]": 1}"#;
+    std::fs::write(out.join("include_in_body.expect.json"), expect)?;
+    let m = Model::from_path(out.join("include_in_body.xml"))?;
+    std::fs::write(out.join("include_in_body.readback.xml"), m.to_xml_string()?)?;
+    std::fs::write(out.join("include_in_body.readback.expect.json"), expect)?;
     println!("wrote the cases to {}", out.display());
     Ok(())
 }

@@ -44,3 +44,40 @@ fn settings_only_one_side_sets_are_merged() {
     assert_eq!(setting(&m, "option", "timestep"), "0.002");
     assert_eq!(setting(&m, "option", "gravity"), "0 0 -1");
 }
+
+#[test]
+fn an_include_inside_a_body_is_read_in_place() {
+    let part = r#"<mujoco><geom name="g2" size="0.2"/><site name="s2"/></mujoco>"#;
+    let m = ReadOptions::new()
+        .asset("part.xml", part.as_bytes().to_vec())
+        .read_str(
+            r#"<mujoco><worldbody><body name="b"><include file="part.xml"/><geom name="g1" size="0.1"/></body></worldbody></mujoco>"#,
+        )
+        .unwrap();
+    let xml = m.to_xml_string().unwrap();
+    let g2 = xml.find(r#"name="g2""#).unwrap();
+    let g1 = xml.find(r#"name="g1""#).unwrap();
+    assert!(g2 < g1, "in document order, in place of the include:\n{xml}");
+    assert!(m.find(mjcf::Namespace::Site, "s2").is_some());
+    let body = m.find(mjcf::Namespace::Body, "b").unwrap();
+    assert_eq!(m.get(&body).unwrap().children().filter(|c| c.tag() == "geom").count(), 2);
+    // Nested: an include inside the included file's elements.
+    let outer = r#"<mujoco><body name="c"><include file="part.xml"/></body></mujoco>"#;
+    let m = ReadOptions::new()
+        .asset("part.xml", part.as_bytes().to_vec())
+        .asset("outer.xml", outer.as_bytes().to_vec())
+        .read_str(r#"<mujoco><worldbody><include file="outer.xml"/></worldbody></mujoco>"#)
+        .unwrap();
+    assert!(m.find(mjcf::Namespace::Geom, "g2").is_some());
+    assert!(m.find(mjcf::Namespace::Body, "c").is_some());
+}
+
+#[test]
+fn an_include_inside_an_element_that_includes_itself_is_a_cycle() {
+    let part = r#"<mujoco><body><include file="part.xml"/></body></mujoco>"#;
+    let e = ReadOptions::new()
+        .asset("part.xml", part.as_bytes().to_vec())
+        .read_str(r#"<mujoco><worldbody><include file="part.xml"/></worldbody></mujoco>"#)
+        .unwrap_err();
+    assert!(matches!(e.kind(), mjcf::ErrorKind::IncludeCycle(_)), "{e}");
+}

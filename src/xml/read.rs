@@ -357,23 +357,25 @@ impl Reader<'_> {
     }
 }
 
-fn read_document(
-    text: &str,
-    file: Option<PathBuf>,
-    ctx: FileContext,
+/// What [`parse`] found besides the arena: root-level includes (read as models, with
+/// the offset of their tag) and the model name.
+struct Parsed {
+    includes: Vec<(Model, usize)>,
+    model_name: Option<SmolStr>,
+}
+
+/// Reads the events of `r.text` into `r.arena`. The root element becomes an entry of
+/// kind `root_kind` (the model's root, or, for a file included inside an element,
+/// that element's kind, whose children the file's root's children are).
+fn parse(
+    r: &mut Reader<'_>,
+    root_kind: ElementKind,
     max_depth: usize,
     include_stack: &mut Vec<PathBuf>,
-) -> Result<Model, ReadError> {
-    let mut xml = quick_xml::Reader::from_str(text);
-    let mut r = Reader {
-        text,
-        file,
-        ctx,
-        arena: Vec::new(),
-        basepaths: Basepaths::default(),
-        settings_set_at: HashMap::new(),
-    };
+) -> Result<Parsed, ReadError> {
     let mut stack: Vec<usize> = Vec::new();
+    let mut xml = quick_xml::Reader::from_str(r.text);
+    let text = r.text;
     let mut includes: Vec<(Model, usize)> = Vec::new();
     let mut model_name: Option<SmolStr> = None;
     let mut seen_root = false;
@@ -424,7 +426,7 @@ fn read_document(
                 }
             }
             r.arena.push(Pending {
-                kind: ElementKind::ROOT,
+                kind: root_kind,
                 id: ElementId::fresh(),
                 attrs: Vec::new(),
                 children: Vec::new(),
@@ -438,8 +440,20 @@ fn read_document(
         }
         let parent = stack[stack.len() - 1];
         let parent_kind = r.arena[parent].kind;
+        if name == "include"
+            && parent != usize::MAX
+            && (parent != 0 || root_kind != ElementKind::ROOT)
+        {
+            // Inside an element (MuJoCo accepts `<include>` anywhere): the included
+            // file's root's children are read in its place.
+            inline_include(r, &tag, offset, parent, max_depth, include_stack)?;
+            if !empty {
+                stack.push(usize::MAX);
+            }
+            continue;
+        }
         if parent == 0 && name == "include" {
-            includes.push((read_include(&mut r, &tag, offset, max_depth, include_stack)?, offset));
+            includes.push((read_include(r, &tag, offset, max_depth, include_stack)?, offset));
             if !empty {
                 // An include's content is ignored; track it so its end tag matches.
                 stack.push(usize::MAX);
@@ -507,6 +521,26 @@ fn read_document(
     if !stack.is_empty() {
         return Err(r.err(ErrorKind::Syntax("unclosed element at end of input".into()), text.len()));
     }
+    Ok(Parsed { includes, model_name })
+}
+
+fn read_document(
+    text: &str,
+    file: Option<PathBuf>,
+    ctx: FileContext,
+    max_depth: usize,
+    include_stack: &mut Vec<PathBuf>,
+) -> Result<Model, ReadError> {
+    let mut r = Reader {
+        text,
+        file,
+        ctx,
+        arena: Vec::new(),
+        basepaths: Basepaths::default(),
+        settings_set_at: HashMap::new(),
+    };
+    let Parsed { includes, model_name } =
+        parse(&mut r, ElementKind::ROOT, max_depth, include_stack)?;
     let model = finish(&mut r, model_name)?;
     if includes.is_empty() {
         return Ok(model);
@@ -521,13 +555,14 @@ fn read_document(
     Ok(resolve_all(&model))
 }
 
-fn read_include(
-    r: &mut Reader<'_>,
+/// The file an `<include>` names: its bytes, its path (for messages), the file
+/// context its own files resolve in, and its key on the include stack (for cycles).
+fn include_source(
+    r: &Reader<'_>,
     tag: &BytesStart<'_>,
     offset: usize,
-    max_depth: usize,
-    include_stack: &mut Vec<PathBuf>,
-) -> Result<Model, ReadError> {
+    include_stack: &[PathBuf],
+) -> Result<(Arc<[u8]>, PathBuf, FileContext, PathBuf), ReadError> {
     let mut file: Option<String> = None;
     for a in tag.attributes() {
         let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
@@ -561,12 +596,8 @@ fn read_include(
         if include_stack.contains(&key) {
             return Err(r.err(ErrorKind::IncludeCycle(PathBuf::from(&file)), offset));
         }
-        let text = utf8(&bytes, Some(Path::new(&file)))?;
         let ctx = FileContext { base_dir: None, ..r.ctx.clone() };
-        include_stack.push(key);
-        let res = read_document(text, Some(PathBuf::from(&file)), ctx, max_depth, include_stack);
-        include_stack.pop();
-        return res;
+        return Ok((bytes, PathBuf::from(&file), ctx, key));
     }
     // With confinement, the path is checked with symlinks followed; the file must be
     // a regular file within the size cap.
@@ -577,12 +608,78 @@ fn read_include(
         return Err(r.err(ErrorKind::IncludeCycle(full), offset));
     }
     let bytes = r.ctx.read_disk(&path).map_err(|k| r.err(k, offset))?;
-    let text = utf8(&bytes, Some(&full))?;
     let ctx = r.ctx.for_included(&full);
+    Ok((bytes.into(), full, ctx, key))
+}
+
+/// A root-level `<include>`: the file read as a model of its own, merged later.
+fn read_include(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    offset: usize,
+    max_depth: usize,
+    include_stack: &mut Vec<PathBuf>,
+) -> Result<Model, ReadError> {
+    let (bytes, file, ctx, key) = include_source(r, tag, offset, include_stack)?;
+    let text = utf8(&bytes, Some(&file))?;
     include_stack.push(key);
-    let res = read_document(text, Some(full.clone()), ctx, max_depth, include_stack);
+    let res = read_document(text, Some(file.clone()), ctx, max_depth, include_stack);
     include_stack.pop();
     res
+}
+
+/// An `<include>` inside an element (at `parent` in the arena): the included file's
+/// root's children are read as `parent`'s children in its place, as MuJoCo pastes
+/// the file's content there.
+fn inline_include(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    offset: usize,
+    parent: usize,
+    max_depth: usize,
+    include_stack: &mut Vec<PathBuf>,
+) -> Result<(), ReadError> {
+    let (bytes, file, ctx, key) = include_source(r, tag, offset, include_stack)?;
+    let text = utf8(&bytes, Some(&file))?;
+    let mut sub = Reader {
+        text,
+        file: Some(file),
+        ctx,
+        arena: Vec::new(),
+        basepaths: r.basepaths.clone(),
+        settings_set_at: HashMap::new(),
+    };
+    include_stack.push(key);
+    let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, include_stack);
+    include_stack.pop();
+    let parsed = parsed?;
+    if !parsed.includes.is_empty() {
+        // Root-level includes of a file included inside an element cannot happen:
+        // its root's children are read inline, `<include>`s among them too.
+        return Err(r.err(ErrorKind::Syntax("an include inside an element".into()), offset));
+    }
+    // Graft: the sub-arena's root is `parent`; its other entries follow ours.
+    let base = r.arena.len() - 1;
+    let shift = |i: usize| if i == 0 { parent } else { i + base };
+    let mut entries = sub.arena.into_iter();
+    let Some(root) = entries.next() else { return Ok(()) };
+    for mut p in entries {
+        p.children.iter_mut().for_each(|c| *c = shift(*c));
+        p.unique.iter_mut().for_each(|(_, c)| *c = shift(*c));
+        r.arena.push(p);
+    }
+    for c in root.children {
+        let c = shift(c);
+        let kind = r.arena[c].kind;
+        if kind.multiplicity() != Multiplicity::Repeated {
+            if r.arena[parent].unique.iter().any(|(k, _)| *k == kind) {
+                return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
+            }
+            r.arena[parent].unique.push((kind, c));
+        }
+        r.arena[parent].children.push(c);
+    }
+    Ok(())
 }
 
 /// Turns the arena into nodes, indexes them and resolves references.
