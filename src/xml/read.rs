@@ -555,14 +555,17 @@ fn read_document(
     Ok(resolve_all(&model))
 }
 
-/// The file an `<include>` names: its bytes, its path (for messages), the file
-/// context its own files resolve in, and its key on the include stack (for cycles).
+/// An included file: its bytes, its path (for messages), the file context its own
+/// files resolve in, and its key on the include stack (for cycles).
+type IncludeSource = (Arc<[u8]>, PathBuf, FileContext, PathBuf);
+
+/// The file an `<include>` names.
 fn include_source(
     r: &Reader<'_>,
     tag: &BytesStart<'_>,
     offset: usize,
     include_stack: &[PathBuf],
-) -> Result<(Arc<[u8]>, PathBuf, FileContext, PathBuf), ReadError> {
+) -> Result<IncludeSource, ReadError> {
     let mut file: Option<String> = None;
     for a in tag.attributes() {
         let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
