@@ -160,6 +160,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = Model::from_path(out.join("include_in_body.xml"))?;
     std::fs::write(out.join("include_in_body.readback.xml"), m.to_xml_string()?)?;
     std::fs::write(out.join("include_in_body.readback.expect.json"), expect)?;
+    // A robot file's compiler folder applies to the scene's files after the include
+    // (MuJoCo's compiler settings are global).
+    let mesh = std::fs::read(
+        "tests/conformance/cases/real_02_jaco_arm_with_hand/meshes_decimated/base.stl",
+    )?;
+    std::fs::create_dir_all(out.join("assets"))?;
+    std::fs::write(out.join("assets/a.stl"), &mesh)?;
+    std::fs::write(out.join("assets/b.stl"), &mesh)?;
+    std::fs::write(
+        out.join("include_robot.xml"),
+        r#"<mujoco model="robot"><compiler meshdir="assets"/><asset><mesh name="a" file="a.stl"/></asset>
+        <worldbody><body name="r"><geom type="mesh" mesh="a"/></body></worldbody></mujoco>"#,
+    )?;
+    std::fs::write(
+        out.join("include_meshdir.xml"),
+        r#"<mujoco model="scene"><include file="include_robot.xml"/><asset><mesh name="b" file="b.stl"/></asset>
+        <worldbody><geom type="mesh" mesh="b"/></worldbody></mujoco>"#,
+    )?;
+    let expect = r#"{"nmesh": 2, "ngeom": 2}"#;
+    std::fs::write(out.join("include_meshdir.expect.json"), expect)?;
+    let m = Model::from_path(out.join("include_meshdir.xml"))?;
+    // Written out with its files beside it (their written names).
+    m.export(&out, "include_meshdir.readback.xml", &WriteOptions::default())?;
+    std::fs::write(out.join("include_meshdir.readback.expect.json"), expect)?;
     println!("wrote the cases to {}", out.display());
     Ok(())
 }

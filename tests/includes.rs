@@ -81,3 +81,19 @@ fn an_include_inside_an_element_that_includes_itself_is_a_cycle() {
         .unwrap_err();
     assert!(matches!(e.kind(), mjcf::ErrorKind::IncludeCycle(_)), "{e}");
 }
+
+#[test]
+fn folders_an_included_file_sets_apply_to_files_named_after_it() {
+    // MuJoCo's compiler settings are global: a robot file's meshdir applies to the
+    // meshes the including scene names after the include.
+    let mesh = b"solid m\nendsolid m\n".to_vec();
+    let robot = r#"<mujoco model="robot"><compiler meshdir="assets"/><asset><mesh name="a" file="a.stl"/></asset></mujoco>"#;
+    let m = ReadOptions::new()
+        .asset("robot.xml", robot.as_bytes().to_vec())
+        .asset("assets/a.stl", mesh.clone())
+        .asset("assets/b.stl", mesh)
+        .read_str(r#"<mujoco><include file="robot.xml"/><asset><mesh name="b" file="b.stl"/></asset></mujoco>"#)
+        .unwrap();
+    assert!(m.find(mjcf::Namespace::Mesh, "a").is_some());
+    assert!(m.find(mjcf::Namespace::Mesh, "b").is_some());
+}

@@ -34,7 +34,7 @@ use crate::model::{
     Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
     name_from_file,
 };
-use crate::schema::{AttrType, ElementKind, Multiplicity};
+use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
 use crate::value::{Reference, Value};
 
 /// How many `<include>`s may nest inside each other.
@@ -453,7 +453,20 @@ fn parse(
             continue;
         }
         if parent == 0 && name == "include" {
-            includes.push((read_include(r, &tag, offset, max_depth, include_stack)?, offset));
+            let inc = read_include(r, &tag, offset, max_depth, include_stack)?;
+            // The compiler's folders are global in MuJoCo: those the included file
+            // sets apply to the files named after the include here too.
+            let folders = inc.basepaths();
+            for (ns, v) in [
+                (PathNamespace::Mesh, folders.mesh),
+                (PathNamespace::Texture, folders.texture),
+                (PathNamespace::Asset, folders.asset),
+            ] {
+                if v.is_some() {
+                    r.basepaths.set(Some(ns), v);
+                }
+            }
+            includes.push((inc, offset));
             if !empty {
                 // An include's content is ignored; track it so its end tag matches.
                 stack.push(usize::MAX);
