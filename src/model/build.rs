@@ -324,8 +324,14 @@ impl ValueCtx<'_> {
             }
             if let AttrType::File { path_namespace } = spec.ty {
                 let base = self.basepaths.for_namespace(path_namespace);
-                let (_, contents) = self.files.read(base, text)?;
-                let asset = FileAsset::from_path_and_contents(text, contents);
+                let (full, contents) = self.files.read(base, text)?;
+                let mut asset = FileAsset::from_path_and_contents(text, contents);
+                if kind.tag() == "model" {
+                    // A model file brings the files it names (exported beside it).
+                    let ctx = self.files.for_included(&full);
+                    asset =
+                        asset.with_companions(model_file_companions(&ctx, asset.contents(), 0)?);
+                }
                 if kind.tag() == "mesh"
                     && !matches!(
                         asset.extension().to_ascii_lowercase().as_str(),
@@ -343,6 +349,73 @@ impl ValueCtx<'_> {
         };
         Ok((index, value.map_err(invalid)?))
     }
+}
+
+/// How deep model files may name model files.
+const MAX_MODEL_FILE_DEPTH: usize = 16;
+
+/// The files an MJCF model file names (read from `ctx`, its folder), by their paths
+/// relative to it as MuJoCo resolves them: `file` attributes, with the compiler's
+/// `meshdir` (meshes, height fields, skins, flexcomps), `texturedir` (textures) and
+/// `assetdir` (both), the last setting of each applying to every file as MuJoCo's
+/// compiler settings do; model files and includes it names bring theirs in turn.
+/// A file that is not UTF-8 or not well-formed has none (MuJoCo reports it).
+fn model_file_companions(
+    ctx: &FileContext,
+    bytes: &[u8],
+    depth: usize,
+) -> Result<Vec<(SmolStr, FileAsset)>, ErrorKind> {
+    use quick_xml::events::Event;
+    let Ok(text) = std::str::from_utf8(bytes) else { return Ok(Vec::new()) };
+    if depth >= MAX_MODEL_FILE_DEPTH {
+        return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
+    }
+    // (tag, file) of every element with a file, and the compiler's folders.
+    let mut refs: Vec<(String, String)> = Vec::new();
+    let mut dirs: [Option<String>; 3] = [None, None, None];
+    let mut reader = quick_xml::Reader::from_str(text);
+    loop {
+        let tag = match reader.read_event() {
+            Ok(Event::Start(t) | Event::Empty(t)) => t,
+            Ok(Event::Eof) | Err(_) => break,
+            Ok(_) => continue,
+        };
+        let name = tag.name().as_ref().to_string();
+        for a in tag.attributes().flatten() {
+            let Ok(v) = a.normalized_value(quick_xml::XmlVersion::default()) else { continue };
+            match (name.as_str(), a.key.as_ref()) {
+                ("compiler", "meshdir") => dirs[0] = Some(v.into_owned()),
+                ("compiler", "texturedir") => dirs[1] = Some(v.into_owned()),
+                ("compiler", "assetdir") => dirs[2] = Some(v.into_owned()),
+                (_, "file") if !v.is_empty() => refs.push((name.clone(), v.into_owned())),
+                _ => {}
+            }
+        }
+    }
+    let [meshdir, texturedir, assetdir] = dirs;
+    let mut out = Vec::new();
+    for (tag, file) in refs {
+        let dir = match tag.as_str() {
+            "mesh" | "hfield" | "skin" | "flexcomp" => meshdir.as_deref().or(assetdir.as_deref()),
+            "texture" => texturedir.as_deref().or(assetdir.as_deref()),
+            _ => None,
+        };
+        let joined = crate::files::normalize(&crate::files::join(dir, &file));
+        let (full, contents) = ctx.read(dir, &file)?;
+        let asset = FileAsset::from_path_and_contents(&joined, contents);
+        if matches!(tag.as_str(), "model" | "include") {
+            // Its files, relative to it: relative to this one, under its folder.
+            let folder = joined.rsplit_once('/').map_or("", |(d, _)| d);
+            for (path, f) in
+                model_file_companions(&ctx.for_included(&full), asset.contents(), depth + 1)?
+            {
+                let path = crate::files::normalize(&crate::files::join(Some(folder), &path));
+                out.push((SmolStr::from(path), f));
+            }
+        }
+        out.push((SmolStr::from(joined), asset));
+    }
+    Ok(out)
 }
 
 /// The text of an input, for error messages (cut to 200 characters).

@@ -20,6 +20,9 @@ struct FileData {
     extension: SmolStr,
     contents: Arc<[u8]>,
     sha1: String,
+    /// For a model file (asset `<model file>`): the files it names, by their path
+    /// relative to it.
+    companions: Arc<[(SmolStr, FileAsset)]>,
 }
 
 impl FileAsset {
@@ -36,6 +39,7 @@ impl FileAsset {
             extension: extension.into(),
             contents,
             sha1,
+            companions: Arc::from([]),
         }))
     }
 
@@ -60,6 +64,21 @@ impl FileAsset {
             }
             _ => asset,
         }
+    }
+
+    /// For a model file (an asset `<model file="child.xml">`), the files the model
+    /// names (its meshes, textures, ..., and the model files it names in turn), by
+    /// their paths relative to it, as MuJoCo resolves them (with its compiler folder
+    /// settings). Export writes them at those paths beside it. Empty for other files.
+    ///
+    /// Time: O(1).
+    pub fn companions(&self) -> &[(SmolStr, FileAsset)] {
+        &self.0.companions
+    }
+
+    /// The same file with these companions.
+    pub(crate) fn with_companions(&self, companions: Vec<(SmolStr, FileAsset)>) -> FileAsset {
+        FileAsset(Arc::new(FileData { companions: companions.into(), ..FileData::clone(&self.0) }))
     }
 
     /// The file stem (`"cube"`).

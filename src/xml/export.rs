@@ -82,7 +82,11 @@ impl Model {
                 }
                 for (_, value) in node.attrs() {
                     if let Value::File(file) = value {
-                        add_file(&mut out, file, options.filename_with_hash)?;
+                        add_file(&mut out, file.vfs_name(options.filename_with_hash), file)?;
+                        // A model file's own files, at their paths relative to it.
+                        for (path, companion) in file.companions() {
+                            add_file(&mut out, path.to_string(), companion)?;
+                        }
                     }
                 }
             }
@@ -145,10 +149,13 @@ impl Model {
         }
         let files = assets
             .iter()
-            .map(|(name, file)| Ok((plain_file(dir, name)?, file.contents())))
+            .map(|(name, file)| Ok((relative_file(dir, name)?, file.contents())))
             .collect::<Result<Vec<_>, ExportError>>()?;
         std::fs::create_dir_all(dir).map_err(|e| io_error(dir, &e))?;
         for (path, contents) in files {
+            if let Some(folder) = path.parent().filter(|f| *f != dir) {
+                std::fs::create_dir_all(folder).map_err(|e| io_error(folder, &e))?;
+            }
             write_by_rename(dir, &path, contents)?;
         }
         write_by_rename(dir, &xml_path, xml.as_bytes())?;
@@ -159,11 +166,11 @@ impl Model {
 /// Adds `file` under its written name; the same contents under one name are one file.
 fn add_file(
     out: &mut BTreeMap<String, FileAsset>,
+    name: String,
     file: &FileAsset,
-    with_hash: bool,
 ) -> Result<(), WriteError> {
     use std::collections::btree_map::Entry;
-    match out.entry(file.vfs_name(with_hash)) {
+    match out.entry(name) {
         Entry::Vacant(e) => {
             e.insert(file.clone());
         }
@@ -189,6 +196,22 @@ fn plain_file(dir: &Path, name: &str) -> Result<PathBuf, ExportError> {
             kind: io::ErrorKind::InvalidInput,
             reason: "not a plain file name".to_string(),
         }),
+    }
+}
+
+/// `dir/name` for a file name or a relative path inside `dir` (a model file's own
+/// files keep their folders: `assets/arm.stl`); no `..`, no absolute path.
+fn relative_file(dir: &Path, name: &str) -> Result<PathBuf, ExportError> {
+    let inside =
+        !name.is_empty() && Path::new(name).components().all(|c| matches!(c, Component::Normal(_)));
+    if inside {
+        Ok(dir.join(name))
+    } else {
+        Err(ExportError::Io {
+            path: dir.join(name),
+            kind: io::ErrorKind::InvalidInput,
+            reason: "not a file name or a path inside the folder".to_string(),
+        })
     }
 }
 
