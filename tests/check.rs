@@ -40,6 +40,10 @@ fn a_clean_composition_has_no_problems() -> Result<(), EditError> {
     let site = scene.add_mut(&scene.worldbody(), element!("site", name = "s"))?;
     let a = scene.attach_mut(&site, &robot("robot"))?;
     scene.add_mut(a.frame(), element!("joint", name = "slide", type = "slide"))?;
+    // The robot's torso has a joint of its own, so its mass does not count for the
+    // moving frame (MuJoCo refuses a frame without it): the frame gets an inertial.
+    let inertial = element!("inertial", pos = [0, 0, 0], mass = 0.1, diaginertia = [1e-3; 3]);
+    scene.add_mut(a.frame(), inertial)?;
     assert_eq!(scene.check(), vec![]);
     Ok(())
 }

@@ -54,8 +54,9 @@ pub enum ProblemKind {
         attribute: &'static str,
     },
     /// A body (or attachment frame) that moves (it has joints or a freejoint) but has
-    /// no mass: no inertial, no geom, and no body below it with mass. MuJoCo refuses
-    /// it ("mass and inertia of moving bodies must be larger than mjMINVAL").
+    /// no mass: no inertial, no geom, and no body fixed to it (below it with no joint
+    /// in between) with mass. MuJoCo refuses it ("mass and inertia of moving bodies
+    /// must be larger than mjMINVAL").
     MasslessMovingBody,
     /// A keyframe whose array does not fit the composed model.
     KeyLength {
@@ -85,7 +86,7 @@ impl fmt::Display for Problem {
             }
             ProblemKind::MasslessMovingBody => write!(
                 f,
-                "{}: moves (has joints) but has no mass, and no body below it has any; \
+                "{}: moves (has joints) but has no mass, and no body fixed to it has any; \
                  give it an inertial or a geom",
                 self.path
             ),
@@ -151,7 +152,7 @@ impl Model {
     /// references that name nothing in their model (the `joint="hinj"` typo, with the
     /// nearest names), references whose element was removed, moving bodies
     /// and attachment frames without mass (no inertial, no geom, nothing massive
-    /// below), and keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
+    /// fixed below), and keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
     /// composed model. Empty when none is found; this is not a full MuJoCo compile
     /// (classes are followed for joint types only; `act`, `mpos` and `mquat` of keys
     /// are not checked).
@@ -335,8 +336,9 @@ impl Model {
                             .unwrap_or_else(|| "body".into());
                         problems.push(Problem { loc, path, kind: ProblemKind::MasslessMovingBody });
                     }
-                    // Mass below counts for the parent.
-                    if massive {
+                    // Mass below counts for the parent, unless a joint is in between
+                    // (MuJoCo counts the bodies welded to a moving body).
+                    if massive && !(is_body && moves) {
                         if let Some(top) = open.last_mut() {
                             top.3 = true;
                         }

@@ -44,6 +44,16 @@ pub(crate) fn check_frame_child(
             return Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() });
         }
     }
+    // An unnamed frame joint is written with the frame's own name (`robot/`), so a
+    // frame takes one at most.
+    if let (Some(ns), None) = (child.kind().namespace(), child.identifier()) {
+        if unnamed_joint(frame, None) {
+            return Err(ErrorKind::DuplicateIdentifier {
+                namespace: ns,
+                name: format!("{scope}/").into(),
+            });
+        }
+    }
     match tag {
         "joint" => Ok(()),
         "inertial" | "freejoint" => {
@@ -57,4 +67,11 @@ pub(crate) fn check_frame_child(
         }
         _ => Err(ErrorKind::InvalidChild { parent: "body", tag: tag.into(), suggestion: None }),
     }
+}
+
+/// Whether the frame has an unnamed joint or freejoint other than `except`.
+pub(crate) fn unnamed_joint(frame: &Node, except: Option<super::tree::ElementId>) -> bool {
+    frame.children().iter().any(|c| {
+        c.kind().namespace().is_some() && c.identifier().is_none() && Some(c.id()) != except
+    })
 }
