@@ -46,16 +46,14 @@ pub(crate) fn check_frame_child(
     }
     // An unnamed frame joint is written with the frame's own name (`robot/`), so a
     // frame takes one at most.
-    if let (Some(ns), None) = (child.kind().namespace(), child.identifier()) {
-        if unnamed_joint(frame, None) {
-            return Err(ErrorKind::DuplicateIdentifier {
-                namespace: ns,
-                name: format!("{scope}/").into(),
-            });
+    let one_unnamed = || match (child.kind().namespace(), child.identifier()) {
+        (Some(ns), None) if unnamed_joint(frame, None) => {
+            Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: format!("{scope}/").into() })
         }
-    }
+        _ => Ok(()),
+    };
     match tag {
-        "joint" => Ok(()),
+        "joint" => one_unnamed(),
         "inertial" | "freejoint" => {
             if tag == "freejoint" && parent.is_none_or(|p| p.kind().tag() != "worldbody") {
                 return Err(ErrorKind::FreejointNotTopLevel(scope.into()));
@@ -63,7 +61,7 @@ pub(crate) fn check_frame_child(
             if frame.children().iter().any(|c| c.kind() == child.kind()) {
                 return Err(ErrorKind::DuplicateChild(child.kind().tag()));
             }
-            Ok(())
+            one_unnamed()
         }
         _ => Err(ErrorKind::InvalidChild { parent: "body", tag: tag.into(), suggestion: None }),
     }
