@@ -111,6 +111,11 @@ pub const MAX_DEPTH: u32 = 3;
 /// large or deeply nested, builds in bounded time.
 pub const MAX_STEPS: usize = 512;
 
+/// How many elements a composed model built by recipes may have: an attach that
+/// would make it larger is skipped (attaching a model again and again could
+/// otherwise double the output at every step).
+pub const MAX_ELEMENTS: usize = 10_000;
+
 /// A choice among what exists when a step runs: `Pick(i)` takes item `i mod len`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
@@ -1528,7 +1533,8 @@ impl Builder {
                 next = next.add(&frame_loc, inertial()).ok()?.0;
             }
         }
-        valid(&next, allowed).then_some(next)
+        let small = next.walk().filter(|e| matches!(e, Event::Enter(_))).count() <= MAX_ELEMENTS;
+        (small && valid(&next, allowed)).then_some(next)
     }
 
     /// Carries out one edit; `None` when it does not apply or would leave more than

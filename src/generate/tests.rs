@@ -201,9 +201,10 @@ fn generators_reach_every_kind_of_step() {
                 frame_joints += usize::from(kids.contains(&"joint"));
             }
         }
+        // One value attached at two places (at any level).
         let mut seen = Vec::new();
-        for s in m.scopes() {
-            let a = m.attached(s).unwrap();
+        for s in scope_paths(m) {
+            let a = m.attached(&s).unwrap();
             if seen.iter().any(|b: &&Model| b.ptr_eq(a)) {
                 shared += 1;
             }
