@@ -67,6 +67,8 @@
 mod compose;
 mod error;
 mod files;
+#[cfg(any(test, feature = "proptest", feature = "arbitrary"))]
+pub mod generate;
 mod id;
 mod model;
 mod schema;

@@ -187,3 +187,75 @@ fn read_xml_nested_slash_class_inside_the_root_wrapper_is_a_class() {
     );
     assert_eq!(write(&read(&w1)), w1);
 }
+
+// ---------------------------------------------------------------------------------
+// Finding 5 (the generators of `mjcf::generate`, issue 14): two unnamed joints on one
+// attachment frame.
+
+/// A scene recipe whose frame got two unnamed joints (`FrameRecipe { joints: [hinge,
+/// slide] }`, both without a name).
+///
+/// An unnamed joint of an attachment frame is written with the frame's own name
+/// (`robot/`), so two of them (or an unnamed joint and an unnamed freejoint) were
+/// written as two joints named `robot/`: MuJoCo refuses the file ("repeated name"),
+/// and so does this crate's reader. A frame now takes one unnamed joint at most:
+/// adding a second one, or clearing the name of a frame joint when the frame has an
+/// unnamed one, is refused as a duplicate identifier.
+#[test]
+fn generated_frame_takes_one_unnamed_joint() {
+    let arena = Model::new("arena");
+    let (scene, a) = arena.attach_to_world(&Model::new("robot")).unwrap();
+    let (scene, _) = scene.add(a.frame(), Element::new("joint").attr("type", "slide")).unwrap();
+    for second in [Element::new("joint"), Element::new("freejoint")] {
+        let e = scene.add(a.frame(), second).unwrap_err();
+        assert!(
+            matches!(e.kind(), ErrorKind::DuplicateIdentifier { name, .. } if name == "robot/"),
+            "{e}"
+        );
+    }
+    // A named one is fine, and cannot lose its name while the unnamed one is there.
+    let (scene, j) = scene.add(a.frame(), Element::new("joint").attr("name", "j")).unwrap();
+    let e = scene.clear_attr(&j, "name").unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::DuplicateIdentifier { .. }), "{e}");
+    let w1 = write(&scene);
+    assert_eq!(w1.matches(r#"<joint name="robot/""#).count(), 1, "{w1}");
+    assert_eq!(write(&read(&w1)), write(&read(&write(&read(&w1)))));
+    // Without the unnamed one, the named one may lose its name.
+    let first = scene.get(a.frame()).unwrap().children().next().unwrap().loc();
+    let scene = scene.remove(&first).unwrap();
+    assert!(scene.clear_attr(&j, "name").is_ok());
+}
+
+// ---------------------------------------------------------------------------------
+// Finding 6 (the generators of `mjcf::generate` with MuJoCo, issue 14): a moving body
+// whose only mass is below another joint.
+
+/// An edit recipe removed a frame's inertial (and, in another case, a body's only
+/// geom); the mass left below them was in bodies with joints of their own.
+///
+/// `check()` counted any mass below a moving body, but MuJoCo counts only the bodies
+/// fixed to it (no joint in between): it refuses such a body ("mass and inertia of
+/// moving bodies must be larger than mjMINVAL") while `check()` found nothing. Mass
+/// below a joint no longer counts for the bodies above it.
+#[test]
+fn generated_mass_below_another_joint_does_not_count() {
+    let m = Model::new("m");
+    let (m, b) = m.add(&m.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+    let (m, _) = m.add(&b, Element::new("joint").attr("name", "hinge")).unwrap();
+    let (m, c) = m.add(&b, Element::new("body").attr("name", "c")).unwrap();
+    let (m, _) = m.add(&c, Element::new("geom").attr("size", [0.1])).unwrap();
+    // A child fixed to `b` carries its mass: MuJoCo compiles this.
+    assert!(m.check().is_empty(), "{:?}", m.check());
+    // Once the child has a joint of its own, `b` has no mass (MuJoCo refuses it).
+    let (m, _) =
+        m.add(&c, Element::new("joint").attr("name", "slide").attr("type", "slide")).unwrap();
+    let problems = m.check();
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert_eq!(problems[0].path, "b");
+    assert_eq!(problems[0].kind, mjcf::ProblemKind::MasslessMovingBody);
+    // A body two levels below, fixed through a body without mass, still counts.
+    let (m, g) = m.add(&b, Element::new("body").attr("name", "d")).unwrap();
+    let (m, e) = m.add(&g, Element::new("body").attr("name", "e")).unwrap();
+    let (m, _) = m.add(&e, Element::new("geom").attr("size", [0.1])).unwrap();
+    assert!(m.check().is_empty(), "{:?}", m.check());
+}

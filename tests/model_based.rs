@@ -477,6 +477,12 @@ impl Naive {
                     return Err(format!("frame joint {n} exists on this frame"));
                 }
             }
+            // An unnamed frame joint is written with its frame's name: one per frame.
+            if node.name.is_none()
+                && parent_node.children.iter().any(|c| is_joint(c.tag) && c.name.is_none())
+            {
+                return Err("the frame has an unnamed joint".into());
+            }
             // The frame's own joints come before the attached model's content.
             let at = parent_node.children.iter().take_while(|c| is_joint(c.tag)).count();
             self.node_mut(p).children.insert(at, node);
@@ -523,6 +529,14 @@ impl Naive {
                         && frame.children.iter().any(|c| is_joint(c.tag) && c.name == new)
                     {
                         return Err(format!("frame joint {new:?} exists on this frame"));
+                    }
+                    // An unnamed frame joint is written with its frame's name: one per
+                    // frame.
+                    if new.is_none()
+                        && node.name.is_some()
+                        && frame.children.iter().any(|c| is_joint(c.tag) && c.name.is_none())
+                    {
+                        return Err("the frame has an unnamed joint".into());
                     }
                     new
                 } else {

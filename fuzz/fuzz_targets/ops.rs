@@ -1,18 +1,24 @@
 //! Structured fuzzing of the editing and composition API: a sequence of operations
 //! (add, set, remove, attach, detach, rename_scope, include_copy, ...) applied to a
-//! model, keeping every version produced.
+//! model, keeping every version produced. The model starts as a small arena, or as a
+//! model built from a generated recipe (`mjcf::generate::ModelRecipe`, feature
+//! `arbitrary`); operations include hostile ones (names with `/`, NaN, unknown
+//! keywords) and the generators' own edits (`mjcf::generate::Edit`) and recipes.
 //!
-//! After every step:
-//! (a) every earlier version still writes exactly what it wrote when it was made
-//!     (values are persistent);
-//! (b) the current version's output, if it writes, reads back (`Model::from_xml_str`),
-//!     and write∘read reaches its fixed point (`common::check_fixed_point`). A model
-//!     with attachments is the exception: its output holds scoped names
-//!     (`robot/torso`), which the reader refuses by design, so reading it must fail
-//!     with exactly `ValueError::SlashInIdentifier` at a position;
+//! After every step, at a cost of O(size of the model), not O(history × size):
+//! (a) earlier versions still write what they wrote when they were made (values are
+//!     persistent): the version the step started from and one earlier version picked
+//!     at random are written again and compared with the hash of their first output;
+//! (b) the new version's output, if it writes, reads back (`Model::from_xml_str`;
+//!     a composed model's scoped names such as `robot/torso` read as literal names)
+//!     and write∘read reaches its fixed point (`common::check_fixed_point` for a model
+//!     without attachments; for a composed one, the text written from the read-back
+//!     is written again unchanged);
 //! (c) identifiers in the output are unique per namespace;
 //! (d) a failed operation changed nothing: the model it was applied to writes as
-//!     before.
+//!     before;
+//! (e) a model built from a recipe, and what the generators' edits make of a model
+//!     without problems, has no `Model::check` problems.
 //! Also: writing never fails with `WriteError::Conflict` (edits refuse conflicting
 //! settings), and detaching a fresh attachment gives back the model before the
 //! attach.
@@ -23,9 +29,13 @@ mod common;
 #[path = "../../tests/support/robot.rs"]
 mod shared_robot;
 
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use mjcf::{Attrs, EditError, Element, ErrorKind, Loc, Model, Namespace, ReadOptions, ValueError, WriteError};
+use mjcf::generate::{Edit, EditRecipe, ModelRecipe, Step};
+use mjcf::{Attrs, EditError, Element, Loc, Model, Namespace, ReadOptions, WriteError};
 
 /// Steps per input.
 const MAX_OPS: usize = 32;
@@ -285,6 +295,48 @@ enum Op {
         pretty: bool,
         precision: Option<u8>,
     },
+    /// One edit of the generators (`mjcf::generate::Edit`).
+    Generated(Edit),
+    /// Attach a model built from a recipe at a site chosen by index, or at the world.
+    AttachRecipe {
+        recipe: ModelRecipe,
+        at: Option<u16>,
+    },
+}
+
+/// The input: where to start (a fixed arena, or a model built from a recipe) and the
+/// operations.
+#[derive(Arbitrary, Debug)]
+struct Input {
+    base: Option<ModelRecipe>,
+    ops: Vec<Op>,
+}
+
+/// Steps kept of a recipe, at every level (so one input builds in bounded time).
+const RECIPE_STEPS: usize = 12;
+
+/// The recipe with at most `RECIPE_STEPS` steps at each level, attached recipes too.
+fn clip(r: &ModelRecipe) -> ModelRecipe {
+    let mut r = r.clone();
+    r.steps.truncate(RECIPE_STEPS);
+    for s in &mut r.steps {
+        if let Step::Attach { child, .. } = s {
+            **child = clip(child);
+        }
+    }
+    r
+}
+
+fn clip_edit(e: &Edit) -> Edit {
+    match e {
+        Edit::Add(Step::Attach { at, child, frame }) => {
+            Edit::Add(Step::Attach { at: *at, child: Box::new(clip(child)), frame: frame.clone() })
+        }
+        Edit::IncludeCopy { source, override_attributes } => {
+            Edit::IncludeCopy { source: clip(source), override_attributes: *override_attributes }
+        }
+        e => e.clone(),
+    }
 }
 
 /// The shared test robot (`tests/support/robot.rs`) with a touch sensor on its site.
@@ -358,7 +410,7 @@ fn scope_paths(m: &Model) -> Vec<String> {
     while let Some((prefix, model)) = stack.pop() {
         for s in model.scopes() {
             let path = format!("{prefix}{s}");
-            if let Some(inner) = model.attached(s) {
+            if let Ok(inner) = model.attached(s) {
                 stack.push((format!("{path}/"), inner));
             }
             out.push(path);
@@ -373,9 +425,9 @@ const SECTIONS: &[&str] = &["worldbody", "actuator", "sensor", "asset", "default
 fn sections(m: &Model) -> Vec<Loc> {
     let mut out: Vec<Loc> = SECTIONS.iter().filter_map(|s| m.section(s)).collect();
     for scope in scope_paths(m) {
-        let Some(inner) = m.attached(&scope) else { continue };
+        let Ok(inner) = m.attached(&scope) else { continue };
         for s in SECTIONS {
-            if let Some(l) = inner.section(s).and_then(|l| m.locate_in(&scope, &l)) {
+            if let Some(l) = inner.section(s).and_then(|l| m.locate_in(&scope, &l).ok()) {
                 out.push(l);
             }
         }
@@ -416,9 +468,12 @@ fn pick<T: Clone>(items: &[T], i: u16) -> Option<T> {
     if items.is_empty() { None } else { Some(items[i as usize % items.len()].clone()) }
 }
 
+/// A version, and the hash of what it wrote when it was made.
 struct Version {
     model: Model,
-    xml: Result<String, WriteError>,
+    hash: Result<u64, String>,
+    /// The size of its output, for `AttachVersion`.
+    len: usize,
 }
 
 fn written(m: &Model) -> Result<String, WriteError> {
@@ -429,19 +484,48 @@ fn written(m: &Model) -> Result<String, WriteError> {
     xml
 }
 
-/// The models `Attach` and `IncludeCopy` pick from, built once, with their outputs.
+/// The hash of an output (or its error's text).
+fn hash_of(xml: &Result<String, WriteError>) -> Result<u64, String> {
+    match xml {
+        Ok(x) => {
+            let mut h = DefaultHasher::new();
+            x.hash(&mut h);
+            Ok(h.finish())
+        }
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+impl Version {
+    fn new(model: Model, xml: &Result<String, WriteError>) -> Version {
+        Version { model, hash: hash_of(xml), len: xml.as_ref().map_or(0, String::len) }
+    }
+
+    /// Writes the version again: it must write what it wrote when it was made.
+    fn check(&self, what: &str) {
+        assert!(hash_of(&written(&self.model)) == self.hash, "{what} changed: it no longer writes what it wrote");
+    }
+}
+
+/// The models `Attach` and `IncludeCopy` pick from, built once, with their outputs,
+/// and the arena most inputs start from, with its output.
 struct Fixtures {
     robots: Vec<Model>,
     sources: Vec<Model>,
     written: Vec<Result<String, WriteError>>,
+    arena: Model,
+    arena_xml: Result<String, WriteError>,
 }
 
 fn fixtures() -> &'static Fixtures {
     static FIXTURES: std::sync::OnceLock<Fixtures> = std::sync::OnceLock::new();
     FIXTURES.get_or_init(|| {
         let (robots, sources) = (robots(), sources());
-        let written = robots.iter().chain(&sources).map(Model::to_xml_string).collect();
-        Fixtures { robots, sources, written }
+        let written: Vec<_> = robots.iter().chain(&sources).map(Model::to_xml_string).collect();
+        let arena = Model::new("arena");
+        let arena = arena.add(&arena.worldbody(), Element::new("site").attr("name", "spawn")).unwrap().0;
+        let arena_xml = arena.to_xml_string();
+        Fixtures { robots, sources, written, arena, arena_xml }
     })
 }
 
@@ -495,7 +579,7 @@ impl Run {
             }
             Op::AttachVersion { version, at } => {
                 let Some(v) = self.versions.get(*version as usize % self.versions.len()) else { return Ok(None) };
-                if v.xml.as_ref().map_or(0, String::len) > MAX_XML / 4 {
+                if v.len > MAX_XML / 4 {
                     return Ok(None);
                 }
                 let child = v.model.clone();
@@ -522,6 +606,22 @@ impl Run {
                 m.edit_attached(&s, |inner| inner.add(&inner.worldbody(), el).map(|(m, _)| m))?
             }
             Op::WithName { name } => m.with_name(&name.get()),
+            Op::Generated(edit) => {
+                let clean = m.check().is_empty();
+                let versions = EditRecipe { edits: vec![clip_edit(edit)] }.apply(m);
+                let Some(next) = versions.get(1) else { return Ok(None) };
+                // (e) The generators keep a model without problems so.
+                if clean {
+                    let problems: Vec<String> = next.check().iter().map(ToString::to_string).collect();
+                    assert!(problems.is_empty(), "the generated {edit:?} made problems: {problems:?}");
+                }
+                next.clone()
+            }
+            Op::AttachRecipe { recipe, at } => {
+                let child = clip(recipe).build();
+                assert!(child.check().is_empty(), "a model built from a recipe has problems: {:?}", child.check());
+                self.attach(m, &at_site(at), &child)?
+            }
             Op::Revert { .. } | Op::Write { .. } => return Ok(None),
         }))
     }
@@ -529,15 +629,20 @@ impl Run {
     /// Attaches, and checks that detaching the new scope gives back `m` exactly.
     fn attach(&self, m: &Model, at: &Loc, child: &Model) -> Result<Model, EditError> {
         let (next, frame) = m.attach(at, child)?;
-        let scope = next.scope_of_frame(&frame).expect("the new frame has a scope");
+        let scope = next.scope_of_frame(frame.frame()).expect("the new frame has a scope");
         let back = next.detach(&scope).unwrap_or_else(|e| panic!("cannot detach the new scope {scope:?}: {e}"));
         assert!(back == *m, "detach({scope:?}) after attach does not give back the model");
         Ok(next)
     }
 
-    fn check_history(&self) {
-        for (i, v) in self.versions.iter().enumerate() {
-            assert!(v.model.to_xml_string() == v.xml, "version {i} changed: it no longer writes what it wrote");
+    /// (a) at O(size): one earlier version, in turn the version the step started
+    /// from (`from`, the one the step could have touched) and one picked at random by
+    /// `step` (versions are immutable values: a change anywhere shows in the sample
+    /// over a run).
+    fn check_history(&self, from: usize, step: usize) {
+        let i = if step % 2 == 0 { from } else { step.wrapping_mul(0x9E37_79B9) % self.versions.len() };
+        if let Some(v) = self.versions.get(i) {
+            v.check(&format!("version {i}"));
         }
     }
 
@@ -545,39 +650,47 @@ impl Run {
         let Ok(xml) = xml else { return };
         common::check_unique_identifiers(xml);
         if m.scopes().next().is_some() {
-            // A composed model's output holds scoped names (`robot/torso`), which the
-            // reader refuses by design ('/' is reserved for scopes): it must fail with
-            // exactly that, at a position.
-            match Model::from_xml_str(xml) {
-                Ok(_) => {}
-                Err(e) => assert!(
-                    matches!(e.kind(), ErrorKind::InvalidValue { error: ValueError::SlashInIdentifier, .. })
-                        && e.pos().is_some(),
-                    "the composed output fails to read for another reason than its scoped names: {e}\n{xml}"
-                ),
+            // A composed model's output holds scoped names (`robot/torso`), which read
+            // back as literal names: a flat model that writes itself again unchanged.
+            let back = common::reread(&self.options, xml, "composed");
+            let w2 = back.to_xml_string().unwrap_or_else(|e| panic!("the read-back does not write: {e}\n{xml}"));
+            if w2 == *xml {
+                return;
             }
+            let w3 = common::reread(&self.options, &w2, "composed, round 2").to_xml_string().unwrap();
+            assert!(w3 == w2, "no fixed point after reading a composed output\n--- w1\n{xml}\n--- w2\n{w2}\n--- w3\n{w3}");
             return;
         }
-        let _ = Model::from_xml_str(xml).unwrap_or_else(|e| panic!("the output does not read back: {e}\n{xml}"));
         common::check_fixed_point(&self.options, xml);
     }
 }
 
-fuzz_target!(|ops: Vec<Op>| {
-    let base = Model::new("arena");
-    let (base, _) = base.add(&base.worldbody(), Element::new("site").attr("name", "spawn")).unwrap();
-    let xml = written(&base);
+fuzz_target!(|input: Input| {
     let f = fixtures();
+    let (base, xml) = match &input.base {
+        None => (f.arena.clone(), f.arena_xml.clone()),
+        Some(recipe) => {
+            let m = clip(recipe).build();
+            assert!(m.check().is_empty(), "a model built from a recipe has problems: {:?}", m.check());
+            let xml = written(&m);
+            (m, xml)
+        }
+    };
     let mut run = Run { robots: &f.robots, sources: &f.sources, versions: Vec::new(), options: common::confined() };
-    run.versions.push(Version { model: base.clone(), xml });
+    if input.base.is_some() {
+        run.check_current(&base, &xml);
+    }
+    run.versions.push(Version::new(base.clone(), &xml));
     let mut current = base;
-    let mut current_xml = run.versions[0].xml.clone();
-    for op in ops.iter().take(MAX_OPS) {
+    let mut current_index = 0;
+    let mut current_hash = run.versions[0].hash.clone();
+    for (step, op) in input.ops.iter().take(MAX_OPS).enumerate() {
         match op {
             Op::Revert { version } => {
-                let v = &run.versions[*version as usize % run.versions.len()];
+                current_index = *version as usize % run.versions.len();
+                let v = &run.versions[current_index];
                 current = v.model.clone();
-                current_xml = v.xml.clone();
+                current_hash = v.hash.clone();
                 continue;
             }
             Op::Write { pretty, precision } => {
@@ -600,21 +713,28 @@ fuzz_target!(|ops: Vec<Op>| {
                     return;
                 }
                 run.check_current(&next, &xml);
-                run.versions.push(Version { model: next.clone(), xml: xml.clone() });
+                run.check_history(current_index, step);
+                run.versions.push(Version::new(next.clone(), &xml));
                 current = next;
-                current_xml = xml;
+                current_index = run.versions.len() - 1;
+                current_hash = run.versions[current_index].hash.clone();
             }
             Err(e) => {
                 let _ = e.to_string();
                 // (d) The failed edit left the value as it was.
                 assert!(snapshot == current, "a failed {op:?} changed the model");
-                assert!(written(&current) == current_xml, "a failed {op:?} changed the model's output: {e}");
+                assert!(hash_of(&written(&current)) == current_hash, "a failed {op:?} changed the model's output: {e}");
             }
         }
-        run.check_history();
     }
-    // The robots and sources were never changed by being attached or copied.
-    for (m, xml) in f.robots.iter().chain(&f.sources).zip(&f.written) {
-        assert!(written(m) == *xml, "an attached or copied model changed");
+    // The robots and sources were never changed by being attached or copied: one of
+    // them every 8 inputs, in turn (they are immutable values, so over a run every one
+    // is checked after inputs of every kind).
+    static TURN: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let turn = TURN.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    if turn % 8 == 0 {
+        let i = turn / 8 % f.written.len();
+        let m = f.robots.iter().chain(&f.sources).nth(i).expect("one per output");
+        assert!(written(m) == f.written[i], "an attached or copied model changed");
     }
 });

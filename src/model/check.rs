@@ -86,7 +86,7 @@ impl fmt::Display for Problem {
             }
             ProblemKind::MasslessMovingBody => write!(
                 f,
-                "{}: moves (has joints) but has no mass, and no body below it has any; \
+                "{}: moves (has joints) but has no mass, and no body fixed to it has any; \
                  give it an inertial or a geom",
                 self.path
             ),
