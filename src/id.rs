@@ -24,6 +24,13 @@ impl ElementId {
     }
 }
 
+impl ElementId {
+    /// The id as a number (unique, never 0).
+    pub(crate) fn get(self) -> u64 {
+        self.0.get()
+    }
+}
+
 impl fmt::Debug for ElementId {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "#{}", self.0)

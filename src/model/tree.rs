@@ -25,6 +25,12 @@ use crate::value::Value;
 /// One attribute slot: the schema index of the attribute and its value.
 pub(crate) type Attr = (u16, Value);
 
+impl crate::seq::Keyed for Node {
+    fn key(&self) -> u64 {
+        self.id().get()
+    }
+}
+
 /// An immutable element node.
 #[derive(Clone)]
 pub(crate) struct Node(Arc<NodeData>);
@@ -136,19 +142,11 @@ impl Node {
         Arc::ptr_eq(&self.0, &other.0)
     }
 
-    /// The position of the child `id`, looked for first at `hint`, then after it
-    /// (where inserts before it move it), then before it. O(log width) when the hint
-    /// is right, O(distance) when it is behind, O(width) when it is ahead (after
-    /// removals before the child).
-    pub(crate) fn child_position_near(&self, id: ElementId, hint: usize) -> Option<usize> {
-        let children = &self.0.children;
-        let hint = hint.min(children.len());
-        if children.get(hint).is_some_and(|c| c.id() == id) {
-            return Some(hint);
-        }
-        let after =
-            children.range(hint, children.len()).position(|c| c.id() == id).map(|p| p + hint);
-        after.or_else(|| children.range(0, hint).rposition(|c| c.id() == id))
+    /// The position of the child `id` whose slot was `ord` (see `crate::seq`):
+    /// O(log width) while the slot holds; else looked for by id around the position
+    /// `hint`, O(distance · log width).
+    pub(crate) fn child_position(&self, id: ElementId, ord: u64, hint: usize) -> Option<usize> {
+        self.0.children.position_of(id.get(), ord, hint)
     }
 
     /// The first child of this kind.
