@@ -10,12 +10,16 @@
 
 use std::sync::{Arc, OnceLock};
 
-use imbl::{HashMap, OrdMap};
+use imbl::{GenericHashMap, HashMap, OrdMap};
 use smol_str::SmolStr;
 
 use super::tree::{ElementId, Node};
+use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace};
 use crate::seq::fresh_ord;
+
+/// A persistent map keyed by element ids, hashed cheaply (ids are not user input).
+pub(crate) type IdMap<V> = GenericHashMap<ElementId, V, IdHash, imbl::shared_ptr::DefaultSharedPtr>;
 
 /// What the index knows about one element.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,7 +39,7 @@ pub(crate) struct Entry {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
-    pub(crate) elems: HashMap<ElementId, Entry>,
+    pub(crate) elems: IdMap<Entry>,
     /// The model's own attachments: scope names and frames, in attach order.
     pub(crate) scopes: Scopes,
     /// The model's name where it differs from its `model` attribute: `include_copy`
@@ -209,7 +213,7 @@ pub(crate) struct Scopes {
     /// unchanged attachments as far as merged settings go.
     order: OrdMap<u64, (SmolStr, ElementId, MergedCache)>,
     by_name: HashMap<SmolStr, (u64, ElementId)>,
-    by_frame: HashMap<ElementId, u64>,
+    by_frame: IdMap<u64>,
     next: u64,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).

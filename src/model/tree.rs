@@ -31,6 +31,16 @@ impl crate::seq::Keyed for Node {
     }
 }
 
+/// The attributes as stored: no attributes share one allocation (most children of a
+/// default class, and every empty singleton, have none).
+fn shared_attrs(attrs: Vec<Attr>) -> Arc<[Attr]> {
+    if attrs.is_empty() {
+        static EMPTY: std::sync::OnceLock<Arc<[Attr]>> = std::sync::OnceLock::new();
+        return EMPTY.get_or_init(|| Arc::from(Vec::new())).clone();
+    }
+    attrs.into()
+}
+
 /// An immutable element node.
 #[derive(Clone)]
 pub(crate) struct Node(Arc<NodeData>);
@@ -63,7 +73,7 @@ impl Node {
     ) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
-        Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children, attached: None }))
+        Node(Arc::new(NodeData { id, kind, attrs: shared_attrs(attrs), children, attached: None }))
     }
 
     /// An attachment frame.
@@ -78,7 +88,7 @@ impl Node {
         Node(Arc::new(NodeData {
             id,
             kind,
-            attrs: attrs.into(),
+            attrs: shared_attrs(attrs),
             children: Seq::new(),
             attached: Some(Arc::new(attached)),
         }))
@@ -101,7 +111,7 @@ impl Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         let mut data = NodeData::clone(&self.0);
-        data.attrs = attrs.into();
+        data.attrs = shared_attrs(attrs);
         data.children = children;
         Node(Arc::new(data))
     }
@@ -159,7 +169,7 @@ impl Node {
         let mut data = NodeData::clone(&self.0);
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
-        data.attrs = attrs.into();
+        data.attrs = shared_attrs(attrs);
         Node(Arc::new(data))
     }
 
