@@ -6,6 +6,7 @@
 //!   default (`0.1`), laid out like C's `%g` with 17 digits of room (`1e-05`,
 //!   `10000000000000000`, `1e+17`); with a precision it prints C's `%.{p}g` exactly.
 
+use std::fmt;
 use std::fmt::Write as _;
 
 /// How floats are written.
@@ -129,19 +130,73 @@ fn layout(out: &mut String, neg: bool, digits: &str, exp: i32, room: i32) {
     }
 }
 
+/// Text formatted on the stack (floats' `{:e}` text is at most a few dozen bytes);
+/// longer text goes to the heap.
+struct Buf {
+    bytes: [u8; 64],
+    len: usize,
+    heap: String,
+}
+
+impl Buf {
+    fn new() -> Buf {
+        Buf { bytes: [0; 64], len: 0, heap: String::new() }
+    }
+
+    fn as_str(&self) -> &str {
+        if self.heap.is_empty() {
+            // Only whole `str`s are copied in, so the bytes are UTF-8.
+            std::str::from_utf8(&self.bytes[..self.len]).unwrap_or("")
+        } else {
+            &self.heap
+        }
+    }
+}
+
+impl fmt::Write for Buf {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        if self.heap.is_empty() && self.len + s.len() <= self.bytes.len() {
+            self.bytes[self.len..self.len + s.len()].copy_from_slice(s.as_bytes());
+            self.len += s.len();
+        } else {
+            if self.heap.is_empty() {
+                let head = std::str::from_utf8(&self.bytes[..self.len]).unwrap_or("");
+                self.heap.push_str(head);
+            }
+            self.heap.push_str(s);
+        }
+        Ok(())
+    }
+}
+
+/// Lays out `{:e}` text (`-1.2345e-5`) with room for `room` digits.
+fn layout_sci(out: &mut String, sci: &str, room: i32) {
+    let (neg, int, frac, exp) = split_sci(sci);
+    let mut digits = Buf::new();
+    let _ = fmt::Write::write_str(&mut digits, int);
+    let _ = fmt::Write::write_str(&mut digits, frac);
+    layout(out, neg, digits.as_str(), exp, room);
+}
+
 fn write_shortest(out: &mut String, x: f64) {
-    let s = format!("{x:e}");
-    let (neg, int, frac, exp) = split_sci(&s);
-    let digits = format!("{int}{frac}");
-    layout(out, neg, &digits, exp, 17);
+    // Integers below 2^53 are exact, and their shortest digits are their own (with
+    // trailing zeros, which the layout puts back): the same text, without formatting
+    // a float. (`-0` keeps its sign through the general path.)
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if x.fract() == 0.0 && x.abs() < EXACT && x != 0.0 {
+        let _ = write!(out, "{}", x as i64);
+        return;
+    }
+    let mut s = Buf::new();
+    let _ = write!(s, "{x:e}");
+    layout_sci(out, s.as_str(), 17);
 }
 
 fn write_g(out: &mut String, x: f64, p: u32) {
     let p = p.min(400);
-    let s = format!("{:.*e}", (p - 1) as usize, x);
-    let (neg, int, frac, exp) = split_sci(&s);
-    let digits = format!("{int}{frac}");
-    layout(out, neg, &digits, exp, p as i32);
+    let mut s = Buf::new();
+    let _ = write!(s, "{:.*e}", (p - 1) as usize, x);
+    layout_sci(out, s.as_str(), p as i32);
 }
 
 /// The text of `x` in the given style.
@@ -178,6 +233,52 @@ mod tests {
     }
     fn short(x: f64) -> String {
         float_text(x, FloatStyle::default())
+    }
+
+    /// The text as formatted before the stack buffer and the integer shortcut.
+    fn old_shortest(x: f64) -> String {
+        let s = format!("{x:e}");
+        let (neg, int, frac, exp) = split_sci(&s);
+        let digits = format!("{int}{frac}");
+        let mut out = String::new();
+        layout(&mut out, neg, &digits, exp, 17);
+        out
+    }
+
+    fn old_g(x: f64, p: u32) -> String {
+        let s = format!("{:.*e}", (p - 1) as usize, x);
+        let (neg, int, frac, exp) = split_sci(&s);
+        let digits = format!("{int}{frac}");
+        let mut out = String::new();
+        layout(&mut out, neg, &digits, exp, p as i32);
+        out
+    }
+
+    #[test]
+    fn same_text_as_formatting_through_strings() {
+        let mut xs: Vec<f64> = vec![0.0, -0.0, 1.0, -1.0, 0.5, 1e16, 1e17, 1e-5, 123.456];
+        xs.extend((-2000..2000).map(f64::from));
+        xs.extend((0..64).map(|k| 2f64.powi(k)));
+        xs.extend((0..64).flat_map(|k| [2f64.powi(k) - 1.0, 2f64.powi(k) + 1.0, -(2f64.powi(k))]));
+        xs.extend((-30..30).map(|k| 10f64.powi(k)));
+        // Pseudo-random bit patterns (every exponent), finite ones only.
+        let mut r: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..20_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let x = f64::from_bits(r);
+            if x.is_finite() {
+                xs.push(x);
+                xs.push(x.trunc());
+            }
+        }
+        for x in xs {
+            assert_eq!(short(x), old_shortest(x), "{x:e}");
+            for p in [1, 5, 17] {
+                assert_eq!(g(x, p), old_g(x, p), "{x:e} at {p}");
+            }
+        }
     }
 
     /// The reference's table (dm_control_mjcf.md §6.5), precision 17 and 5.

@@ -220,7 +220,7 @@ fn singleton_emits(node: &Node) -> bool {
     {
         return true;
     }
-    if kind.class_attr().is_some() || kind.identifier().is_some() {
+    if facts(kind).class.is_some() || kind.identifier().is_some() {
         return true;
     }
     node.children()
@@ -553,7 +553,7 @@ impl<'a> Writer<'a> {
             }
             _ => None,
         };
-        let implicit_class = match kind.class_attr() {
+        let implicit_class = match facts(kind).class {
             Some(c) if !has_live(self.insts[inst].model, node, c) && !childclass => Some(c),
             _ => None,
         };
@@ -796,8 +796,27 @@ fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
     model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
 }
 
+/// What the writer asks of every element's kind, looked up by name once per kind.
+struct KindFacts {
+    /// `kind.class_attr()`.
+    class: Option<usize>,
+    /// The index of `childclass`.
+    childclass: Option<usize>,
+}
+
+fn facts(kind: ElementKind) -> &'static KindFacts {
+    static FACTS: std::sync::OnceLock<Vec<KindFacts>> = std::sync::OnceLock::new();
+    const NONE: KindFacts = KindFacts { class: None, childclass: None };
+    let table = FACTS.get_or_init(|| {
+        ElementKind::all()
+            .map(|k| KindFacts { class: k.class_attr(), childclass: k.attr_index("childclass") })
+            .collect()
+    });
+    table.get(kind.0 as usize).unwrap_or(&NONE)
+}
+
 fn sets_childclass(model: &Model, node: &Node) -> bool {
-    node.kind().attr_index("childclass").is_some_and(|i| has_live(model, node, i))
+    facts(node.kind()).childclass.is_some_and(|i| has_live(model, node, i))
 }
 
 /// Whether attribute `i` of `node` is set and will be written: a reference to an
