@@ -171,7 +171,11 @@ impl<T: Clone + Keyed> Seq<T> {
         if start == end {
             return it;
         }
-        if let Some(root) = &self.root {
+        if let Some(Tree::Leaf(leaf)) = &self.root {
+            // One leaf (most elements' children): both ends in it, no path.
+            it.front_items = leaf.items[start..end].iter();
+            it.back_items = leaf.items[start..end].iter();
+        } else if let Some(root) = &self.root {
             let (stack, leaf, j) = path_to(root, start);
             it.front = stack;
             it.front_items = leaf.items[j..].iter();

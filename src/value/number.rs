@@ -72,6 +72,7 @@ pub(crate) fn write_float(out: &mut String, x: f64, style: FloatStyle) {
     }
 }
 
+#[cfg(test)]
 /// Splits Rust's `{:e}` text (`-1.2345e-5`) into sign, digits and decimal exponent.
 fn split_sci(s: &str) -> (bool, &str, &str, i32) {
     let (neg, s) = match s.strip_prefix('-') {
@@ -130,52 +131,66 @@ fn layout(out: &mut String, neg: bool, digits: &str, exp: i32, room: i32) {
     }
 }
 
-/// Text formatted on the stack (floats' `{:e}` text is at most a few dozen bytes);
-/// longer text goes to the heap.
+/// `{:e}` text formatted on the stack (a float's is at most a few dozen bytes; a
+/// longer one, as `%g` with hundreds of digits gives, goes to the heap).
 struct Buf {
     bytes: [u8; 64],
     len: usize,
-    heap: String,
+    heap: Vec<u8>,
 }
 
 impl Buf {
     fn new() -> Buf {
-        Buf { bytes: [0; 64], len: 0, heap: String::new() }
+        Buf { bytes: [0; 64], len: 0, heap: Vec::new() }
     }
 
-    fn as_str(&self) -> &str {
-        if self.heap.is_empty() {
-            // Only whole `str`s are copied in, so the bytes are UTF-8.
-            std::str::from_utf8(&self.bytes[..self.len]).unwrap_or("")
-        } else {
-            &self.heap
-        }
+    fn as_bytes(&self) -> &[u8] {
+        if self.heap.is_empty() { &self.bytes[..self.len] } else { &self.heap }
     }
 }
 
 impl fmt::Write for Buf {
     fn write_str(&mut self, s: &str) -> fmt::Result {
-        if self.heap.is_empty() && self.len + s.len() <= self.bytes.len() {
-            self.bytes[self.len..self.len + s.len()].copy_from_slice(s.as_bytes());
-            self.len += s.len();
+        let end = self.len + s.len();
+        if self.heap.is_empty() && end <= self.bytes.len() {
+            self.bytes[self.len..end].copy_from_slice(s.as_bytes());
+            self.len = end;
         } else {
             if self.heap.is_empty() {
-                let head = std::str::from_utf8(&self.bytes[..self.len]).unwrap_or("");
-                self.heap.push_str(head);
+                self.heap.extend_from_slice(&self.bytes[..self.len]);
             }
-            self.heap.push_str(s);
+            self.heap.extend_from_slice(s.as_bytes());
         }
         Ok(())
     }
 }
 
-/// Lays out `{:e}` text (`-1.2345e-5`) with room for `room` digits.
-fn layout_sci(out: &mut String, sci: &str, room: i32) {
-    let (neg, int, frac, exp) = split_sci(sci);
-    let mut digits = Buf::new();
-    let _ = fmt::Write::write_str(&mut digits, int);
-    let _ = fmt::Write::write_str(&mut digits, frac);
-    layout(out, neg, digits.as_str(), exp, room);
+/// Lays out `{:e}` text (`-1.2345e-5`, ASCII) with room for `room` digits: the
+/// digits (`12345`) are gathered on the stack, without the text's `.`.
+fn layout_sci(out: &mut String, sci: &[u8], room: i32) {
+    let (neg, s) = match sci.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        _ => (false, sci),
+    };
+    let e = s.iter().position(|&b| b == b'e').unwrap_or(s.len());
+    let (mant, exp_text) = (&s[..e], s.get(e + 1..).unwrap_or(&[]));
+    let exp = std::str::from_utf8(exp_text).ok().and_then(|t| t.parse().ok()).unwrap_or(0);
+    let mut digits = [0u8; 64];
+    let mut n = 0;
+    let mut long = Vec::new();
+    for &b in mant.iter().filter(|&&b| b != b'.') {
+        if n < digits.len() {
+            digits[n] = b;
+            n += 1;
+        } else {
+            if long.is_empty() {
+                long.extend_from_slice(&digits);
+            }
+            long.push(b);
+        }
+    }
+    let digits = if long.is_empty() { &digits[..n] } else { &long[..] };
+    layout(out, neg, std::str::from_utf8(digits).unwrap_or("0"), exp, room);
 }
 
 fn write_shortest(out: &mut String, x: f64) {
@@ -189,14 +204,14 @@ fn write_shortest(out: &mut String, x: f64) {
     }
     let mut s = Buf::new();
     let _ = write!(s, "{x:e}");
-    layout_sci(out, s.as_str(), 17);
+    layout_sci(out, s.as_bytes(), 17);
 }
 
 fn write_g(out: &mut String, x: f64, p: u32) {
     let p = p.min(400);
     let mut s = Buf::new();
     let _ = write!(s, "{:.*e}", (p - 1) as usize, x);
-    layout_sci(out, s.as_str(), p as i32);
+    layout_sci(out, s.as_bytes(), p as i32);
 }
 
 /// The text of `x` in the given style.

@@ -598,7 +598,22 @@ impl<'a> Writer<'a> {
             } else if let Some((i, v)) = set.next() {
                 let i = *i as usize;
                 let spec = kind.attr(i);
-                if self.value_text(inst, node, i, v)? {
+                if matches!(
+                    v,
+                    Value::Float(_)
+                        | Value::Floats(_)
+                        | Value::Int(_)
+                        | Value::Ints(_)
+                        | Value::Keyword(_)
+                ) {
+                    // Numbers and schema keywords are plain ASCII with nothing to
+                    // escape: written straight into the output.
+                    self.out.push(' ');
+                    self.out.push_str(spec.name);
+                    self.out.push_str("=\"");
+                    v.write_plain(&mut self.out, self.style);
+                    self.out.push('"');
+                } else if self.value_text(inst, node, i, v)? {
                     self.emit_attr(kind.tag(), spec.name);
                 }
             }
