@@ -7,13 +7,13 @@
 //! some 250). An empty sequence allocates nothing.
 //!
 //! Finding an item again: each item has a slot number (`ord`), increasing along the
-//! sequence and kept by every edit of other items, and the sequence keeps each item's
-//! key beside it. Items added at the end (or collected) get `(i + 1) · 2^32`; an item
-//! inserted between two gets the midpoint of their slots (when two neighbours are
-//! 1 apart the whole sequence is numbered afresh). A holder of an item's slot (the
+//! sequence and kept by every edit of other items; items have keys (element ids).
+//! Items added at the end (or collected) get `(i + 1) · 2^32`; an item inserted
+//! between two gets the midpoint of their slots (when two neighbours are 1 apart the
+//! whole sequence is numbered afresh). A holder of an item's slot (the
 //! identifier index) finds its position in O(log n) however many items were inserted
 //! or removed before it since ([`Seq::position_of`]), checked by the key; a stale slot
-//! falls back to a scan of keys around a position hint.
+//! falls back to a scan of the items' keys around a position hint.
 //!
 //! Removals do not rebalance (a leaf or branch that becomes empty is dropped, and a
 //! root with one subtree is replaced by it), so the depth stays O(log of the largest
@@ -39,11 +39,10 @@ pub(crate) trait Keyed {
     fn key(&self) -> u64;
 }
 
-/// A leaf: items and their keys, in order. Versions of a sequence share every leaf
+/// A leaf: items and their slots, in order. Versions of a sequence share every leaf
 /// that the edits between them did not copy (`Arc::ptr_eq`).
 #[derive(Clone)]
 pub(crate) struct Leaf<T> {
-    keys: Vec<u64>,
     /// The items' slots, non-decreasing (increasing below 2^32 items).
     ords: Vec<u64>,
     items: Vec<T>,
@@ -219,7 +218,7 @@ impl<T: Clone + Keyed> Seq<T> {
 
     /// The position of the item with key `key`, looked for first at `hint`, then in
     /// windows that double around it: O(d + log n · log d) for an item `d` positions
-    /// from the hint, scanning keys only.
+    /// from the hint.
     pub(crate) fn position_near(&self, key: u64, hint: usize) -> Option<usize> {
         let hint = hint.min(self.len);
         if self.get(hint).is_some_and(|x| x.key() == key) {
@@ -253,17 +252,17 @@ impl<T: Clone + Keyed> Seq<T> {
         let root = self.root.as_ref()?;
         let (mut stack, leaf, j) = path_to(root, start);
         let mut at = start;
-        let mut keys = &leaf.keys[j..];
+        let mut items = &leaf.items[j..];
         loop {
-            let n = keys.len().min(end - at);
-            if let Some(p) = find_key(&keys[..n], key) {
+            let n = items.len().min(end - at);
+            if let Some(p) = items[..n].iter().position(|x| x.key() == key) {
                 return Some(at + p);
             }
             at += n;
             if at >= end {
                 return None;
             }
-            keys = &next_leaf(&mut stack)?.keys;
+            items = &next_leaf(&mut stack)?.items;
         }
     }
 
@@ -287,7 +286,6 @@ impl<T: Clone + Keyed> Seq<T> {
     /// Inserts `value` at position `i` (at the end if `i >= len`); returns its slot.
     pub(crate) fn insert(&mut self, i: usize, value: T) -> u64 {
         let i = i.min(self.len);
-        let key = value.key();
         let ord = match self.slot_for(i) {
             Some(o) => o,
             None => {
@@ -297,13 +295,13 @@ impl<T: Clone + Keyed> Seq<T> {
             }
         };
         let Some(root) = self.root.as_mut() else {
-            let leaf = Leaf { keys: vec![key], ords: vec![ord], items: vec![value] };
+            let leaf = Leaf { ords: vec![ord], items: vec![value] };
             self.root = Some(Tree::Leaf(Arc::new(leaf)));
             self.len = 1;
             return ord;
         };
         let old_len = self.len;
-        if let Some((right, right_len)) = insert_into(root, i, key, ord, value) {
+        if let Some((right, right_len)) = insert_into(root, i, ord, value) {
             let left = root.clone();
             let maxs = vec![max_ord(&left), max_ord(&right)];
             *root = Tree::Branch(Arc::new(Branch {
@@ -385,7 +383,6 @@ impl<T: Clone + Keyed> Seq<T> {
             match t {
                 Tree::Leaf(l) => {
                     let l = Arc::make_mut(l);
-                    l.keys[i] = value.key();
                     l.items[i] = value;
                     return;
                 }
@@ -400,44 +397,26 @@ impl<T: Clone + Keyed> Seq<T> {
     }
 }
 
-/// The position of `key` in `keys`: each leaf's keys are compared all at once (a
-/// branch-free OR the compiler vectorises) before the one found is located.
-fn find_key(keys: &[u64], key: u64) -> Option<usize> {
-    let mut base = 0;
-    for c in keys.chunks(16) {
-        if c.iter().fold(false, |found, k| found | (*k == key)) {
-            return c.iter().position(|k| *k == key).map(|p| base + p);
-        }
-        base += c.len();
-    }
-    None
-}
-
 /// Inserts at position `i` of the subtree `t` (`i <=` its length); returns the new
 /// right sibling if `t` split.
-fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, key: u64, ord: u64, value: T) -> Split<T> {
+fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split<T> {
     match t {
         Tree::Leaf(l) => {
             let l = Arc::make_mut(l);
-            l.keys.insert(i, key);
             l.ords.insert(i, ord);
             l.items.insert(i, value);
             if l.items.len() <= LEAF {
                 return None;
             }
             let half = l.items.len() / 2;
-            let right = Leaf {
-                keys: l.keys.split_off(half),
-                ords: l.ords.split_off(half),
-                items: l.items.split_off(half),
-            };
+            let right = Leaf { ords: l.ords.split_off(half), items: l.items.split_off(half) };
             let n = right.items.len();
             Some((Tree::Leaf(Arc::new(right)), n))
         }
         Tree::Branch(b) => {
             let b = Arc::make_mut(b);
             let (k, j) = descend(b, i);
-            let split = insert_into(&mut b.kids[k], j, key, ord, value);
+            let split = insert_into(&mut b.kids[k], j, ord, value);
             b.lens[k] += 1;
             b.maxs[k] = max_ord(&b.kids[k]);
             if let Some((right, n)) = split {
@@ -467,7 +446,6 @@ fn remove_from<T: Clone>(t: &mut Tree<T>, i: usize) -> T {
     match t {
         Tree::Leaf(l) => {
             let l = Arc::make_mut(l);
-            l.keys.remove(i);
             l.ords.remove(i);
             l.items.remove(i)
         }
@@ -563,11 +541,10 @@ impl<T: Clone + Keyed> FromIterator<T> for Seq<T> {
         let mut iter = iter.into_iter().peekable();
         while iter.peek().is_some() {
             let items: Vec<T> = iter.by_ref().take(LEAF).collect();
-            let keys = items.iter().map(Keyed::key).collect();
             let ords = (len..len + items.len()).map(fresh_ord).collect();
             let n = items.len();
             len += n;
-            level.push((Tree::Leaf(Arc::new(Leaf { keys, ords, items })), n));
+            level.push((Tree::Leaf(Arc::new(Leaf { ords, items })), n));
         }
         while level.len() > 1 {
             let mut up = Vec::with_capacity(level.len().div_ceil(FANOUT));
