@@ -453,8 +453,8 @@ fn read_document(
             }
             continue;
         }
-        let Some(kind) = parent_kind.child(&name) else {
-            return Err(r.err(ErrorKind::invalid_child(parent_kind, &name), offset));
+        let Some(kind) = parent_kind.child(name) else {
+            return Err(r.err(ErrorKind::invalid_child(parent_kind, name), offset));
         };
         if stack.len() >= max_depth {
             return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
