@@ -1,10 +1,14 @@
-//! Prints one JSON line per workload (W1–W5, see `benches/workloads/mod.rs`): the
-//! figures `tools/compare_perf.py` compares with dm_control and MjSpec.
+//! Prints one JSON line per workload (W1–W7, see `benches/workloads/mod.rs`): the
+//! figures `tools/compare_perf.py` compares with dm_control and MjSpec; then the
+//! performance issue's table (each goal with ours, the floor measured in the same run
+//! on the same bytes, the ratio, and whether the goal is met).
 //!
 //! ```text
 //! cargo bench --bench figures                       # everything
+//! cargo bench --bench figures -- --only issue       # the issue's table only (W1 N=1000, W2-W7)
 //! cargo bench --bench figures -- --sizes 1,10,100   # W1 on these fleet sizes only
 //! cargo bench --bench figures -- --only w1,w4       # some workloads
+//! cargo bench --bench figures -- --only growth      # the README's growth table
 //! cargo bench --bench figures -- --dump-dir DIR --dump-only   # write the generated models
 //! ```
 //!
@@ -23,6 +27,72 @@ use std::time::Duration;
 
 use serde_json::{Value, json};
 use workloads::*;
+
+/// The issue's table, filled as the workloads are measured, printed at the end.
+#[derive(Default)]
+struct Table {
+    rows: Vec<[String; 6]>,
+}
+
+impl Table {
+    /// A row: the workload, ours, the floor, the ratio, the goal, and whether it is met.
+    fn row(&mut self, cells: [&str; 5], met: Option<bool>) {
+        let met = match met {
+            Some(true) => "met",
+            Some(false) => "NOT MET",
+            None => "-",
+        };
+        let [a, b, c, d, e] = cells.map(str::to_string);
+        self.rows.push([a, b, c, d, e, met.to_string()]);
+    }
+
+    fn print(&self) {
+        if self.rows.is_empty() {
+            return;
+        }
+        let head = ["workload", "ours", "floor", "ratio", "goal", ""];
+        let mut width = head.map(str::len);
+        for r in &self.rows {
+            for (w, c) in width.iter_mut().zip(r) {
+                *w = (*w).max(c.chars().count());
+            }
+        }
+        let mut out = std::io::stdout().lock();
+        let line = |cells: &[String; 6]| {
+            let mut l = String::from("|");
+            for (c, w) in cells.iter().zip(width) {
+                l.push_str(&format!(" {c:<w$} |"));
+            }
+            l
+        };
+        let _ = writeln!(out, "\nissue 13 (ratio = ours / floor, both measured in this run):\n");
+        let _ = writeln!(out, "{}", line(&head.map(str::to_string)));
+        let _ = writeln!(out, "{}", line(&width.map(|w| "-".repeat(w))));
+        for r in &self.rows {
+            let _ = writeln!(out, "{}", line(r));
+        }
+    }
+}
+
+/// A duration for the table: `16.2 ms`, `8.1 µs`, `1.20 s`.
+fn time(s: f64) -> String {
+    if s >= 1.0 {
+        format!("{s:.2} s")
+    } else if s >= 1e-3 {
+        format!("{:.1} ms", s * 1e3)
+    } else {
+        format!("{:.1} µs", s * 1e6)
+    }
+}
+
+/// Bytes for the table: `2.6 KiB`, `3.1 MiB`.
+fn size(b: f64) -> String {
+    if b >= 1024.0 * 1024.0 {
+        format!("{:.1} MiB", b / 1024.0 / 1024.0)
+    } else {
+        format!("{:.1} KiB", b / 1024.0)
+    }
+}
 
 struct Args {
     sizes: Vec<usize>,
@@ -70,6 +140,15 @@ fn parse_args() -> Args {
             _ => {}
         }
     }
+    // `issue`: the workloads of the issue's table; W1 at N = 1000 unless sizes are given.
+    if let Some(only) = &mut a.only {
+        if only.iter().any(|w| w == "issue") {
+            only.extend(["w1", "w2", "w3", "w4", "w5", "w6", "w7"].map(String::from));
+            if !std::env::args().any(|x| x == "--sizes") {
+                a.sizes = vec![1000];
+            }
+        }
+    }
     a
 }
 
@@ -84,6 +163,18 @@ fn emit(mut line: Value) {
     let mut out = std::io::stdout().lock();
     let _ = writeln!(out, "{line}");
     let _ = out.flush();
+    RECORDS.with(|r| r.borrow_mut().push(line));
+}
+
+thread_local! {
+    /// Every line emitted, for the issue's table at the end.
+    static RECORDS: std::cell::RefCell<Vec<Value>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// A field of the record `key`, if it was measured.
+fn got(key: &str, field: &str) -> Option<f64> {
+    RECORDS
+        .with(|r| r.borrow().iter().rev().find(|l| l["key"] == key).and_then(|l| l[field].as_f64()))
 }
 
 fn line<T>(key: &str, workload: &str, m: &Measured<T>) -> Value {
@@ -201,6 +292,7 @@ fn main() {
             ("w3_tree", "W3 10,000-body tree", &tree),
             ("w3_humanoid", "W3 CMU humanoid", &humanoid),
             ("w3_chain", "W3 10,000-deep chain", &chain_10k_xml()),
+            ("w3_rtree", "W3 10,000-body tree, realistic attributes", &realistic_tree_xml()),
         ] {
             let r = measure(3, 200, budget, || mjcf::Model::from_xml_str(xml));
             let model = match &r.value {
@@ -257,6 +349,8 @@ fn main() {
         for (key, name, xml) in [
             ("w5_fleet_1000", "W5 quick-xml, W1 N=1000 output", &fleet_xml),
             ("w5_tree", "W5 quick-xml, W3 tree", &tree),
+            ("w5_chain", "W5 quick-xml, W3 chain", &chain_10k_xml()),
+            ("w5_rtree", "W5 quick-xml, W3 realistic tree", &realistic_tree_xml()),
         ] {
             let rt = measure(3, 200, budget, || quickxml_roundtrip(xml));
             let mut l = line(&format!("{key}_roundtrip"), &format!("{name}: read+write"), &rt);
@@ -266,8 +360,178 @@ fn main() {
             let mut l = line(&format!("{key}_read"), &format!("{name}: read"), &r);
             l["bytes"] = json!(xml.len());
             emit(l);
+            let r = measure(3, 200, budget, || quickxml_read_attrs(xml));
+            let mut l = line(
+                &format!("{key}_read_attrs"),
+                &format!("{name}: read, attributes decoded"),
+                &r,
+            );
+            l["bytes"] = json!(xml.len());
+            emit(l);
         }
     }
+
+    // W6 nested default classes: read, and the floor on the same bytes.
+    if wants("w6") {
+        for n in NESTED_DEFAULTS {
+            let xml = nested_defaults_xml(n);
+            let r = measure(1, 20, budget, || mjcf::Model::from_xml_str(&xml));
+            match &r.value {
+                Ok(_) => {
+                    let mut l = line(
+                        &format!("w6_nested_{n}_read"),
+                        &format!("W6 read {n} nested default classes"),
+                        &r,
+                    );
+                    l["bytes"] = json!(xml.len());
+                    emit(l);
+                }
+                Err(e) => error(&format!("w6_nested_{n}_read"), "W6 nested defaults", e),
+            }
+            drop(r);
+            let f = measure(3, 200, budget, || quickxml_read_attrs(&xml));
+            let mut l = line(
+                &format!("w5_nested_{n}_read_attrs"),
+                &format!("W5 quick-xml, W6 {n} nested defaults: read, attributes decoded"),
+                &f,
+            );
+            l["bytes"] = json!(xml.len());
+            emit(l);
+        }
+    }
+
+    // W7 attach growth: one more robot (attach + freejoint) onto a fleet of N.
+    if wants("w7") {
+        for n in ATTACH_GROWTH {
+            let (fleet, site) = fleet_with_free_site(&robot, n);
+            let m = measure(20, 100_000, budget, || attach_one(&fleet, &site, &robot));
+            let mut l = line(
+                &format!("w7_attach_{n}"),
+                &format!("W7 attach + freejoint of one more robot, fleet of {n}"),
+                &m,
+            );
+            l["fleet"] = json!(n);
+            emit(l);
+        }
+    }
+
+    issue_table().print();
+}
+
+/// The issue's table from the records measured in this run.
+fn issue_table() -> Table {
+    let mut t = Table::default();
+    let ratio = |a: f64, b: f64| format!("{:.1}x", a / b);
+    if let Some(b) = got("w1_build_1000", "seconds") {
+        t.row(["build the N=1000 fleet", &time(b), "-", "-", "< 5 ms"], Some(b < 5e-3));
+    }
+    let attach: Vec<Option<f64>> =
+        ATTACH_GROWTH.iter().map(|n| got(&format!("w7_attach_{n}"), "seconds")).collect();
+    if let (Some(Some(first)), Some(Some(last))) = (attach.first(), attach.last()) {
+        let ours =
+            attach.iter().map(|s| s.map_or("-".into(), time)).collect::<Vec<_>>().join(" / ");
+        t.row(
+            [
+                "attach + freejoint of one more robot, fleet of N = 10 / 100 / 1,000 / 10,000",
+                &ours,
+                "-",
+                &format!("{} (N=10,000 / N=10)", ratio(*last, *first)),
+                "N=10,000 within 1.5x of N=10",
+            ],
+            Some(last / first <= 1.5),
+        );
+    }
+    if let (Some(w), Some(bytes), Some(f)) = (
+        got("w1_write_1000", "seconds"),
+        got("w1_write_1000", "bytes"),
+        got("w5_fleet_1000_roundtrip", "seconds"),
+    ) {
+        t.row(
+            [
+                &format!("write the N=1000 fleet ({:.1} MB)", bytes / 1e6),
+                &format!("{}, {:.0} MB/s", time(w), bytes / w / 1e6),
+                &format!("{} (quick-xml event round trip)", time(f)),
+                &ratio(w, f),
+                "<= 3x the round trip (>= 300 MB/s)",
+            ],
+            Some(w / f <= 3.0),
+        );
+    }
+    for (key, floor, name, goal) in [
+        (
+            "w3_rtree_read",
+            "w5_rtree_read_attrs",
+            "read a 10,000-body tree, realistic attributes",
+            Some(25e-3),
+        ),
+        ("w3_tree_read", "w5_tree_read_attrs", "read the plain 10,000-body tree", None),
+        ("w3_chain_read", "w5_chain_read_attrs", "read a 10,000-deep chain", None),
+    ] {
+        if let (Some(r), Some(f), Some(bytes)) =
+            (got(key, "seconds"), got(floor, "seconds"), got(key, "bytes"))
+        {
+            let goal_text = match goal {
+                Some(g) => format!("<= 3x (<= {})", time(g)),
+                None => "<= 3x".into(),
+            };
+            let met = r / f <= 3.0 && goal.is_none_or(|g| r <= g);
+            t.row(
+                [
+                    &format!("{name} ({:.1} MB)", bytes / 1e6),
+                    &time(r),
+                    &format!("{} (quick-xml events + attributes)", time(f)),
+                    &ratio(r, f),
+                    &goal_text,
+                ],
+                Some(met),
+            );
+        }
+    }
+    if let Some(d) = got("w4_detach", "seconds") {
+        t.row(
+            ["detach one robot from the N=1000 fleet", &time(d), "-", "-", "<= 5 µs"],
+            Some(d <= 5e-6),
+        );
+    }
+    let nested: Vec<Option<f64>> =
+        NESTED_DEFAULTS.iter().map(|n| got(&format!("w6_nested_{n}_read"), "seconds")).collect();
+    if let [Some(a), Some(_), Some(c)] = nested[..] {
+        let ours =
+            nested.iter().map(|s| s.map_or("-".into(), time)).collect::<Vec<_>>().join(" / ");
+        let last = NESTED_DEFAULTS[NESTED_DEFAULTS.len() - 1];
+        let floor = got(&format!("w5_nested_{last}_read_attrs"), "seconds");
+        t.row(
+            [
+                "read 100k / 200k / 400k nested default classes",
+                &ours,
+                &floor.map_or("-".into(), |f| format!("{} (quick-xml, 400k)", time(f))),
+                &format!(
+                    "{} (400k / 100k; linear = 4x){}",
+                    ratio(c, a),
+                    floor.map_or(String::new(), |f| format!("; {} of the floor", ratio(c, f)))
+                ),
+                "linear; 400k <= 2 s",
+            ],
+            Some(c <= 2.0 && c / a <= 4.0 * 1.25),
+        );
+    }
+    if let (Some(v), Some(h), Some(f)) = (
+        got("w2_one_version", "seconds"),
+        got("w2_history", "live_bytes_per_version"),
+        got("w1_build_1000", "live_bytes_with_inputs"),
+    ) {
+        t.row(
+            [
+                "one more undo version, N=100; heap per version; fleet heap N=1000",
+                &format!("{}; {}; {}", time(v), size(h), size(f)),
+                "-",
+                "-",
+                "keep (3.0 µs; 2.6 KiB; 3.1 MiB)",
+            ],
+            None,
+        );
+    }
+    t
 }
 
 /// Growth: one attach (with a freejoint on its frame) as the child grows at a fixed
@@ -316,9 +580,4 @@ fn growth(budget: Duration) {
             emit(l);
         }
     }
-}
-
-fn attach_one(parent: &mjcf::Model, site: &mjcf::Loc, child: &mjcf::Model) -> mjcf::Model {
-    let (m, frame) = parent.attach(site, child).expect("attach");
-    m.add(frame.frame(), mjcf::Element::new("freejoint")).expect("freejoint").0
 }

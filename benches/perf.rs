@@ -86,6 +86,11 @@ mod w3_read {
         read(bencher, &tree_10k_xml());
     }
 
+    #[divan::bench(sample_count = 20)]
+    fn realistic_tree_10k(bencher: Bencher) {
+        read(bencher, &realistic_tree_xml());
+    }
+
     #[divan::bench(sample_count = 10)]
     fn chain_10k(bencher: Bencher) {
         read(bencher, &chain_10k_xml());

@@ -133,7 +133,8 @@ fn main() -> Result<(), Error> {
     let write_every = arg(4, 1000).max(1);
     let (rss0, _) = rss_mib();
 
-    let models = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches").join("models");
+    let models =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join("benches").join("models");
     let t = Instant::now();
     let robot = Model::from_path(models.join("quadruped_robot.xml"))?;
     let arena = arena(n)?;

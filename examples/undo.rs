@@ -195,7 +195,8 @@ fn show_diff(h: &History, from: usize, to: usize) {
 }
 
 fn main() -> Result<(), Error> {
-    let models = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches").join("models");
+    let models =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join("benches").join("models");
     let robot = Model::from_path(models.join("quadruped_robot.xml"))?;
 
     let arena = Model::new("arena");

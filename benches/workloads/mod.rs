@@ -6,9 +6,16 @@
 //!   its own site, with a freejoint on the attachment frame; then `to_xml_string`.
 //! - W2 undo: 1000 small edits of the 100-robot fleet, every version kept.
 //! - W3 read: a generated 10,000-body tree (100 chains of 100 nested bodies), the same
-//!   bodies as one 10,000-deep chain, and the CMU humanoid.
+//!   bodies as one 10,000-deep chain, the CMU humanoid, and a 10,000-body tree with
+//!   realistic attributes (quat, inertial mass, joint range and damping, geom rgba and
+//!   mass on every body, joint and geom).
 //! - W4 detach: one robot out of the 1000-robot fleet.
-//! - W5 floor: quick-xml reading a document into events and writing them back.
+//! - W5 floor: quick-xml reading a document into events and writing them back, or
+//!   reading it into events and decoding every attribute value.
+//! - W6 nested default classes: `<default class>` nested 100,000 / 200,000 / 400,000
+//!   levels deep, read.
+//! - W7 attach growth: one more robot (attach + freejoint) onto a fleet of N robots,
+//!   N = 10 / 100 / 1,000 / 10,000.
 //!
 //! The models are in `benches/models` (see its README.md).
 #![allow(dead_code)]
@@ -48,7 +55,7 @@ pub(crate) const DETACH_ROBOTS: usize = 1000;
 
 /// `benches/models`.
 pub(crate) fn models_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches").join("models")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models")
 }
 
 /// The quadruped, read from `benches/models/quadruped_robot.xml` (with its includes).
@@ -181,6 +188,87 @@ pub(crate) fn chain_10k_xml() -> String {
     tree_xml(1, TREE_CHAINS * TREE_DEPTH)
 }
 
+/// W3: the 10,000-body tree with realistic attributes: 100 chains of 100 nested bodies,
+/// each body with a pos, a quat and an inertial (pos, mass, diaginertia), a hinge joint
+/// with an axis, a range and a damping, and a capsule geom with a size, a fromto, an
+/// rgba and a mass; the numbers vary from body to body (about 3.7 MB).
+pub(crate) fn realistic_tree_xml() -> String {
+    use std::fmt::Write;
+    let (chains, depth) = (TREE_CHAINS, TREE_DEPTH);
+    let mut s = String::with_capacity(chains * depth * 400 + 100);
+    s.push_str("<mujoco model=\"realistic_tree\">\n<worldbody>\n");
+    for c in 0..chains {
+        for d in 0..depth {
+            let k = (c * depth + d) as f64;
+            let a = 0.05 + 0.001 * d as f64;
+            let (w, z) = ((a / 2.0).cos(), (a / 2.0).sin());
+            let _ = writeln!(
+                s,
+                "<body name=\"b{c}_{d}\" pos=\"0 0 {len:.3}\" quat=\"{w:.7} 0 {z:.7} 0\">\n\
+                 <inertial pos=\"0 0 {half:.4}\" mass=\"{mass:.4}\" diaginertia=\"{ixx:.6} {ixx:.6} {izz:.6}\"/>\n\
+                 <joint name=\"j{c}_{d}\" type=\"hinge\" axis=\"0 1 0\" range=\"-{r:.1} {r:.1}\" damping=\"{damp:.3}\"/>\n\
+                 <geom name=\"g{c}_{d}\" type=\"capsule\" size=\"{rad:.4}\" fromto=\"0 0 0 0 0 {len:.3}\" \
+                 rgba=\"{cr:.3} {cg:.3} {cb:.3} 1\" mass=\"{mass:.4}\"/>",
+                len = 0.1 + 0.0001 * d as f64,
+                half = 0.05 + 0.00005 * d as f64,
+                mass = 0.35 + 0.0007 * (k % 97.0),
+                ixx = 0.0012 + 0.000003 * (k % 89.0),
+                izz = 0.0002 + 0.000001 * (k % 83.0),
+                r = 30.0 + (k % 61.0),
+                damp = 0.5 + 0.01 * (k % 53.0),
+                rad = 0.02 + 0.0001 * (k % 47.0),
+                cr = 0.2 + 0.007 * (k % 101.0),
+                cg = 0.3 + 0.005 * (k % 103.0),
+                cb = 0.4 + 0.003 * (k % 107.0),
+            );
+        }
+        for _ in 0..depth {
+            s.push_str("</body>\n");
+        }
+    }
+    s.push_str("</worldbody>\n</mujoco>\n");
+    s
+}
+
+/// W6: the nesting depths of default classes read.
+pub(crate) const NESTED_DEFAULTS: [usize; 3] = [100_000, 200_000, 400_000];
+
+/// W6: default classes `c0` … `c{n-1}`, each inside the one before, the innermost
+/// setting a geom size, and one geom of class `c0` in the worldbody.
+pub(crate) fn nested_defaults_xml(n: usize) -> String {
+    use std::fmt::Write;
+    let mut s = String::with_capacity(n * 32 + 200);
+    s.push_str("<mujoco model=\"nested_defaults\">\n<default>\n");
+    for i in 0..n {
+        let _ = writeln!(s, "<default class=\"c{i}\">");
+    }
+    s.push_str("<geom size=\"0.1\"/>\n");
+    for _ in 0..n {
+        s.push_str("</default>\n");
+    }
+    s.push_str(
+        "</default>\n<worldbody>\n<geom class=\"c0\" size=\"1\"/>\n</worldbody>\n</mujoco>\n",
+    );
+    s
+}
+
+/// W7: the fleet sizes N that one more robot is attached to.
+pub(crate) const ATTACH_GROWTH: [usize; 4] = [10, 100, 1000, 10_000];
+
+/// W7: the fleet of `n` robots on an arena of `n + 1` sites, and the free site
+/// `spawn_n` the next robot goes to.
+pub(crate) fn fleet_with_free_site(robot: &Model, n: usize) -> (Model, mjcf::Loc) {
+    let fleet = build_fleet(&read_arena(n + 1), robot, n).expect("the fleet builds");
+    let site = fleet.find(Namespace::Site, &format!("spawn_{n}")).expect("the free site");
+    (fleet, site)
+}
+
+/// W7 (and the growth table): `child` attached at `site`, with a freejoint on its frame.
+pub(crate) fn attach_one(parent: &Model, site: &mjcf::Loc, child: &Model) -> Model {
+    let (m, frame) = parent.attach(site, child).expect("attach");
+    m.add(frame.frame(), Element::new("freejoint")).expect("freejoint").0
+}
+
 /// W3: the CMU humanoid (`benches/models/humanoid_CMU.xml`, from the conformance corpus).
 pub(crate) fn humanoid_xml() -> String {
     std::fs::read_to_string(models_dir().join("humanoid_CMU.xml"))
@@ -212,6 +300,36 @@ pub(crate) fn quickxml_read(xml: &str) -> usize {
             Ok(e) => {
                 std::hint::black_box(e);
                 n += 1;
+            }
+            Err(e) => panic!("quick-xml: {e}"),
+        }
+    }
+    n
+}
+
+/// W5: quick-xml reading `xml` into events and decoding every attribute (its name and
+/// its normalized, unescaped value), as a reader must; returns the number of
+/// attributes. The floor of reading.
+pub(crate) fn quickxml_read_attrs(xml: &str) -> usize {
+    use quick_xml::events::Event;
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut n = 0;
+    loop {
+        match reader.read_event() {
+            Ok(Event::Eof) => break,
+            Ok(Event::Start(t) | Event::Empty(t)) => {
+                std::hint::black_box(t.name());
+                for a in t.attributes() {
+                    let a = a.expect("a well-formed attribute");
+                    let v = a
+                        .normalized_value(quick_xml::XmlVersion::default())
+                        .expect("a well-formed value");
+                    std::hint::black_box((a.key, v));
+                    n += 1;
+                }
+            }
+            Ok(e) => {
+                std::hint::black_box(e);
             }
             Err(e) => panic!("quick-xml: {e}"),
         }

@@ -144,18 +144,17 @@ impl Model {
             attrs,
             Attached { scope: scope.clone(), model: child.clone() },
         );
+        let mut children = parent.children().clone();
+        let ord = children.insert(position, frame.clone());
+        let parent_new = parent.with_children(children);
         // A new frame has no identifier, so indexing it cannot find a duplicate.
-        let _ = index.insert_subtree(Some(parent.id()), &frame, position);
+        let _ = index.insert_subtree_at(Some(parent.id()), &frame, position, ord);
         // The merged settings: the child's folded into ours (each cached, so O(1)).
         let mut sections = settings::merged(self).map_err(err)?.to_vec();
         settings::fold_sections(&mut sections, &settings::merged(child).map_err(err)?)
             .map_err(err)?;
         index.scopes.push(scope, id, child.index.merged.clone());
-        let root = self.root.update_path(&parent_path, |p| {
-            let mut children = p.children().clone();
-            children.insert(position, frame);
-            Ok::<_, EditError>(p.with_children(children))
-        })?;
+        let root = self.root.update_path(&parent_path, |_| Ok::<_, EditError>(parent_new))?;
         let new = self.next(root, index);
         // The fold just made is the new version's (its memo is new and empty).
         new.index.merged.fill(sections.into());

@@ -221,8 +221,21 @@ impl<'a> Iterator for Walk<'a> {
         if let Step::Enter(item) = step {
             self.entered = Some(self.stack.len());
             self.stack.push(Step::Leave(item));
-            let children = self.expand(item);
-            self.stack.extend(children.into_iter().rev().map(Step::Enter));
+            let Item { inst, node, depth, .. } = item;
+            let own_only = node.attached().is_none()
+                && (inst != 0
+                    || depth > 1
+                    || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT));
+            if own_only {
+                // Most elements: their own children only (what `expand` gives them),
+                // pushed without a list in between.
+                self.stack.extend(node.children().iter().rev().map(|c| {
+                    Step::Enter(Item { inst, node: c, depth: depth + 1, in_frame: false })
+                }));
+            } else {
+                let children = self.expand(item);
+                self.stack.extend(children.into_iter().rev().map(Step::Enter));
+            }
         }
         Some(step)
     }

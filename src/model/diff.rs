@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use super::tree::{ElementId, Node};
 use crate::model::{Loc, Model};
+use crate::seq::Leaf;
 use crate::value::Value;
 
 /// One difference between two versions of a model, as found by [`Model::diff`].
@@ -403,11 +404,11 @@ impl<'m> Differ<'m> {
     fn children(&mut self, s: usize, a: &'m Node, b: &'m Node, stack: &mut Pairs<'m>) {
         let (old, new) = (self.scopes[s].old, self.scopes[s].new);
         // Shared chunks, matched by pointer, in increasing order on both sides.
-        let old_chunks: Vec<(usize, &'m Arc<Vec<Node>>)> = a.children().chunks().collect();
-        let by_ptr: HashMap<*const Vec<Node>, usize> =
+        let old_chunks: Vec<(usize, &'m Arc<Leaf<Node>>)> = a.children().chunks().collect();
+        let by_ptr: HashMap<*const Leaf<Node>, usize> =
             old_chunks.iter().enumerate().map(|(i, (_, c))| (Arc::as_ptr(c), i)).collect();
         let mut old_shared = vec![false; old_chunks.len()];
-        let mut new_chunks: Vec<(usize, &'m Arc<Vec<Node>>, bool)> =
+        let mut new_chunks: Vec<(usize, &'m Arc<Leaf<Node>>, bool)> =
             Vec::with_capacity(b.children().chunks().len());
         let mut last: Option<usize> = None;
         for (start, c) in b.children().chunks() {
@@ -432,7 +433,7 @@ impl<'m> Differ<'m> {
         for (start, c, shared) in new_chunks {
             if shared {
                 let old_start = old_chunks[by_ptr[&Arc::as_ptr(c)]].0;
-                units.push(Unit::Shared(old_start, start, c));
+                units.push(Unit::Shared(old_start, start, &c[..]));
                 continue;
             }
             for (k, n) in c.iter().enumerate() {

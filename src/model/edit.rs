@@ -178,19 +178,18 @@ impl Model {
             Some(i) => (singletons + i).min(children.len()),
             None => children.len(),
         };
+        let id = node.id();
+        let mut children = children.clone();
+        let ord = children.insert(position, node.clone());
         let mut index_ = self.index.clone();
-        if let Err(d) = index_.insert_subtree(Some(parent_node.id()), &node, position) {
+        if let Err(d) = index_.insert_subtree_at(Some(parent_node.id()), &node, position, ord) {
             return Err(EditError::new(
                 ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
                 at(&sub),
             ));
         }
-        let id = node.id();
-        let root = self.root.update_path(&path, |p| -> Result<Node, EditError> {
-            let mut children = p.children().clone();
-            children.insert(position.min(children.len()), node);
-            Ok(p.with_children(children))
-        })?;
+        let parent_new = parent_node.with_children(children);
+        let root = self.root.update_path(&path, |_| Ok::<_, EditError>(parent_new))?;
         Ok((self.next(root, index_), self.scoped_loc(&[], id)))
     }
 

@@ -10,11 +10,16 @@
 
 use std::sync::{Arc, OnceLock};
 
-use imbl::{HashMap, OrdMap};
+use imbl::{GenericHashMap, HashMap, OrdMap};
 use smol_str::SmolStr;
 
 use super::tree::{ElementId, Node};
+use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace};
+use crate::seq::fresh_ord;
+
+/// A persistent map keyed by element ids, hashed cheaply (ids are not user input).
+pub(crate) type IdMap<V> = GenericHashMap<ElementId, V, IdHash, imbl::shared_ptr::DefaultSharedPtr>;
 
 /// What the index knows about one element.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,12 +30,16 @@ pub(crate) struct Entry {
     /// The element's position among its parent's children when it was indexed: a
     /// hint, checked before use (later inserts and removals before it shift it).
     pub(crate) pos: usize,
+    /// The element's slot in its parent's children (see `crate::seq`), which finds
+    /// it in O(log width) whatever was inserted or removed before it; checked before
+    /// use (a sequence numbered afresh has other slots).
+    pub(crate) ord: u64,
 }
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
-    pub(crate) elems: HashMap<ElementId, Entry>,
+    pub(crate) elems: IdMap<Entry>,
     /// The model's own attachments: scope names and frames, in attach order.
     pub(crate) scopes: Scopes,
     /// The model's name where it differs from its `model` attribute: `include_copy`
@@ -86,17 +95,34 @@ impl Index {
         node: &Node,
         at: usize,
     ) -> Result<(), Duplicate> {
+        self.insert_subtree_at(parent, node, at, fresh_ord(at))
+    }
+
+    /// [`Index::insert_subtree`] for a node inserted at slot `ord` of its parent's
+    /// children (the slot `Seq::insert` returned). The descendants' slots are those of
+    /// sequences built by adding at the end (checked on use, as every slot is).
+    pub(crate) fn insert_subtree_at(
+        &mut self,
+        parent: Option<ElementId>,
+        node: &Node,
+        at: usize,
+        ord: u64,
+    ) -> Result<(), Duplicate> {
         let in_frame = parent.is_some_and(|p| self.scope_of(p).is_some());
-        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize)> =
-            vec![(parent, node, in_frame, at)];
-        while let Some((parent, n, in_frame, pos)) = stack.pop() {
-            self.insert_one(parent, n, !in_frame, pos)?;
+        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize, u64)> =
+            vec![(parent, node, in_frame, at, ord)];
+        while let Some((parent, n, in_frame, pos, ord)) = stack.pop() {
+            self.insert_one(parent, n, !in_frame, pos, ord)?;
             // Reversed, so that elements are indexed in document order and a duplicate
             // is reported at its second occurrence. A frame's joints are unique per
             // frame only, so their names are not registered.
             let frame = n.attached().is_some();
             stack.extend(
-                n.children().iter().enumerate().rev().map(|(i, c)| (Some(n.id()), c, frame, i)),
+                n.children()
+                    .iter()
+                    .enumerate()
+                    .rev()
+                    .map(|(i, c)| (Some(n.id()), c, frame, i, fresh_ord(i))),
             );
         }
         Ok(())
@@ -108,6 +134,7 @@ impl Index {
         n: &Node,
         register: bool,
         pos: usize,
+        ord: u64,
     ) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
@@ -117,7 +144,7 @@ impl Index {
             }
             self.names.insert(key, n.id());
         }
-        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos });
+        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos, ord });
         Ok(())
     }
 
@@ -162,13 +189,14 @@ impl Index {
         self.scopes.frame_of(scope)
     }
 
-    /// The ids from the root down to `id`, inclusive, each with its position hint.
-    pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize)>> {
+    /// The ids from the root down to `id`, inclusive, each with its position hint
+    /// and slot.
+    pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
         let mut cur = self.elems.get(&id)?;
-        let mut chain = vec![(id, cur.pos)];
+        let mut chain = vec![(id, cur.pos, cur.ord)];
         while let Some(p) = cur.parent {
             cur = self.elems.get(&p)?;
-            chain.push((p, cur.pos));
+            chain.push((p, cur.pos, cur.ord));
         }
         chain.reverse();
         Some(chain)
@@ -185,7 +213,7 @@ pub(crate) struct Scopes {
     /// unchanged attachments as far as merged settings go.
     order: OrdMap<u64, (SmolStr, ElementId, MergedCache)>,
     by_name: HashMap<SmolStr, (u64, ElementId)>,
-    by_frame: HashMap<ElementId, u64>,
+    by_frame: IdMap<u64>,
     next: u64,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).

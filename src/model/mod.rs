@@ -499,8 +499,8 @@ impl Model {
             return None;
         }
         let mut path = Vec::with_capacity(ids.len());
-        for (id, hint) in rest {
-            let i = node.child_position_near(*id, *hint)?;
+        for (id, hint, ord) in rest {
+            let i = node.child_position(*id, *ord, *hint)?;
             path.push(i);
             node = node.children().get(i)?;
         }

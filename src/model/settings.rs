@@ -22,7 +22,15 @@ use crate::value::{Value, number};
 
 /// Whether a root section takes part in the settings fold: a singleton whose whole
 /// subtree is made of singletons (`compiler`, `option`, `size`, `visual`, `statistic`).
+/// O(1): computed once per kind (every edit asks, through `Model::next`).
 pub(crate) fn is_settings_section(kind: ElementKind) -> bool {
+    static SECTIONS: std::sync::OnceLock<Vec<bool>> = std::sync::OnceLock::new();
+    let table =
+        SECTIONS.get_or_init(|| ElementKind::all().map(compute_is_settings_section).collect());
+    table.get(kind.0 as usize).copied().unwrap_or(false)
+}
+
+fn compute_is_settings_section(kind: ElementKind) -> bool {
     if kind.tag() == "default"
         || kind.tag() == "worldbody"
         || kind.multiplicity() != Multiplicity::Singleton

@@ -25,6 +25,22 @@ use crate::value::Value;
 /// One attribute slot: the schema index of the attribute and its value.
 pub(crate) type Attr = (u16, Value);
 
+impl crate::seq::Keyed for Node {
+    fn key(&self) -> u64 {
+        self.id().get()
+    }
+}
+
+/// The attributes as stored: no attributes share one allocation (most children of a
+/// default class, and every empty singleton, have none).
+fn shared_attrs(attrs: Vec<Attr>) -> Arc<[Attr]> {
+    if attrs.is_empty() {
+        static EMPTY: std::sync::OnceLock<Arc<[Attr]>> = std::sync::OnceLock::new();
+        return EMPTY.get_or_init(|| Arc::from(Vec::new())).clone();
+    }
+    attrs.into()
+}
+
 /// An immutable element node.
 #[derive(Clone)]
 pub(crate) struct Node(Arc<NodeData>);
@@ -57,7 +73,7 @@ impl Node {
     ) -> Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
-        Node(Arc::new(NodeData { id, kind, attrs: attrs.into(), children, attached: None }))
+        Node(Arc::new(NodeData { id, kind, attrs: shared_attrs(attrs), children, attached: None }))
     }
 
     /// An attachment frame.
@@ -72,7 +88,7 @@ impl Node {
         Node(Arc::new(NodeData {
             id,
             kind,
-            attrs: attrs.into(),
+            attrs: shared_attrs(attrs),
             children: Seq::new(),
             attached: Some(Arc::new(attached)),
         }))
@@ -95,7 +111,7 @@ impl Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         let mut data = NodeData::clone(&self.0);
-        data.attrs = attrs.into();
+        data.attrs = shared_attrs(attrs);
         data.children = children;
         Node(Arc::new(data))
     }
@@ -136,19 +152,11 @@ impl Node {
         Arc::ptr_eq(&self.0, &other.0)
     }
 
-    /// The position of the child `id`, looked for first at `hint`, then after it
-    /// (where inserts before it move it), then before it. O(log width) when the hint
-    /// is right, O(distance) when it is behind, O(width) when it is ahead (after
-    /// removals before the child).
-    pub(crate) fn child_position_near(&self, id: ElementId, hint: usize) -> Option<usize> {
-        let children = &self.0.children;
-        let hint = hint.min(children.len());
-        if children.get(hint).is_some_and(|c| c.id() == id) {
-            return Some(hint);
-        }
-        let after =
-            children.range(hint, children.len()).position(|c| c.id() == id).map(|p| p + hint);
-        after.or_else(|| children.range(0, hint).rposition(|c| c.id() == id))
+    /// The position of the child `id` whose slot was `ord` (see `crate::seq`):
+    /// O(log width) while the slot holds; else looked for by id around the position
+    /// `hint`, O(distance · log width).
+    pub(crate) fn child_position(&self, id: ElementId, ord: u64, hint: usize) -> Option<usize> {
+        self.0.children.position_of(id.get(), ord, hint)
     }
 
     /// The first child of this kind.
@@ -161,7 +169,7 @@ impl Node {
         let mut data = NodeData::clone(&self.0);
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
-        data.attrs = attrs.into();
+        data.attrs = shared_attrs(attrs);
         Node(Arc::new(data))
     }
 

@@ -190,14 +190,12 @@ pub(crate) fn parse_text(
         AttrType::Array { elem, max_len } => {
             let parts = text.split_ascii_whitespace();
             let value = match elem {
-                ArrayType::Float => {
-                    let v: Option<Vec<f64>> = parts.map(number::parse_float).collect();
-                    Value::Floats(v.ok_or(ValueError::NotFloatArray)?.into())
-                }
-                ArrayType::Int => {
-                    let v: Option<Vec<i64>> = parts.map(number::parse_int).collect();
-                    Value::Ints(v.ok_or(ValueError::NotIntArray)?.into())
-                }
+                ArrayType::Float => Value::Floats(
+                    parse_array(parts, number::parse_float).ok_or(ValueError::NotFloatArray)?,
+                ),
+                ArrayType::Int => Value::Ints(
+                    parse_array(parts, number::parse_int).ok_or(ValueError::NotIntArray)?,
+                ),
             };
             check_len(&value, max_len)?;
             Ok(value)
@@ -207,6 +205,30 @@ pub(crate) fn parse_text(
         AttrType::Basepath { .. } => Ok(Value::Basepath(text.into())),
         AttrType::File { .. } => Err(ValueError::FileNeedsLoading),
     }
+}
+
+/// Parses each part; the numbers go straight into their one shared allocation (the
+/// first 16 through a buffer on the stack, as arrays are short).
+fn parse_array<'t, T: Copy + Default>(
+    parts: impl Iterator<Item = &'t str>,
+    parse: impl Fn(&str) -> Option<T>,
+) -> Option<Arc<[T]>> {
+    let mut buf = [T::default(); 16];
+    let mut n = 0;
+    let mut more: Vec<T> = Vec::new();
+    for p in parts {
+        let x = parse(p)?;
+        if n < buf.len() {
+            buf[n] = x;
+            n += 1;
+        } else {
+            if more.is_empty() {
+                more.extend_from_slice(&buf);
+            }
+            more.push(x);
+        }
+    }
+    Some(if more.is_empty() { Arc::from(&buf[..n]) } else { more.into() })
 }
 
 fn check_len(value: &Value, max_len: Option<u32>) -> Result<(), ValueError> {

@@ -6,6 +6,7 @@
 //!   default (`0.1`), laid out like C's `%g` with 17 digits of room (`1e-05`,
 //!   `10000000000000000`, `1e+17`); with a precision it prints C's `%.{p}g` exactly.
 
+use std::fmt;
 use std::fmt::Write as _;
 
 /// How floats are written.
@@ -71,6 +72,7 @@ pub(crate) fn write_float(out: &mut String, x: f64, style: FloatStyle) {
     }
 }
 
+#[cfg(test)]
 /// Splits Rust's `{:e}` text (`-1.2345e-5`) into sign, digits and decimal exponent.
 fn split_sci(s: &str) -> (bool, &str, &str, i32) {
     let (neg, s) = match s.strip_prefix('-') {
@@ -129,19 +131,87 @@ fn layout(out: &mut String, neg: bool, digits: &str, exp: i32, room: i32) {
     }
 }
 
+/// `{:e}` text formatted on the stack (a float's is at most a few dozen bytes; a
+/// longer one, as `%g` with hundreds of digits gives, goes to the heap).
+struct Buf {
+    bytes: [u8; 64],
+    len: usize,
+    heap: Vec<u8>,
+}
+
+impl Buf {
+    fn new() -> Buf {
+        Buf { bytes: [0; 64], len: 0, heap: Vec::new() }
+    }
+
+    fn as_bytes(&self) -> &[u8] {
+        if self.heap.is_empty() { &self.bytes[..self.len] } else { &self.heap }
+    }
+}
+
+impl fmt::Write for Buf {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.len + s.len();
+        if self.heap.is_empty() && end <= self.bytes.len() {
+            self.bytes[self.len..end].copy_from_slice(s.as_bytes());
+            self.len = end;
+        } else {
+            if self.heap.is_empty() {
+                self.heap.extend_from_slice(&self.bytes[..self.len]);
+            }
+            self.heap.extend_from_slice(s.as_bytes());
+        }
+        Ok(())
+    }
+}
+
+/// Lays out `{:e}` text (`-1.2345e-5`, ASCII) with room for `room` digits: the
+/// digits (`12345`) are gathered on the stack, without the text's `.`.
+fn layout_sci(out: &mut String, sci: &[u8], room: i32) {
+    let (neg, s) = match sci.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        _ => (false, sci),
+    };
+    let e = s.iter().position(|&b| b == b'e').unwrap_or(s.len());
+    let (mant, exp_text) = (&s[..e], s.get(e + 1..).unwrap_or(&[]));
+    let exp = std::str::from_utf8(exp_text).ok().and_then(|t| t.parse().ok()).unwrap_or(0);
+    let mut digits = [0u8; 64];
+    let mut n = 0;
+    let mut long = Vec::new();
+    for &b in mant.iter().filter(|&&b| b != b'.') {
+        if n < digits.len() {
+            digits[n] = b;
+            n += 1;
+        } else {
+            if long.is_empty() {
+                long.extend_from_slice(&digits);
+            }
+            long.push(b);
+        }
+    }
+    let digits = if long.is_empty() { &digits[..n] } else { &long[..] };
+    layout(out, neg, std::str::from_utf8(digits).unwrap_or("0"), exp, room);
+}
+
 fn write_shortest(out: &mut String, x: f64) {
-    let s = format!("{x:e}");
-    let (neg, int, frac, exp) = split_sci(&s);
-    let digits = format!("{int}{frac}");
-    layout(out, neg, &digits, exp, 17);
+    // Integers below 2^53 are exact, and their shortest digits are their own (with
+    // trailing zeros, which the layout puts back): the same text, without formatting
+    // a float. (`-0` keeps its sign through the general path.)
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if x.fract() == 0.0 && x.abs() < EXACT && x != 0.0 {
+        let _ = write!(out, "{}", x as i64);
+        return;
+    }
+    let mut s = Buf::new();
+    let _ = write!(s, "{x:e}");
+    layout_sci(out, s.as_bytes(), 17);
 }
 
 fn write_g(out: &mut String, x: f64, p: u32) {
     let p = p.min(400);
-    let s = format!("{:.*e}", (p - 1) as usize, x);
-    let (neg, int, frac, exp) = split_sci(&s);
-    let digits = format!("{int}{frac}");
-    layout(out, neg, &digits, exp, p as i32);
+    let mut s = Buf::new();
+    let _ = write!(s, "{:.*e}", (p - 1) as usize, x);
+    layout_sci(out, s.as_bytes(), p as i32);
 }
 
 /// The text of `x` in the given style.
@@ -178,6 +248,52 @@ mod tests {
     }
     fn short(x: f64) -> String {
         float_text(x, FloatStyle::default())
+    }
+
+    /// The text as formatted before the stack buffer and the integer shortcut.
+    fn old_shortest(x: f64) -> String {
+        let s = format!("{x:e}");
+        let (neg, int, frac, exp) = split_sci(&s);
+        let digits = format!("{int}{frac}");
+        let mut out = String::new();
+        layout(&mut out, neg, &digits, exp, 17);
+        out
+    }
+
+    fn old_g(x: f64, p: u32) -> String {
+        let s = format!("{:.*e}", (p - 1) as usize, x);
+        let (neg, int, frac, exp) = split_sci(&s);
+        let digits = format!("{int}{frac}");
+        let mut out = String::new();
+        layout(&mut out, neg, &digits, exp, p as i32);
+        out
+    }
+
+    #[test]
+    fn same_text_as_formatting_through_strings() {
+        let mut xs: Vec<f64> = vec![0.0, -0.0, 1.0, -1.0, 0.5, 1e16, 1e17, 1e-5, 123.456];
+        xs.extend((-2000..2000).map(f64::from));
+        xs.extend((0..64).map(|k| 2f64.powi(k)));
+        xs.extend((0..64).flat_map(|k| [2f64.powi(k) - 1.0, 2f64.powi(k) + 1.0, -(2f64.powi(k))]));
+        xs.extend((-30..30).map(|k| 10f64.powi(k)));
+        // Pseudo-random bit patterns (every exponent), finite ones only.
+        let mut r: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..20_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let x = f64::from_bits(r);
+            if x.is_finite() {
+                xs.push(x);
+                xs.push(x.trunc());
+            }
+        }
+        for x in xs {
+            assert_eq!(short(x), old_shortest(x), "{x:e}");
+            for p in [1, 5, 17] {
+                assert_eq!(g(x, p), old_g(x, p), "{x:e} at {p}");
+            }
+        }
     }
 
     /// The reference's table (dm_control_mjcf.md §6.5), precision 17 and 5.

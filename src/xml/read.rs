@@ -406,7 +406,8 @@ fn parse(
             }
             _ => continue,
         };
-        let name = tag.name().as_ref().to_string();
+        let qname = tag.name();
+        let name: &str = qname.as_ref();
         // The root.
         if stack.is_empty() {
             if seen_root {
@@ -479,8 +480,8 @@ fn parse(
             }
             continue;
         }
-        let Some(kind) = parent_kind.child(&name) else {
-            return Err(r.err(ErrorKind::invalid_child(parent_kind, &name), offset));
+        let Some(kind) = parent_kind.child(name) else {
+            return Err(r.err(ErrorKind::invalid_child(parent_kind, name), offset));
         };
         if stack.len() >= max_depth {
             return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
@@ -704,7 +705,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         forget_auto_names(&mut r.arena);
     }
     // Index names first (document order), so references can be resolved in the arena.
-    let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> = HashMap::new();
+    let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> =
+        HashMap::with_capacity(r.arena.len());
     for p in &r.arena {
         if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
             if let Some(Value::Identifier(n)) =
@@ -757,12 +759,10 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         if p.kind.tag() == "default" {
             keep_actuator_default_order(&mut singles);
         }
-        let mut children: Seq<Node> = singles.into_iter().map(|(n, _)| n).collect();
-        for c in &p.children {
-            if let Some(n) = built[*c].take() {
-                children.push_back(n);
-            }
-        }
+        let mut children: Vec<Node> = Vec::with_capacity(singles.len() + p.children.len());
+        children.extend(singles.into_iter().map(|(n, _)| n));
+        children.extend(p.children.iter().filter_map(|c| built[*c].take()));
+        let children: Seq<Node> = children.into_iter().collect();
         built[i] = Some(Node::new(p.id, p.kind, std::mem::take(&mut p.attrs), children));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));

@@ -224,7 +224,7 @@ fn singleton_emits(node: &Node) -> bool {
     {
         return true;
     }
-    if kind.class_attr().is_some() || kind.identifier().is_some() {
+    if facts(kind).class.is_some() || kind.identifier().is_some() {
         return true;
     }
     node.children()
@@ -564,7 +564,7 @@ impl<'a> Writer<'a> {
             }
             _ => None,
         };
-        let implicit_class = match kind.class_attr() {
+        let implicit_class = match facts(kind).class {
             Some(c) if !has_live(self.insts[inst].model, node, c) && !childclass => Some(c),
             _ => None,
         };
@@ -610,7 +610,22 @@ impl<'a> Writer<'a> {
             } else if let Some((i, v)) = set.next() {
                 let i = *i as usize;
                 let spec = kind.attr(i);
-                if self.value_text(inst, node, i, v)? {
+                if matches!(
+                    v,
+                    Value::Float(_)
+                        | Value::Floats(_)
+                        | Value::Int(_)
+                        | Value::Ints(_)
+                        | Value::Keyword(_)
+                ) {
+                    // Numbers and schema keywords are plain ASCII with nothing to
+                    // escape: written straight into the output.
+                    self.out.push(' ');
+                    self.out.push_str(spec.name);
+                    self.out.push_str("=\"");
+                    v.write_plain(&mut self.out, self.style);
+                    self.out.push('"');
+                } else if self.value_text(inst, node, i, v)? {
                     self.emit_attr(kind.tag(), spec.name);
                 }
             }
@@ -823,8 +838,27 @@ fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
     model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
 }
 
+/// What the writer asks of every element's kind, looked up by name once per kind.
+struct KindFacts {
+    /// `kind.class_attr()`.
+    class: Option<usize>,
+    /// The index of `childclass`.
+    childclass: Option<usize>,
+}
+
+fn facts(kind: ElementKind) -> &'static KindFacts {
+    static FACTS: std::sync::OnceLock<Vec<KindFacts>> = std::sync::OnceLock::new();
+    const NONE: KindFacts = KindFacts { class: None, childclass: None };
+    let table = FACTS.get_or_init(|| {
+        ElementKind::all()
+            .map(|k| KindFacts { class: k.class_attr(), childclass: k.attr_index("childclass") })
+            .collect()
+    });
+    table.get(kind.0 as usize).unwrap_or(&NONE)
+}
+
 fn sets_childclass(model: &Model, node: &Node) -> bool {
-    node.kind().attr_index("childclass").is_some_and(|i| has_live(model, node, i))
+    facts(node.kind()).childclass.is_some_and(|i| has_live(model, node, i))
 }
 
 /// Whether attribute `i` of `node` is set and will be written: a reference to an

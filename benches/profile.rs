@@ -1,0 +1,81 @@
+//! One workload in a loop, for a profiler: `valgrind --tool=callgrind` counts
+//! instructions repeatably on this noisy machine, so this binary runs exactly one
+//! workload, a given number of times, and nothing else (no timing loop, no statistics).
+//!
+//! ```text
+//! cargo bench --bench profile --no-run          # prints the binary's path
+//! valgrind --tool=callgrind target/release/deps/profile-HASH WORKLOAD [ARG] [REPS]
+//! ```
+//!
+//! Workloads: `build N` (the W1 fleet), `write N` (writing it), `read-tree`,
+//! `read-rtree`, `read-chain` (W3), `nested N` (W6, N levels), `attach N` (W7: one more
+//! robot onto a fleet of N), `detach` (W4). REPS defaults to 1 (the setup is counted
+//! too: compare runs that differ in REPS to subtract it).
+
+mod workloads;
+
+use std::time::Instant;
+
+use workloads::*;
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
+    let what = args.first().map_or("", String::as_str);
+    let arg = |i: usize, d: usize| args.get(i).and_then(|s| s.parse().ok()).unwrap_or(d);
+    let reps = arg(2, 1);
+    let robot = read_robot();
+    let t = Instant::now();
+    match what {
+        "build" => {
+            let n = arg(1, 1000);
+            let arena = read_arena(n);
+            for _ in 0..reps {
+                std::hint::black_box(build_fleet(&arena, &robot, n).expect("builds"));
+            }
+        }
+        "write" => {
+            let n = arg(1, 1000);
+            let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
+            for _ in 0..reps {
+                std::hint::black_box(fleet.to_xml_string().expect("writes"));
+            }
+        }
+        "read-tree" | "read-rtree" | "read-chain" => {
+            let xml = match what {
+                "read-tree" => tree_10k_xml(),
+                "read-rtree" => realistic_tree_xml(),
+                _ => chain_10k_xml(),
+            };
+            for _ in 0..arg(1, 1) {
+                std::hint::black_box(mjcf::Model::from_xml_str(&xml).expect("reads"));
+            }
+        }
+        "nested" => {
+            let xml = nested_defaults_xml(arg(1, 10_000));
+            for _ in 0..reps {
+                std::hint::black_box(mjcf::Model::from_xml_str(&xml).expect("reads"));
+            }
+        }
+        "attach" => {
+            let (fleet, site) = fleet_with_free_site(&robot, arg(1, 1000));
+            for _ in 0..reps {
+                std::hint::black_box(attach_one(&fleet, &site, &robot));
+            }
+        }
+        "detach" => {
+            let fleet =
+                build_fleet(&read_arena(DETACH_ROBOTS), &robot, DETACH_ROBOTS).expect("builds");
+            let scope = scopes_of(&fleet)[DETACH_ROBOTS / 2].clone();
+            for _ in 0..arg(1, 1) {
+                std::hint::black_box(fleet.detach(&scope).expect("detaches"));
+            }
+        }
+        _ => {
+            eprintln!(
+                "usage: profile build|write|read-tree|read-rtree|read-chain|nested|attach|detach [N] [REPS]"
+            );
+            std::process::exit(2);
+        }
+    }
+    eprintln!("{what}: {:?}", t.elapsed());
+}
