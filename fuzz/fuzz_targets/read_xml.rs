@@ -39,7 +39,13 @@ fuzz_target!(|data: &[u8]| {
     };
     // The other writer settings must not panic either (their output is not checked).
     let other =
-        WriteOptions { precision: Some(17), zero_threshold: 1e-9, pretty_print: false, filename_with_hash: false };
+        WriteOptions {
+            precision: Some(17),
+            zero_threshold: 1e-9,
+            pretty_print: false,
+            filename_with_hash: false,
+            merge_keyframes: true,
+        };
     let _ = model.to_xml_string_with(&other);
     common::check_unique_identifiers(&w1);
     common::check_fixed_point(options(), &w1);
