@@ -8,8 +8,9 @@
 //! ```
 //!
 //! Workloads: `build N` (the W1 fleet), `write N` (writing it), `read-tree`,
-//! `read-rtree`, `read-chain` (W3), `nested N` (W6, N levels), `attach N` (W7: one more
-//! robot onto a fleet of N), `detach` (W4). REPS defaults to 1 (the setup is counted
+//! `read-rtree`, `read-chain` (W3) and their floors `floor-tree`, `floor-rtree`,
+//! `floor-chain` (quick-xml events and attributes), `nested N` (W6, N levels),
+//! `attach N` (W7: one more robot onto a fleet of N), `detach` (W4). REPS defaults to 1 (the setup is counted
 //! too: compare runs that differ in REPS to subtract it).
 
 mod workloads;
@@ -50,6 +51,16 @@ fn main() {
                 std::hint::black_box(mjcf::Model::from_xml_str(&xml).expect("reads"));
             }
         }
+        "floor-tree" | "floor-rtree" | "floor-chain" => {
+            let xml = match what {
+                "floor-tree" => tree_10k_xml(),
+                "floor-rtree" => realistic_tree_xml(),
+                _ => chain_10k_xml(),
+            };
+            for _ in 0..arg(1, 1) {
+                std::hint::black_box(quickxml_read_attrs(&xml));
+            }
+        }
         "nested" => {
             let xml = nested_defaults_xml(arg(1, 10_000));
             for _ in 0..reps {
@@ -72,7 +83,7 @@ fn main() {
         }
         _ => {
             eprintln!(
-                "usage: profile build|write|read-tree|read-rtree|read-chain|nested|attach|detach [N] [REPS]"
+                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach [N] [REPS]"
             );
             std::process::exit(2);
         }
