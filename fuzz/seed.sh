@@ -1,5 +1,6 @@
 #!/bin/sh
-# Regenerates the seed corpus of the `read_xml` target (fuzz/corpus is gitignored):
+# Adds the seeds of the `read_xml` target to its corpus (committed, minimized: run
+# `cargo +nightly fuzz cmin read_xml` after this before committing):
 # every *.xml file of the repository outside target/, fuzz/ and schema/ (the
 # conformance cases under tests/conformance/cases and any other model files), copied
 # into fuzz/corpus/read_xml/ under a name made from its path. schema/schema.xml is

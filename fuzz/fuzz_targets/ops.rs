@@ -7,13 +7,16 @@
 //!
 //! After every step, at a cost of O(size of the model), not O(history × size):
 //! (a) earlier versions still write what they wrote when they were made (values are
-//!     persistent): the version the step started from and one earlier version picked
-//!     at random are written again and compared with the hash of their first output;
+//!     persistent): in turn, the version the step started from, or one earlier
+//!     version picked at random, is written again and compared with the hash of its
+//!     first output;
 //! (b) the new version's output, if it writes, reads back (`Model::from_xml_str`;
 //!     a composed model's scoped names such as `robot/torso` read as literal names)
 //!     and write∘read reaches its fixed point (`common::check_fixed_point` for a model
 //!     without attachments; for a composed one, the text written from the read-back
-//!     is written again unchanged);
+//!     is written again unchanged). Reading back costs about three writes, so it is
+//!     checked every `READ_BACK_EVERY` steps and for the version the input ends with
+//!     (every prefix of an input is an input libFuzzer tries too);
 //! (c) identifiers in the output are unique per namespace;
 //! (d) a failed operation changed nothing: the model it was applied to writes as
 //!     before;
@@ -38,7 +41,10 @@ use mjcf::generate::{Edit, EditRecipe, ModelRecipe, Step};
 use mjcf::{Attrs, EditError, Element, Loc, Model, Namespace, ReadOptions, WriteError};
 
 /// Steps per input.
-const MAX_OPS: usize = 32;
+const MAX_OPS: usize = 16;
+/// The new version's read-back (b) is checked every this many steps, and for the
+/// version an input ends with.
+const READ_BACK_EVERY: usize = 4;
 /// Outputs above this size end the input (attaching a model to itself doubles it).
 const MAX_XML: usize = 64 * 1024;
 
@@ -438,8 +444,7 @@ fn sections(m: &Model) -> Vec<Loc> {
 /// Places to add elements: sections, bodies (frames included) and default classes.
 fn containers(m: &Model) -> Vec<Loc> {
     let mut out = sections(m);
-    out.extend(m.find_all(Namespace::Body));
-    out.extend(m.find_all(Namespace::Default));
+    out.extend(in_namespaces(m, &[Namespace::Body, Namespace::Default]));
     out
 }
 
@@ -448,20 +453,32 @@ fn containers(m: &Model) -> Vec<Loc> {
 fn elements(m: &Model) -> Vec<Loc> {
     let mut out = vec![m.root()];
     out.extend(sections(m));
-    for ns in [
-        Namespace::Body,
-        Namespace::Joint,
-        Namespace::Geom,
-        Namespace::Site,
-        Namespace::Camera,
-        Namespace::Actuator,
-        Namespace::Sensor,
-        Namespace::Material,
-        Namespace::Default,
-    ] {
-        out.extend(m.find_all(ns));
-    }
+    out.extend(in_namespaces(
+        m,
+        &[
+            Namespace::Body,
+            Namespace::Joint,
+            Namespace::Geom,
+            Namespace::Site,
+            Namespace::Camera,
+            Namespace::Actuator,
+            Namespace::Sensor,
+            Namespace::Material,
+            Namespace::Default,
+        ],
+    ));
     out
+}
+
+/// The elements of these namespaces (frames count as bodies), in walk order: one
+/// walk, where `find_all` per namespace would take one each.
+fn in_namespaces(m: &Model, namespaces: &[Namespace]) -> Vec<Loc> {
+    m.walk()
+        .filter_map(|e| match e {
+            mjcf::Event::Enter(e) if e.kind().namespace().is_some_and(|ns| namespaces.contains(&ns)) => Some(e.loc()),
+            _ => None,
+        })
+        .collect()
 }
 
 fn pick<T: Clone>(items: &[T], i: u16) -> Option<T> {
@@ -649,12 +666,16 @@ impl Run {
     fn check_current(&self, m: &Model, xml: &Result<String, WriteError>) {
         let Ok(xml) = xml else { return };
         common::check_unique_identifiers(xml);
+        self.check_read_back(m, xml);
+    }
+
+    fn check_read_back(&self, m: &Model, xml: &str) {
         if m.scopes().next().is_some() {
             // A composed model's output holds scoped names (`robot/torso`), which read
             // back as literal names: a flat model that writes itself again unchanged.
             let back = common::reread(&self.options, xml, "composed");
             let w2 = back.to_xml_string().unwrap_or_else(|e| panic!("the read-back does not write: {e}\n{xml}"));
-            if w2 == *xml {
+            if w2 == xml {
                 return;
             }
             let w3 = common::reread(&self.options, &w2, "composed, round 2").to_xml_string().unwrap();
@@ -684,6 +705,9 @@ fuzz_target!(|input: Input| {
     let mut current = base;
     let mut current_index = 0;
     let mut current_hash = run.versions[0].hash.clone();
+    // The version whose read-back was checked last (the base's is checked above when it
+    // is built from a recipe; the fixed arena's in every run that keeps it).
+    let mut read_back = 0;
     for (step, op) in input.ops.iter().take(MAX_OPS).enumerate() {
         match op {
             Op::Revert { version } => {
@@ -712,7 +736,13 @@ fuzz_target!(|input: Input| {
                 if xml.as_ref().is_ok_and(|x| x.len() > MAX_XML) {
                     return;
                 }
-                run.check_current(&next, &xml);
+                if let Ok(x) = &xml {
+                    common::check_unique_identifiers(x);
+                    if step % READ_BACK_EVERY == READ_BACK_EVERY - 1 {
+                        run.check_read_back(&next, x);
+                        read_back = run.versions.len();
+                    }
+                }
                 run.check_history(current_index, step);
                 run.versions.push(Version::new(next.clone(), &xml));
                 current = next;
@@ -725,6 +755,12 @@ fuzz_target!(|input: Input| {
                 assert!(snapshot == current, "a failed {op:?} changed the model");
                 assert!(hash_of(&written(&current)) == current_hash, "a failed {op:?} changed the model's output: {e}");
             }
+        }
+    }
+    // (b) for the version the input ends with.
+    if current_index != read_back {
+        if let Ok(x) = written(&current) {
+            run.check_read_back(&current, &x);
         }
     }
     // The robots and sources were never changed by being attached or copied: one of
