@@ -41,7 +41,7 @@ use mjcf::generate::{Edit, EditRecipe, ModelRecipe, Step};
 use mjcf::{Attrs, EditError, Element, Loc, Model, Namespace, ReadOptions, WriteError};
 
 /// Steps per input.
-const MAX_OPS: usize = 16;
+const MAX_OPS: usize = 8;
 /// The new version's read-back (b) is checked every this many steps, and for the
 /// version an input ends with.
 const READ_BACK_EVERY: usize = 4;
