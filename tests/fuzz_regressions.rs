@@ -259,3 +259,16 @@ fn generated_mass_below_another_joint_does_not_count() {
     let (m, _) = m.add(&e, Element::new("geom").attr("size", [0.1])).unwrap();
     assert!(m.check().is_empty(), "{:?}", m.check());
 }
+
+/// Found by the `read_xml` fuzz target: merged keyframes read a body's `pos` as three
+/// numbers, but arrays may be shorter than their schema length.
+#[test]
+fn read_xml_merged_keys_with_a_short_pos_do_not_panic() {
+    let m = Model::from_xml_str(
+        r#"<mujoco><worldbody><body pos="1"><freejoint/><geom size="1"/></body></worldbody><keyframe><key qpos="0 0 0 1 0 0 0"/></keyframe></mujoco>"#,
+    )
+    .unwrap();
+    let merge = mjcf::WriteOptions { merge_keyframes: true, ..mjcf::WriteOptions::default() };
+    let xml = m.to_xml_string_with(&merge).unwrap();
+    assert!(xml.contains("<key qpos=\"0 0 0 1 0 0 0\"/>"), "{xml}");
+}

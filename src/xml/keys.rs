@@ -111,7 +111,10 @@ fn floats<'a>(node: &'a Node, name: &str) -> Option<&'a [f64]> {
 
 /// The pose an element (body, frame, site) gives its content, as MuJoCo reads it.
 fn local_pose(node: &Node, angles: &Angles) -> Pose {
-    let pos = floats(node, "pos").map_or([0.0; 3], |p| [p[0], p[1], p[2]]);
+    // Arrays may be shorter than their schema length (as in the reference): missing
+    // entries are 0.
+    let pos = floats(node, "pos")
+        .map_or([0.0; 3], |p| [0, 1, 2].map(|i| p.get(i).copied().unwrap_or(0.0)));
     let quat = if let Some(q) = floats(node, "quat").filter(|q| q.len() == 4) {
         normalize4([q[0], q[1], q[2], q[3]])
     } else if let Some(a) = floats(node, "axisangle").filter(|a| a.len() == 4) {
