@@ -1,4 +1,4 @@
-//! Prints one JSON line per workload (W1–W7, see `benches/workloads/mod.rs`): the
+//! Prints one JSON line per workload (W1–W8, see `benches/workloads/mod.rs`): the
 //! figures `tools/compare_perf.py` compares with dm_control and MjSpec; then the
 //! performance issue's table (each goal with ours, the floor measured in the same run
 //! on the same bytes, the ratio, and whether the goal is met).
@@ -20,6 +20,11 @@
 //! ones; a failing workload prints `"error"`.
 
 mod workloads;
+
+/// W8: `examples/compose.rs` itself (its `main` is not used here).
+#[allow(dead_code)]
+#[path = "../examples/compose.rs"]
+mod compose;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -143,7 +148,7 @@ fn parse_args() -> Args {
     // `issue`: the workloads of the issue's table; W1 at N = 1000 unless sizes are given.
     if let Some(only) = &mut a.only {
         if only.iter().any(|w| w == "issue") {
-            only.extend(["w1", "w2", "w3", "w4", "w5", "w6", "w7"].map(String::from));
+            only.extend(["w1", "w2", "w3", "w4", "w5", "w6", "w7", "w8"].map(String::from));
             if !std::env::args().any(|x| x == "--sizes") {
                 a.sizes = vec![1000];
             }
@@ -415,6 +420,27 @@ fn main() {
         }
     }
 
+    // W8 the real job: examples/compose.rs, its models read, the scene composed, 200
+    // variants built on 2 threads and exported with their meshes into a fresh folder.
+    if wants("w8") {
+        let case = models_dir().join("../../tests/conformance/cases/real_02_jaco_arm_with_hand");
+        let out = std::env::temp_dir().join(format!("mjcf-w8-{}", std::process::id()));
+        let m = measure(3, 20, budget, || {
+            let _ = std::fs::remove_dir_all(&out);
+            compose::compose(&case, &out)
+        });
+        match &m.value {
+            Ok(()) => {
+                let mut l =
+                    line("w8_compose", "W8 compose.rs: read, compose, 200 variants exported", &m);
+                l["files"] = json!(std::fs::read_dir(&out).map_or(0, Iterator::count));
+                emit(l);
+            }
+            Err(e) => error("w8_compose", "W8 compose.rs", e),
+        }
+        let _ = std::fs::remove_dir_all(&out);
+    }
+
     issue_table().print();
 }
 
@@ -527,6 +553,18 @@ fn issue_table() -> Table {
                 "-",
                 "-",
                 "keep (3.0 µs; 2.6 KiB; 3.1 MiB)",
+            ],
+            None,
+        );
+    }
+    if let (Some(c), Some(files)) = (got("w8_compose", "seconds"), got("w8_compose", "files")) {
+        t.row(
+            [
+                &format!("compose.rs: read, compose, 200 variants exported ({files} files)"),
+                &time(c),
+                "dm_control 4.2 s (the issue; tools/compare_perf.py measures it)",
+                &format!("{} faster", ratio(4.2, c)),
+                "-",
             ],
             None,
         );

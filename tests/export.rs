@@ -305,3 +305,39 @@ fn an_exported_model_reads_back() {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+/// The file's inode: a rename over it gives another one.
+#[cfg(unix)]
+fn inode(path: &Path) -> u64 {
+    std::os::unix::fs::MetadataExt::ino(&std::fs::symlink_metadata(path).unwrap())
+}
+
+#[cfg(unix)]
+#[test]
+fn a_file_already_holding_the_same_bytes_is_left_and_any_other_replaced() {
+    let dir = temp_path("same-bytes");
+    robot("r", b"solid cube").export(&dir, "a.xml", &plain()).unwrap();
+    let mesh = dir.join("cube.stl");
+    let (mesh_inode, xml_inode) = (inode(&mesh), inode(&dir.join("a.xml")));
+    // A second export of the same model: the mesh is the same file, the MJCF is new.
+    robot("r", b"solid cube").export(&dir, "a.xml", &plain()).unwrap();
+    assert_eq!(inode(&mesh), mesh_inode);
+    assert_ne!(inode(&dir.join("a.xml")), xml_inode);
+    // Other bytes under that name (same length, then another length) are replaced.
+    std::fs::write(&mesh, b"solid cubf").unwrap();
+    robot("r", b"solid cube").export(&dir, "a.xml", &plain()).unwrap();
+    assert_eq!(std::fs::read(&mesh).unwrap(), b"solid cube");
+    std::fs::write(&mesh, b"solid").unwrap();
+    robot("r", b"solid cube").export(&dir, "a.xml", &plain()).unwrap();
+    assert_eq!(std::fs::read(&mesh).unwrap(), b"solid cube");
+    // A link to a file with the same bytes is replaced by a file of its own.
+    let elsewhere = temp_path("same-bytes-target");
+    std::fs::write(&elsewhere, b"solid cube").unwrap();
+    std::fs::remove_file(&mesh).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, &mesh).unwrap();
+    robot("r", b"solid cube").export(&dir, "a.xml", &plain()).unwrap();
+    assert!(std::fs::symlink_metadata(&mesh).unwrap().file_type().is_file());
+    assert_eq!(std::fs::read(&mesh).unwrap(), b"solid cube");
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_file(&elsewhere).unwrap();
+}

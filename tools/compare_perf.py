@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs the performance workloads W1-W4 with mjcf, dm_control and MuJoCo's MjSpec
+"""Runs the performance workloads W1-W4 and W8 with mjcf, dm_control and MuJoCo's MjSpec
 in one run and prints one table (see benches/workloads/mod.rs for the workloads).
 
 Usage:
@@ -9,6 +9,7 @@ Usage:
         tools/compare_perf.py --full          # MjSpec up to N=1000 as well (several minutes)
         tools/compare_perf.py --sizes 1,10,100 --mjspec-max-n 10 --dmc-max-n 100
         tools/compare_perf.py --ours-json FILE   # reuse `cargo bench --bench figures` output
+        tools/compare_perf.py --only w8       # some workloads (w1, w2, w3, w8; W4 runs with w1)
 
 Our figures come from `cargo bench --bench figures` (release build), which prints
 one JSON line per workload; the generated models (arenas for N other than 100 and
@@ -37,6 +38,11 @@ Measured as:
     / 20. W4: `spec.delete(body)` of one robot's frame body.
 - ours: time = median of repeated runs; memory = heap bytes held (counting
     allocator), the fleet including the arena and robot it shares.
+- W8 (dm_control only): `benches/dm_control/compose.py` (the user program of the
+    composition issue: the jaco arm and hand read, two arms and ten props in an
+    arena, 200 randomized variants exported with `export_with_assets`), timed whole,
+    run in a temporary folder; ours is `examples/compose.rs` (the same job, its 200
+    variants on 2 threads) timed whole by the figures binary.
 - W3: reading the XML text from memory (`Model::from_xml_str`,
     `mjcf.from_xml_string`, `MjSpec.from_string`); W5 (ours only): quick-xml reading
     the same text into events and writing them back, the floor.
@@ -124,6 +130,18 @@ def worker_dmc(task, n, models):
         _emit(key='w2_one_version', seconds=time.perf_counter() - t)
     elif task == 'w3':
         read_w3(lambda xml: mjcf.from_xml_string(xml), models)
+    elif task == 'w8':
+        import runpy
+        import tempfile
+        import numpy  # noqa: F401  (imported before the clock starts, as dm_control is)
+        with tempfile.TemporaryDirectory() as d:
+            # The script reads tests/conformance/cases/... and writes variants/, both
+            # relative to where it runs.
+            os.symlink(REPO_ROOT / 'tests', Path(d) / 'tests')
+            os.chdir(d)
+            t = time.perf_counter()
+            runpy.run_path(str(REPO_ROOT / 'benches' / 'dm_control' / 'compose.py'))
+            _emit(key='w8_compose', seconds=time.perf_counter() - t, files=len(os.listdir('variants')))
     else:
         raise ValueError(task)
 
@@ -263,7 +281,8 @@ def run_ours(args):
     """Runs the figures binary; returns ({key: record}, failure reason or None)."""
     if args.ours_json:
         return parse_records(Path(args.ours_json).read_text()), None
-    cmd = figures_cmd('--sizes', ','.join(map(str, args.sizes)))
+    only = ['--only', ','.join(sorted(args.only | ({'w4'} if 'w1' in args.only else set())))] if args.only else []
+    cmd = figures_cmd('--sizes', ','.join(map(str, args.sizes)), *only)
     print('running: ' + ' '.join(cmd), file=sys.stderr, flush=True)
     r = subprocess.run(cmd, cwd=REPO_ROOT, capture_output=True, text=True)
     reason = None
@@ -399,6 +418,7 @@ def table(args, ours, dmc, mjs):
     mj_n = mjs.records.get('w4_detach', {}).get('n')
     mj_note = f' (N={mj_n})' if mj_n and mj_n != DETACH_ROBOTS else ''
     rows.append(('W4 detach one robot (N=1000)', *times('w4_detach', notes=('', '', mj_note))))
+    rows.append(('W8 compose.py/compose.rs: read, compose, 200 variants exported', *times('w8_compose')))
     for key, name in (('w5_fleet_1000_roundtrip', 'W5 quick-xml read+write, W1 N=1000 XML'),
                       ('w5_fleet_1000_read', 'W5 quick-xml read, W1 N=1000 XML'),
                       ('w5_tree_roundtrip', 'W5 quick-xml read+write, W3 tree'),
@@ -502,7 +522,9 @@ def main():
     p.add_argument('--models-dir', type=Path, default=REPO_ROOT / 'target' / 'perf-models',
                    help='where the generated models are written (default target/perf-models)')
     p.add_argument('--json-out', type=Path, help='also write every record as JSON here')
+    p.add_argument('--only', help='these workloads only (comma-separated: w1, w2, w3, w8)')
     args = p.parse_args()
+    args.only = set(args.only.split(',')) if args.only else None
     args.sizes = sorted({int(s) for s in args.sizes.split(',') if s.strip()})
     if args.full:
         args.dmc_max_n = args.mjspec_max_n = max(args.sizes)
@@ -537,7 +559,8 @@ def main():
                     if reason and k not in got:
                         side.failures[k] = reason
 
-            sizes = [n for n in args.sizes if n <= max_n]
+            wants = lambda w: args.only is None or w in args.only  # noqa: E731
+            sizes = [n for n in args.sizes if n <= max_n] if wants('w1') else []
             for n in sizes:
                 keys = [f'w1_build_{n}', f'w1_write_{n}']
                 # dm_control detaches from its 1000-robot fleet; MjSpec from each fleet
@@ -545,10 +568,13 @@ def main():
                 if n == DETACH_ROBOTS or (side_name == 'mjspec' and n == sizes[-1]):
                     keys.append('w4_detach')
                 reference('w1', n, keys)
-            reference('w2', UNDO_ROBOTS, ['w2_one_version'])
+            if wants('w2'):
+                reference('w2', UNDO_ROBOTS, ['w2_one_version'])
             # Each W3 file in its own process: a reader may crash on the chain.
-            for w in ('tree', 'humanoid', 'chain'):
+            for w in ('tree', 'humanoid', 'chain') if wants('w3') else ():
                 reference('w3', 0, [f'w3_{w}_read'], {'COMPARE_PERF_W3': w})
+            if side_name == 'dmc' and wants('w8'):
+                reference('w8', 0, ['w8_compose'])
 
     print()
     for line in table(args, ours, dmc, mjs):

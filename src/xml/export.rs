@@ -97,8 +97,11 @@ impl Model {
     /// Writes the model's MJCF as `dir/xml_file_name` and every file it names
     /// ([`Model::assets`]) into `dir`, each once, so that MuJoCo loads it from there
     /// (`MjModel.from_xml_path`); dm_control's `export_with_assets`. `dir` is created
-    /// if missing; files already there under the same names are replaced. Returns the
-    /// path of the MJCF file.
+    /// if missing; files already there under the same names are replaced, except that
+    /// a regular file already holding exactly the bytes of a file the model names is
+    /// left as it is (its name carries a hash of its contents, so variants exported
+    /// into one folder share their meshes, written once). Returns the path of the MJCF
+    /// file.
     ///
     /// Each file is written under a temporary name in `dir` and then renamed, and the
     /// MJCF file comes last: an export that fails leaves no MJCF file under
@@ -156,7 +159,9 @@ impl Model {
             if let Some(folder) = path.parent().filter(|f| *f != dir) {
                 std::fs::create_dir_all(folder).map_err(|e| io_error(folder, &e))?;
             }
-            write_by_rename(dir, &path, contents)?;
+            if !holds(&path, contents) {
+                write_by_rename(dir, &path, contents)?;
+            }
         }
         write_by_rename(dir, &xml_path, xml.as_bytes())?;
         Ok(xml_path)
@@ -217,6 +222,13 @@ fn relative_file(dir: &Path, name: &str) -> Result<PathBuf, ExportError> {
 
 fn io_error(path: &Path, e: &io::Error) -> ExportError {
     ExportError::Io { path: path.to_path_buf(), kind: e.kind(), reason: e.to_string() }
+}
+
+/// Whether `path` is a regular file (not a link) holding exactly `contents`.
+fn holds(path: &Path, contents: &[u8]) -> bool {
+    std::fs::symlink_metadata(path)
+        .is_ok_and(|m| m.file_type().is_file() && m.len() == contents.len() as u64)
+        && std::fs::read(path).is_ok_and(|b| b == contents)
 }
 
 /// Writes `contents` to a fresh temporary file in `dir`, then renames it to `path`
