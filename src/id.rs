@@ -22,6 +22,18 @@ impl ElementId {
         // The counter would need 2^64 allocations to wrap.
         ElementId(NonZeroU64::new(n).unwrap_or(NonZeroU64::MIN))
     }
+
+    /// The first of `n` new consecutive ids (`first.nth(0)` … `first.nth(n - 1)`),
+    /// never handed out before in this process, however many threads take ids.
+    pub(crate) fn fresh_block(n: usize) -> ElementId {
+        let n = NEXT_ID.fetch_add(n as u64, Ordering::Relaxed);
+        ElementId(NonZeroU64::new(n).unwrap_or(NonZeroU64::MIN))
+    }
+
+    /// The id `i` places after this one (in a block from [`ElementId::fresh_block`]).
+    pub(crate) fn nth(self, i: usize) -> ElementId {
+        ElementId(self.0.saturating_add(i as u64))
+    }
 }
 
 /// A hasher for element ids in the crate's maps: ids are handed out by this process

@@ -212,14 +212,18 @@ impl std::fmt::Debug for Element {
 /// Creates an empty element of `kind` with a fresh id and every singleton child it
 /// always has (an `option` gets its `flag`, a default class its `geom`, ...).
 pub(crate) fn empty_node(kind: ElementKind) -> Node {
-    let children: Seq<Node> = kind
-        .spec()
-        .children
-        .iter()
-        .filter(|c| c.multiplicity() == Multiplicity::Singleton)
-        .map(|c| empty_node(*c))
-        .collect();
-    Node::new(ElementId::fresh(), kind, Vec::new(), children)
+    empty_node_with_id(ElementId::fresh(), kind)
+}
+
+/// [`empty_node`] with the id `id`. The singleton children take one block of
+/// consecutive ids, so the index keeps them as one run (`model::index`).
+pub(crate) fn empty_node_with_id(id: ElementId, kind: ElementKind) -> Node {
+    let singletons =
+        || kind.spec().children.iter().filter(|c| c.multiplicity() == Multiplicity::Singleton);
+    let first = ElementId::fresh_block(singletons().count());
+    let children: Seq<Node> =
+        singletons().enumerate().map(|(i, c)| empty_node_with_id(first.nth(i), *c)).collect();
+    Node::new(id, kind, Vec::new(), children)
 }
 
 /// The folder settings of a model's compiler, which decide where files are read from.

@@ -136,9 +136,7 @@ pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -
         }
         cur = model
             .index
-            .elems
-            .get(&id)
-            .and_then(|e| e.parent)
+            .parent(id)
             .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().tag() == "default"));
     }
     "hinge"
@@ -235,9 +233,7 @@ impl Model {
                                     },
                                 });
                             }
-                            Value::Reference(Reference::Element(id))
-                                if !m.index.elems.contains_key(id) =>
-                            {
+                            Value::Reference(Reference::Element(id)) if !m.index.contains(*id) => {
                                 let attribute = spec.name;
                                 let kind = if spec.required {
                                     ProblemKind::MissingRequired { attribute }

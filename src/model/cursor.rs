@@ -495,7 +495,7 @@ impl<'a> ElementRef<'a> {
         }
         let ns = self.node.kind().namespace()?;
         // A frame's joint is named after its frame: `robot/` or `robot/root/`.
-        let parent = self.model.index.elems.get(&self.node.id()).and_then(|e| e.parent);
+        let parent = self.model.index.parent(self.node.id());
         if let Some(frame) = parent.and_then(|p| self.model.index.scope_of(p)) {
             return Some(match self.identifier() {
                 Some(n) => format!("{prefix}{frame}/{n}/"),
@@ -565,7 +565,7 @@ impl<'a> ElementRef<'a> {
     pub fn string(&self, name: &str) -> Option<&'a str> {
         match self.attr(name)? {
             Value::Reference(Reference::Element(id)) => {
-                self.model.index.elems.get(id)?.name.as_deref()
+                self.model.index.name(*id).map(smol_str::SmolStr::as_str)
             }
             v => v.as_str(),
         }
@@ -592,7 +592,7 @@ impl<'a> ElementRef<'a> {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn parent(&self) -> Option<ElementRef<'a>> {
-        let parent = self.model.index.elems.get(&self.node.id())?.parent?;
+        let parent = self.model.index.parent(self.node.id())?;
         let pnode = self.model.node_by_id(parent)?;
         let is_section = pnode.kind().spec().parent == Some(ElementKind::ROOT);
         match self.frames.split_last() {

@@ -449,7 +449,7 @@ impl<'m> Differ<'m> {
         // Old children under no new one: removed, unless the new version has them
         // elsewhere (then they are found there as moved).
         for (_, n, matched) in &gone {
-            if !matched && !new.index.elems.contains_key(&n.id()) {
+            if !matched && !new.index.contains(n.id()) {
                 self.removed(s, n);
             }
         }
@@ -479,7 +479,7 @@ impl<'m> Differ<'m> {
                     }
                 }
                 Unit::New(new_index, n) => {
-                    if !(old.index.elems.contains_key(&n.id())
+                    if !(old.index.contains(n.id())
                         && self.moved_in(s, b, new_index, n, &mut pairs))
                     {
                         self.added(s, n, &mut pairs);
@@ -507,7 +507,7 @@ impl<'m> Differ<'m> {
         let (Some(old_node), Some(&old_index)) = (old.node_at(&path), path.last()) else {
             return false;
         };
-        let Some(old_parent) = old.index.elems.get(&n.id()).and_then(|e| e.parent) else {
+        let Some(old_parent) = old.index.parent(n.id()) else {
             return false;
         };
         let (loc, from, to) =
@@ -532,7 +532,7 @@ impl<'m> Differ<'m> {
         let mut todo: Vec<(&'m Node, usize, &'m Node)> =
             top.children().iter().enumerate().rev().map(|(i, c)| (top, i, c)).collect();
         while let Some((parent, i, n)) = todo.pop() {
-            if old.index.elems.contains_key(&n.id()) && self.moved_in(s, parent, i, n, pairs) {
+            if old.index.contains(n.id()) && self.moved_in(s, parent, i, n, pairs) {
                 continue;
             }
             // Inside an added subtree only attachments are reported.
@@ -560,7 +560,7 @@ impl<'m> Differ<'m> {
         }
         let mut todo: Vec<&'m Node> = top.children().iter().rev().collect();
         while let Some(n) = todo.pop() {
-            if new.index.elems.contains_key(&n.id()) {
+            if new.index.contains(n.id()) {
                 continue;
             }
             if let Some(a) = n.attached() {

@@ -494,7 +494,7 @@ impl Model {
         let mut index = self.index.clone();
         index.remove_subtree(&node);
         let root = if path.is_empty() || node.kind().multiplicity() == Multiplicity::Singleton {
-            let parent_id = self.index.elems.get(&node.id()).and_then(|e| e.parent);
+            let parent_id = self.index.parent(node.id());
             let fresh = Node::new(
                 node.id(),
                 node.kind(),

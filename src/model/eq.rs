@@ -118,8 +118,8 @@ fn same_tree<'m>(
     for (p, q) in refs {
         let ok = match pairing.get(&p) {
             Some(t) => *t == q,
-            None if a.index.elems.contains_key(&p) => p == q,
-            None => !b.index.elems.contains_key(&q),
+            None if a.index.contains(p) => p == q,
+            None => !b.index.contains(q),
         };
         if !ok {
             return false;

@@ -8,9 +8,16 @@
 //!   increasing order, so a model read or built in order fills its nodes, where a
 //!   hash trie holding every element left most slots of its 32-slot nodes empty
 //!   (about twice the memory, and as many cache misses, for large models).
+//! - `runs`: the singleton children an element is created with (a default class's 21
+//!   `geom`, `joint`, `position`, ...; `visual`'s `global`, `quality`, ...), which
+//!   have consecutive ids, no name and their schema places, indexed as one entry per
+//!   parent (first child's id → parent, count) instead of one each: their entries are
+//!   derived on lookup. For deeply nested default classes this is 1 entry per class
+//!   instead of 22.
 //!
 //! The index of an attached child lives in the child value, never in the parent's.
 
+use std::borrow::Cow;
 use std::sync::{Arc, OnceLock};
 
 use imbl::{GenericHashMap, HashMap, OrdMap};
@@ -18,7 +25,7 @@ use smol_str::SmolStr;
 
 use super::tree::{ElementId, Node};
 use crate::id::IdHash;
-use crate::schema::{ElementKind, Namespace};
+use crate::schema::{ElementKind, Multiplicity, Namespace};
 use crate::seq::fresh_ord;
 
 /// A persistent map keyed by element ids, hashed cheaply (ids are not user input).
@@ -42,7 +49,11 @@ pub(crate) struct Entry {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
+    /// Read through [`Index::entry`], which also knows the members of `runs`.
     pub(crate) elems: OrdMap<ElementId, Entry>,
+    /// Runs of singleton children without an entry of their own (module docs): the
+    /// first child's id → (the parent, the run's length).
+    pub(crate) runs: OrdMap<ElementId, (ElementId, u8)>,
     /// The model's own attachments: scope names and frames, in attach order.
     pub(crate) scopes: Scopes,
     /// The model's name where it differs from its `model` attribute: `include_copy`
@@ -81,6 +92,11 @@ impl std::fmt::Debug for MergedCache {
     }
 }
 
+/// An element waiting to be indexed: its parent, itself, whether its parent is an
+/// attachment frame, its position and slot, and whether it is indexed through a run
+/// (`runs`) rather than by an entry of its own.
+type ToIndex<'a> = (Option<ElementId>, &'a Node, bool, usize, u64, bool);
+
 /// A name already taken, found while indexing.
 #[derive(Debug)]
 pub(crate) struct Duplicate {
@@ -112,23 +128,68 @@ impl Index {
         ord: u64,
     ) -> Result<(), Duplicate> {
         let in_frame = parent.is_some_and(|p| self.scope_of(p).is_some());
-        let mut stack: Vec<(Option<ElementId>, &Node, bool, usize, u64)> =
-            vec![(parent, node, in_frame, at, ord)];
-        while let Some((parent, n, in_frame, pos, ord)) = stack.pop() {
-            self.insert_one(parent, n, !in_frame, pos, ord)?;
+        let mut stack: Vec<ToIndex<'_>> = vec![(parent, node, in_frame, at, ord, false)];
+        while let Some((parent, n, in_frame, pos, ord, in_run)) = stack.pop() {
+            if !in_run {
+                self.insert_one(parent, n, !in_frame, pos, ord)?;
+            }
+            let run = singleton_run(n);
+            if let (Some(first), true) = (n.children().get(0), run > 0) {
+                self.runs.insert(first.id(), (n.id(), run as u8));
+            }
             // Reversed, so that elements are indexed in document order and a duplicate
             // is reported at its second occurrence. A frame's joints are unique per
             // frame only, so their names are not registered.
             let frame = n.attached().is_some();
+            // Members of the run without children have nothing more to index.
             stack.extend(
                 n.children()
                     .iter()
                     .enumerate()
                     .rev()
-                    .map(|(i, c)| (Some(n.id()), c, frame, i, fresh_ord(i))),
+                    .filter(|(i, c)| *i >= run || !c.children().is_empty())
+                    .map(|(i, c)| (Some(n.id()), c, frame, i, fresh_ord(i), i < run)),
             );
         }
         Ok(())
+    }
+
+    /// What the index knows about `id`: its own entry, or the one its run implies.
+    pub(crate) fn entry(&self, id: ElementId) -> Option<Cow<'_, Entry>> {
+        if let Some(e) = self.elems.get(&id) {
+            return Some(Cow::Borrowed(e));
+        }
+        let (first, &(parent, len)) = self.runs.get_prev(&id)?;
+        let i = usize::try_from(id.get() - first.get()).ok().filter(|i| *i < usize::from(len))?;
+        let kind = singleton_kinds(self.entry(parent)?.kind).nth(i)?;
+        Some(Cow::Owned(Entry {
+            parent: Some(parent),
+            kind,
+            name: None,
+            pos: i,
+            ord: fresh_ord(i),
+        }))
+    }
+
+    /// Whether `id` is an element of this model.
+    pub(crate) fn contains(&self, id: ElementId) -> bool {
+        self.entry(id).is_some()
+    }
+
+    /// The parent of `id`, if `id` is an element of this model and not its root.
+    pub(crate) fn parent(&self, id: ElementId) -> Option<ElementId> {
+        self.entry(id)?.parent
+    }
+
+    /// The identifier of `id`, if it is an element of this model with one.
+    pub(crate) fn name(&self, id: ElementId) -> Option<&SmolStr> {
+        // Members of runs have no identifier.
+        self.elems.get(&id)?.name.as_ref()
+    }
+
+    /// The number of elements indexed.
+    pub(crate) fn len(&self) -> usize {
+        self.elems.len() + self.runs.values().map(|(_, n)| usize::from(*n)).sum::<usize>()
     }
 
     fn insert_one(
@@ -154,6 +215,11 @@ impl Index {
     /// Removes `node` and its subtree.
     pub(crate) fn remove_subtree(&mut self, node: &Node) {
         for n in node.descendants() {
+            if let Some(first) = n.children().get(0) {
+                if self.runs.get(&first.id()).is_some_and(|(p, _)| *p == n.id()) {
+                    self.runs.remove(&first.id());
+                }
+            }
             if let Some(e) = self.elems.remove(&n.id()) {
                 if let (Some(ns), Some(name)) = (e.kind.namespace(), e.name) {
                     if self.names.get(&(ns, name.clone())) == Some(&n.id()) {
@@ -169,7 +235,7 @@ impl Index {
 
     /// Changes the identifier of `id` (already checked to be free).
     pub(crate) fn rename(&mut self, id: ElementId, new: Option<SmolStr>) {
-        let Some(entry) = self.elems.get(&id).cloned() else { return };
+        let Some(entry) = self.entry(id).map(Cow::into_owned) else { return };
         let in_frame = entry.parent.is_some_and(|p| self.scope_of(p).is_some());
         if let (Some(ns), false) = (entry.kind.namespace(), in_frame) {
             if let Some(old) = &entry.name {
@@ -195,10 +261,10 @@ impl Index {
     /// The ids from the root down to `id`, inclusive, each with its position hint
     /// and slot.
     pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
-        let mut cur = self.elems.get(&id)?;
+        let mut cur = self.entry(id)?;
         let mut chain = vec![(id, cur.pos, cur.ord)];
         while let Some(p) = cur.parent {
-            cur = self.elems.get(&p)?;
+            cur = self.entry(p)?;
             chain.push((p, cur.pos, cur.ord));
         }
         chain.reverse();
@@ -308,4 +374,32 @@ impl Scopes {
             n += 1;
         }
     }
+}
+
+/// The singleton kinds of `kind`'s children, in schema order.
+fn singleton_kinds(kind: ElementKind) -> impl Iterator<Item = ElementKind> {
+    kind.spec().children.iter().copied().filter(|c| c.multiplicity() == Multiplicity::Singleton)
+}
+
+/// How many of `n`'s first children form a run (module docs): all its singleton
+/// children, in schema order, unnamed, with consecutive ids; 0 when they do not (a
+/// singleton read from a file has the id of where it was read), or when there are
+/// fewer than two.
+fn singleton_run(n: &Node) -> usize {
+    let children = n.children();
+    let Some(first) = children.get(0) else { return 0 };
+    let mut count = 0;
+    for (i, kind) in singleton_kinds(n.kind()).enumerate() {
+        match children.get(i) {
+            Some(c)
+                if c.kind() == kind
+                    && c.id().get() == first.id().get() + i as u64
+                    && c.identifier().is_none() =>
+            {
+                count += 1;
+            }
+            _ => return 0,
+        }
+    }
+    if count < 2 || count > usize::from(u8::MAX) { 0 } else { count }
 }

@@ -31,7 +31,8 @@ use tree::{ElementId, Node};
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
 pub(crate) use build::{
-    Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, name_from_file,
+    Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, empty_node_with_id,
+    name_from_file,
 };
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
@@ -587,7 +588,7 @@ impl fmt::Debug for Model {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Model")
             .field("name", &self.name())
-            .field("elements", &self.index.elems.len())
+            .field("elements", &self.index.len())
             .finish()
     }
 }

@@ -8,3 +8,63 @@ fn new_models_share_one_empty_tree() {
     assert_eq!(a.name(), "a");
     assert_eq!(Model::new("").name(), "unnamed_model");
 }
+
+/// Every element of `m`'s own tree is indexed with its parent, kind and name, and
+/// found by its id, whether it has an entry of its own or belongs to a run of
+/// singletons (`index.rs`); the index holds nothing else.
+fn assert_index_exact(m: &Model) {
+    let mut stack = vec![(None, &m.root)];
+    let mut count = 0;
+    while let Some((parent, n)) = stack.pop() {
+        let e = m.index.entry(n.id()).unwrap_or_else(|| panic!("{:?} is indexed", n.id()));
+        assert_eq!((e.parent, e.kind, e.name.as_deref()), (parent, n.kind(), n.identifier()));
+        let found = m.path_of(n.id()).and_then(|p| m.node_at(&p).map(Node::id));
+        assert_eq!(found, Some(n.id()));
+        count += 1;
+        stack.extend(n.children().iter().map(|c| (Some(n.id()), c)));
+    }
+    assert_eq!(m.index.len(), count);
+}
+
+#[test]
+fn singletons_indexed_as_runs_are_found_like_any_element_through_edits() {
+    let xml = r#"<mujoco model="m">
+      <visual><map znear="0.01"/></visual>
+      <default>
+        <default class="a"><default class="b"><default class="c"/></default></default>
+        <default class="d"><geom rgba="1 0 0 1"/></default>
+      </default>
+      <worldbody><body name="b"><geom class="a" size="0.1"/></body></worldbody>
+    </mujoco>"#;
+    let m = Model::from_xml_str(xml).unwrap();
+    assert_index_exact(&m);
+    // Classes read without singletons are runs; `d` (its geom was read) and `visual`
+    // (its map was read) are not.
+    assert!(m.index.runs.len() >= 4, "{} runs", m.index.runs.len());
+    let class = |m: &Model, name| m.find(Namespace::Default, name).unwrap();
+    let geom_of = |m: &Model, class: &Loc| {
+        m.element(class).unwrap().children().find(|c| c.tag() == "geom").unwrap().loc()
+    };
+    // An edit of a member of a run, then a removal of the class holding it.
+    let g = geom_of(&m, &class(&m, "b"));
+    let m = m.set_attr(&g, "rgba", [0.0, 1.0, 0.0, 1.0]).unwrap();
+    assert_index_exact(&m);
+    assert_eq!(m.floats(&g, "rgba").unwrap(), [0.0, 1.0, 0.0, 1.0]);
+    let m = m.remove(&class(&m, "c")).unwrap();
+    assert_index_exact(&m);
+    // A singleton section reset by removal, a class added, a model included.
+    let m = m.remove(&m.section("visual").unwrap()).unwrap();
+    assert_index_exact(&m);
+    let (m, e) =
+        m.add(&m.default_class(), crate::Element::new("default").attr("class", "e")).unwrap();
+    assert_index_exact(&m);
+    let m = m.set_attr(&geom_of(&m, &e), "size", [0.2]).unwrap();
+    assert_index_exact(&m);
+    let other =
+        Model::from_xml_str(r#"<mujoco><default><default class="f"/></default></mujoco>"#).unwrap();
+    let m = m.include_copy(&other, false).unwrap();
+    assert_index_exact(&m);
+    let (m, _) = m.attach(&m.worldbody(), &other).unwrap();
+    assert_index_exact(&m);
+    assert!(m.find(Namespace::Default, "f").is_some());
+}

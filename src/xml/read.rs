@@ -32,7 +32,7 @@ use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, Node};
 use crate::model::{
     Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
-    name_from_file,
+    empty_node_with_id, name_from_file,
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
 use crate::value::{Reference, Value};
@@ -746,14 +746,17 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     for i in (0..r.arena.len()).rev() {
         let p = &mut r.arena[i];
         // Singletons in schema order, each with where it was read (if it was).
+        // The ones not read take one block of ids, so that a class read without any
+        // is indexed as one run (`model::index`).
+        let kinds =
+            p.kind.spec().children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton);
+        let first = ElementId::fresh_block(kinds.clone().count());
         let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
-        for k in p.kind.spec().children {
-            if k.multiplicity() == Multiplicity::Singleton {
-                let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
-                match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
-                    Some((n, offset)) => singles.push((n, Some(offset))),
-                    None => singles.push((empty_node(*k), None)),
-                }
+        for (i, k) in kinds.enumerate() {
+            let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
+            match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
+                Some((n, offset)) => singles.push((n, Some(offset))),
+                None => singles.push((empty_node_with_id(first.nth(i), *k), None)),
             }
         }
         if p.kind.tag() == "default" {

@@ -717,7 +717,7 @@ impl<'a> Writer<'a> {
     ) -> Result<bool, WriteError> {
         let kind = node.kind();
         let model = self.insts[inst].model;
-        let Some(entry) = model.index.elems.get(&target) else {
+        let Some(entry) = model.index.entry(target) else {
             let spec = kind.attr(i);
             if spec.required {
                 return Err(WriteError::MissingRequired {
@@ -866,7 +866,7 @@ fn sets_childclass(model: &Model, node: &Node) -> bool {
 fn has_live(model: &Model, node: &Node, i: usize) -> bool {
     match node.attr(i) {
         None => false,
-        Some(Value::Reference(Reference::Element(id))) => model.index.elems.contains_key(id),
+        Some(Value::Reference(Reference::Element(id))) => model.index.contains(*id),
         Some(_) => true,
     }
 }
