@@ -64,6 +64,11 @@
 //!   plus whatever it removed that nothing else holds.
 #![forbid(unsafe_code)]
 
+// The unit tests share the integration tests' fixtures (`tests/support`), which name
+// the crate `mjcf`.
+#[cfg(test)]
+extern crate self as mjcf;
+
 mod compose;
 mod error;
 mod files;

@@ -134,22 +134,6 @@ fn action() -> impl Strategy<Value = Action> {
     ]
 }
 
-/// Every scope path of the composition, outermost first.
-fn scope_paths(m: &Model) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut stack: Vec<(String, &Model)> = vec![(String::new(), m)];
-    while let Some((prefix, model)) = stack.pop() {
-        for s in model.scopes() {
-            let path = format!("{prefix}{s}");
-            if let Ok(inner) = model.attached(s) {
-                stack.push((format!("{path}/"), inner));
-            }
-            out.push(path);
-        }
-    }
-    out
-}
-
 /// (tag, name) of every element, and every (attribute, value) of a motor, from the
 /// written XML.
 fn written(xml: &str) -> (Vec<(String, String)>, Vec<String>) {
@@ -195,14 +179,14 @@ fn step(m: &Model, a: &Action, robots: &[Model]) -> Result<Model, mjcf::EditErro
             m.attach(&target, &robots[*which]).map(|(m, _)| m)
         }
         Action::Detach { scope } => {
-            let paths = scope_paths(m);
+            let paths = m.scope_paths();
             if paths.is_empty() {
                 return Ok(m.clone());
             }
             m.detach(&paths[scope.index(paths.len())])
         }
         Action::RenameScope { scope, to } => {
-            let paths = scope_paths(m);
+            let paths = m.scope_paths();
             if paths.is_empty() {
                 return Ok(m.clone());
             }
@@ -247,7 +231,7 @@ proptest! {
             };
             // Attach then detach gives back the value exactly.
             if let Action::Attach { .. } = a {
-                let new_scope = scope_paths(&next).into_iter().find(|p| !scope_paths(&m).contains(p));
+                let new_scope = next.scope_paths().into_iter().find(|p| !m.scope_paths().contains(p));
                 let new_scope = new_scope.expect("attach adds a scope");
                 prop_assert_eq!(&next.detach(&new_scope).unwrap(), &m);
             }

@@ -409,28 +409,12 @@ fn sources() -> Vec<Model> {
     vec![inc, mat, opt, class, named, Model::from_xml_str(READ_ROBOT).unwrap(), robot("robot")]
 }
 
-/// Every scope path of the composition, outermost first.
-fn scope_paths(m: &Model) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut stack: Vec<(String, &Model)> = vec![(String::new(), m)];
-    while let Some((prefix, model)) = stack.pop() {
-        for s in model.scopes() {
-            let path = format!("{prefix}{s}");
-            if let Ok(inner) = model.attached(s) {
-                stack.push((format!("{path}/"), inner));
-            }
-            out.push(path);
-        }
-    }
-    out
-}
-
 const SECTIONS: &[&str] = &["worldbody", "actuator", "sensor", "asset", "default", "option", "compiler", "size"];
 
 /// The sections of the model and of every model attached to it.
 fn sections(m: &Model) -> Vec<Loc> {
     let mut out: Vec<Loc> = SECTIONS.iter().filter_map(|s| m.section(s)).collect();
-    for scope in scope_paths(m) {
+    for scope in m.scope_paths() {
         let Ok(inner) = m.attached(&scope) else { continue };
         for s in SECTIONS {
             if let Some(l) = inner.section(s).and_then(|l| m.locate_in(&scope, &l).ok()) {
@@ -603,11 +587,11 @@ impl Run {
                 self.attach(m, &at_site(at), &child)?
             }
             Op::Detach { scope } => {
-                let Some(s) = pick(&scope_paths(m), *scope) else { return Ok(None) };
+                let Some(s) = pick(&m.scope_paths(), *scope) else { return Ok(None) };
                 m.detach(&s)?
             }
             Op::RenameScope { scope, to } => {
-                let Some(s) = pick(&scope_paths(m), *scope) else { return Ok(None) };
+                let Some(s) = pick(&m.scope_paths(), *scope) else { return Ok(None) };
                 m.rename_scope(&s, &to.get())?
             }
             Op::IncludeCopy { source, override_attributes } => {
@@ -618,7 +602,7 @@ impl Run {
                 m.include_copy(&v.model, *override_attributes)?
             }
             Op::EditAttached { scope, element } => {
-                let Some(s) = pick(&scope_paths(m), *scope) else { return Ok(None) };
+                let Some(s) = pick(&m.scope_paths(), *scope) else { return Ok(None) };
                 let el = element.build();
                 m.edit_attached(&s, |inner| inner.add(&inner.worldbody(), el).map(|(m, _)| m))?
             }

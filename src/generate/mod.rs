@@ -1036,22 +1036,6 @@ fn two(items: &[String], a: Pick, b: Pick) -> Option<(&str, &str)> {
     Some((x, b.of(&rest)?))
 }
 
-/// Every scope path of the composition (nested ones included), outermost first.
-fn scope_paths(m: &Model) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut stack: Vec<(String, &Model)> = vec![(String::new(), m)];
-    while let Some((prefix, model)) = stack.pop() {
-        for s in model.scopes() {
-            let path = format!("{prefix}{s}");
-            if let Ok(inner) = model.attached(s) {
-                stack.push((format!("{path}/"), inner));
-            }
-            out.push(path);
-        }
-    }
-    out
-}
-
 /// Whether the model has no more problems than allowed.
 fn valid(m: &Model, allowed: usize) -> bool {
     m.check().len() <= allowed
@@ -1600,12 +1584,12 @@ impl Builder {
                 remove_repaired(m, &t.loc, allowed)
             }
             Edit::Detach { scope } => {
-                let s = scope.of(&scope_paths(m))?.clone();
+                let s = scope.of(&m.scope_paths())?.clone();
                 let next = m.detach(&s).ok()?;
                 valid(&next, allowed).then_some(next)
             }
             Edit::RenameScope { scope, to } => {
-                let s = scope.of(&scope_paths(m))?.clone();
+                let s = scope.of(&m.scope_paths())?.clone();
                 let next = m.rename_scope(&s, to.model_name()).ok()?;
                 valid(&next, allowed).then_some(next)
             }

@@ -79,7 +79,7 @@ proptest! {
         let m = r.build();
         assert_valid(&m)?;
         prop_assert!(m.scopes().next().is_some(), "a scene has an attachment");
-        for s in scope_paths(&m) {
+        for s in m.scope_paths() {
             let back = m.detach(&s).map_err(|e| TestCaseError::fail(e.to_string()))?;
             prop_assert!(back.check().is_empty(), "detach {}: {:?}", s, back.check());
         }
@@ -189,7 +189,7 @@ fn generators_reach_every_kind_of_step() {
         let versions = e.apply(&r.build());
         edits_applied += versions.len() - 1;
         let m = versions.last().unwrap();
-        if scope_paths(m).iter().any(|s| s.contains('/')) {
+        if m.scope_paths().iter().any(|s| s.contains('/')) {
             nested += 1;
         }
         for event in m.walk() {
@@ -203,7 +203,7 @@ fn generators_reach_every_kind_of_step() {
         }
         // One value attached at two places (at any level).
         let mut seen = Vec::new();
-        for s in scope_paths(m) {
+        for s in m.scope_paths() {
             let a = m.attached(&s).unwrap();
             if seen.iter().any(|b: &&Model| b.ptr_eq(a)) {
                 shared += 1;

@@ -631,35 +631,22 @@ fn in_order(units: &[Unit<'_>]) -> Vec<bool> {
     kept
 }
 
+/// The robot of the integration tests, shared through `extern crate self as mjcf`
+/// (lib.rs, tests only).
+#[cfg(test)]
+#[path = "../../tests/support/robot.rs"]
+mod test_robot;
+
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
     use crate::model::Element;
     use crate::schema::Namespace;
 
-    /// A body `torso` with a joint `hip`, a geom `torso`, an unnamed geom and a site
-    /// `mount`, and a motor on the joint (as in `tests/support/robot.rs`).
-    pub(crate) fn robot(name: &str) -> Model {
-        let m = Model::new(name);
-        let (m, _) = m
-            .add(
-                &m.worldbody(),
-                Element::new("body")
-                    .attr("name", "torso")
-                    .child(Element::new("joint").attr("name", "hip").attr("type", "hinge"))
-                    .child(Element::new("geom").attr("name", "torso").attr("size", [0.1]))
-                    .child(Element::new("geom").attr("size", [0.05]))
-                    .child(Element::new("site").attr("name", "mount")),
-            )
-            .unwrap();
-        let (m, _) = m
-            .add(&m.actuator(), Element::new("motor").attr("name", "m").attr("joint", "hip"))
-            .unwrap();
-        m
-    }
+    pub(crate) use super::test_robot::robot;
 
-    /// An arena with `n` sites and a robot attached at each (`robot`, `robot_1`, ...).
-    pub(crate) fn fleet(n: usize) -> Model {
+    /// An arena of `n` sites `spawn_i` (at x = i), without attachments.
+    fn arena(n: usize) -> Model {
         let mut m = Model::new("arena");
         for i in 0..n {
             let site = Element::new("site")
@@ -667,6 +654,12 @@ pub(super) mod tests {
                 .attr("pos", [i as f64, 0.0, 0.0]);
             m = m.add(&m.worldbody(), site).unwrap().0;
         }
+        m
+    }
+
+    /// The arena of `n` sites with `robot` attached at each.
+    pub(crate) fn fleet(n: usize) -> Model {
+        let mut m = arena(n);
         let r = robot("robot");
         for i in 0..n {
             let site = m.find(Namespace::Site, &format!("spawn_{i}")).unwrap();
@@ -855,13 +848,7 @@ pub(super) mod tests {
 
     #[test]
     fn attach_detach_and_rename_scope() {
-        let mut arena = Model::new("arena");
-        for i in 0..3 {
-            arena = arena
-                .add(&arena.worldbody(), Element::new("site").attr("name", format!("spawn_{i}")))
-                .unwrap()
-                .0;
-        }
+        let arena = arena(3);
         let r = robot("robot");
         let (m1, frame) = arena.attach(&site(&arena, "spawn_0"), &r).unwrap();
         assert_eq!(
@@ -897,13 +884,7 @@ pub(super) mod tests {
 
     #[test]
     fn changes_inside_nested_attachments() {
-        let mut arena = Model::new("arena");
-        for i in 0..3 {
-            arena = arena
-                .add(&arena.worldbody(), Element::new("site").attr("name", format!("spawn_{i}")))
-                .unwrap()
-                .0;
-        }
+        let arena = arena(3);
         let (arena, _) = arena.attach(&site(&arena, "spawn_1"), &robot("robot")).unwrap();
         let scene = Model::new("scene");
         let (scene, outer) = scene.attach_to_world(&arena).unwrap();

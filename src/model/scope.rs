@@ -259,6 +259,37 @@ impl Model {
         self.index.scopes.iter().map(|(s, _)| s.as_str())
     }
 
+    /// The scope path of every attachment in the composition, those inside attached
+    /// models included (`robot`, `robot/hand`, `robot_1`, ...), each after the path of
+    /// the attachment it is in; this model's own come first, in attach order.
+    ///
+    /// Time: O(A · levels · log n) for the `A` attachments at all levels.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::Model;
+    /// let hand = Model::new("hand");
+    /// let (arm, _) = Model::new("arm").attach_to_world(&hand)?;
+    /// let (scene, _) = Model::new("scene").attach_to_world(&arm)?;
+    /// let (scene, _) = scene.attach_to_world(&arm)?;
+    /// assert_eq!(scene.scope_paths(), ["arm", "arm_1", "arm_1/hand", "arm/hand"]);
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn scope_paths(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut stack: Vec<(String, &Model)> = vec![(String::new(), self)];
+        while let Some((prefix, model)) = stack.pop() {
+            for s in model.scopes() {
+                let path = format!("{prefix}{s}");
+                if let Ok(inner) = model.attached(s) {
+                    stack.push((format!("{path}/"), inner));
+                }
+                out.push(path);
+            }
+        }
+        out
+    }
+
     /// The attachment at `scope`, as a handle: its frame and its scope path now.
     ///
     /// Time: O(levels · depth · log n).
