@@ -283,17 +283,32 @@ impl<T: Clone + Keyed> Seq<T> {
         (next > prev + 1).then(|| prev + (next - prev) / 2)
     }
 
-    /// Inserts `value` at position `i` (at the end if `i >= len`); returns its slot.
+    /// The slot [`Seq::insert`] would give an item inserted at `i` (for a holder of
+    /// slots that must record it before the insert), and whether that insert numbers
+    /// the sequence afresh first (its neighbours' slots are too close).
+    pub(crate) fn slot_at_insert(&self, i: usize) -> (u64, bool) {
+        let i = i.min(self.len);
+        match self.slot_for(i) {
+            Some(o) => (o, false),
+            // Numbered afresh, item `j` has slot `fresh_ord(j)`: the midpoint of the
+            // neighbours' (or the next slot at the end).
+            None if i == self.len => (fresh_ord(i), true),
+            None => {
+                let prev = if i == 0 { 0 } else { fresh_ord(i - 1) };
+                (prev + (fresh_ord(i) - prev) / 2, true)
+            }
+        }
+    }
+
+    /// Inserts `value` at position `i` (at the end if `i >= len`); returns its slot
+    /// (the one [`Seq::slot_at_insert`] tells).
     pub(crate) fn insert(&mut self, i: usize, value: T) -> u64 {
         let i = i.min(self.len);
-        let ord = match self.slot_for(i) {
-            Some(o) => o,
-            None => {
-                // Numbered afresh; past 2^32 items slots may repeat (found by scan).
-                *self = self.iter().cloned().collect();
-                self.slot_for(i).unwrap_or_else(|| fresh_ord(i))
-            }
-        };
+        let (ord, afresh) = self.slot_at_insert(i);
+        if afresh {
+            // Past 2^32 items slots may repeat (found by scan).
+            *self = self.iter().cloned().collect();
+        }
         let Some(root) = self.root.as_mut() else {
             let leaf = Leaf { ords: vec![ord], items: vec![value] };
             self.root = Some(Tree::Leaf(Arc::new(leaf)));
@@ -370,6 +385,28 @@ impl<T: Clone + Keyed> Seq<T> {
             }
         }
         Some(removed)
+    }
+
+    /// The item at `i`, mutable: the nodes on its path that other versions share are
+    /// copied first (`Arc::make_mut`), so only this sequence sees the change, and a
+    /// uniquely owned path is edited where it is.
+    pub(crate) fn get_mut(&mut self, i: usize) -> Option<&mut T> {
+        if i >= self.len {
+            return None;
+        }
+        let mut t = self.root.as_mut()?;
+        let mut i = i;
+        loop {
+            match t {
+                Tree::Leaf(l) => return Arc::make_mut(l).items.get_mut(i),
+                Tree::Branch(b) => {
+                    let b = Arc::make_mut(b);
+                    let (k, j) = descend(b, i);
+                    t = &mut b.kids[k];
+                    i = j;
+                }
+            }
+        }
     }
 
     /// Replaces the item at `i` (nothing happens past the end).
@@ -694,7 +731,8 @@ mod tests {
                     Op::Insert(i, v) => {
                         let i = if model.is_empty() { 0 } else { i % (model.len() + 1) };
                         model.insert(i, v);
-                        seq.insert(i, v);
+                        let (planned, _) = seq.slot_at_insert(i);
+                        prop_assert_eq!(seq.insert(i, v), planned);
                     }
                     Op::Remove(i) => {
                         let got = seq.remove(i);
@@ -702,7 +740,14 @@ mod tests {
                         prop_assert_eq!(got, want);
                     }
                     Op::Set(i, v) => {
-                        seq.set(i, v);
+                        // Through `get_mut` on odd values, `set` on even ones.
+                        if v % 2 == 1 {
+                            if let Some(x) = seq.get_mut(i) {
+                                *x = v;
+                            }
+                        } else {
+                            seq.set(i, v);
+                        }
                         if let Some(x) = model.get_mut(i) {
                             *x = v;
                         }
@@ -774,12 +819,18 @@ mod tests {
             }
         }
         assert!(s.is_empty() && s.iter().next().is_none() && s.chunks().len() == 0);
-        // Refill by inserts at the front and in the middle.
+        // Refill by inserts at the front and in the middle (numbering afresh many
+        // times: the slot told before each insert is the one it gives).
+        let mut afresh = 0;
         for i in 0..2000u32 {
             let at = if i % 2 == 0 { 0 } else { m.len() / 2 };
             m.insert(at, i);
-            s.insert(at, i);
+            let (planned, renumbers) = s.slot_at_insert(at);
+            afresh += usize::from(renumbers);
+            assert_eq!(s.insert(at, i), planned);
+            assert_eq!(s.ord_at(at), Some(planned));
         }
+        assert!(afresh > 0);
         assert!(s.iter().copied().eq(m.iter().copied()));
         assert_eq!(s.position_near(1999, 0), m.iter().position(|x| *x == 1999));
         for (i, x) in m.iter().enumerate() {

@@ -13,16 +13,12 @@
 
 use std::sync::{Arc, OnceLock};
 
-use imbl::{GenericHashMap, HashMap, OrdMap};
+use imbl::{HashMap, OrdMap};
 use smol_str::SmolStr;
 
 use super::tree::{ElementId, Node};
-use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace};
 use crate::seq::fresh_ord;
-
-/// A persistent map keyed by element ids, hashed cheaply (ids are not user input).
-pub(crate) type IdMap<V> = GenericHashMap<ElementId, V, IdHash, imbl::shared_ptr::DefaultSharedPtr>;
 
 /// What the index knows about one element.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,6 +56,11 @@ pub(crate) struct Index {
 pub(crate) struct MergedCache(Arc<OnceLock<Arc<[Node]>>>);
 
 impl MergedCache {
+    /// A new cache holding `sections` (the merged settings of the model it goes to).
+    pub(crate) fn filled(sections: Arc<[Node]>) -> MergedCache {
+        MergedCache(Arc::new(OnceLock::from(sections)))
+    }
+
     pub(crate) fn get(&self) -> Option<&Arc<[Node]>> {
         self.0.get()
     }
@@ -208,16 +209,20 @@ impl Index {
 
 /// A model's own attachments: (scope name, frame) in attach order, found by name and
 /// by frame in O(log n). Persistent, like the rest of the index.
+///
+/// Attach order is frame-id order: a frame gets a fresh id when it is attached
+/// (`ElementId::fresh`, one atomic counter), every attach of a model's history comes
+/// after the attaches it builds on, and a frame keeps its id for life (renames and
+/// edits inside the attachment keep it). So one map keyed by frame serves both the
+/// order and the lookup by frame: two persistent maps to update per attach, not three.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Attach sequence number → (scope, frame, the attached model's merged-settings
-    /// memo). The memo is the attached model's own (shared); it is replaced when an
-    /// edit inside the attachment replaces it, so an unchanged `order` map means
-    /// unchanged attachments as far as merged settings go.
-    order: OrdMap<u64, (SmolStr, ElementId, MergedCache)>,
-    by_name: HashMap<SmolStr, (u64, ElementId)>,
-    by_frame: IdMap<u64>,
-    next: u64,
+    /// Frame → (scope, the attached model's merged-settings memo). The memo is the
+    /// attached model's own (shared); it is replaced when an edit inside the
+    /// attachment replaces it, so an unchanged `order` map means unchanged
+    /// attachments as far as merged settings go.
+    order: OrdMap<ElementId, (SmolStr, MergedCache)>,
+    by_name: HashMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).
     free_from: HashMap<SmolStr, u64>,
@@ -230,16 +235,15 @@ impl Scopes {
 
     /// (scope, frame) in attach order.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.values().map(|(s, f, _)| (s, *f))
+        self.order.iter().map(|(f, (s, _))| (s, *f))
     }
 
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        let seq = self.by_frame.get(&frame)?;
-        self.order.get(seq).map(|(s, _, _)| s)
+        self.order.get(&frame).map(|(s, _)| s)
     }
 
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.by_name.get(scope).map(|(_, f)| *f)
+        self.by_name.get(scope).copied()
     }
 
     /// Whether both hold the same attachments with the same merged-settings memos
@@ -251,61 +255,64 @@ impl Scopes {
     /// Records that the model attached at `frame` now has merged-settings memo
     /// `memo` (nothing changes if it is the same memo).
     pub(crate) fn note_model(&mut self, frame: ElementId, memo: &MergedCache) {
-        let Some(&seq) = self.by_frame.get(&frame) else { return };
-        if let Some((scope, f, old)) = self.order.get(&seq) {
+        if let Some((scope, old)) = self.order.get(&frame) {
             if !old.same(memo) {
-                let entry = (scope.clone(), *f, memo.clone());
-                self.order.insert(seq, entry);
+                let entry = (scope.clone(), memo.clone());
+                self.order.insert(frame, entry);
             }
         }
     }
 
-    /// Adds an attachment (its scope name is free) of a model whose merged-settings
-    /// memo is `memo`.
-    pub(crate) fn push(&mut self, scope: SmolStr, frame: ElementId, memo: MergedCache) {
-        let seq = self.next;
-        self.next += 1;
-        self.order.insert(seq, (scope.clone(), frame, memo));
-        self.by_name.insert(scope, (seq, frame));
-        self.by_frame.insert(frame, seq);
+    /// Adds an attachment of a model whose merged-settings memo is `memo`, under
+    /// `name` (from [`Scopes::free_name`]: free, and chosen for `base`).
+    pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId, memo: MergedCache) {
+        if name.suffix > 0 {
+            self.free_from.insert(base.into(), name.suffix + 1);
+        }
+        self.order.insert(frame, (name.name.clone(), memo));
+        self.by_name.insert(name.name, frame);
     }
 
     /// Removes the attachment whose frame is `frame`, if any.
     pub(crate) fn remove(&mut self, frame: ElementId) {
-        if let Some(seq) = self.by_frame.remove(&frame) {
-            if let Some((scope, _, _)) = self.order.remove(&seq) {
-                self.by_name.remove(&scope);
-            }
+        if let Some((scope, _)) = self.order.remove(&frame) {
+            self.by_name.remove(&scope);
             self.free_from = HashMap::new();
         }
     }
 
     /// Renames the attachment whose frame is `frame` (to a free name).
     pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
-        let Some(&seq) = self.by_frame.get(&frame) else { return };
-        let memo = self.order.get(&seq).map(|(_, _, m)| m.clone()).unwrap_or_default();
-        if let Some((old, _, _)) = self.order.insert(seq, (to.clone(), frame, memo)) {
+        let Some(memo) = self.order.get(&frame).map(|(_, m)| m.clone()) else { return };
+        if let Some((old, _)) = self.order.insert(frame, (to.clone(), memo)) {
             self.by_name.remove(&old);
         }
-        self.by_name.insert(to, (seq, frame));
+        self.by_name.insert(to, frame);
         self.free_from = HashMap::new();
     }
 
     /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
     /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
-    /// are only added.
-    pub(crate) fn free_name(&mut self, base: &str) -> SmolStr {
+    /// are only added. Changes nothing: [`Scopes::push`] records the hint.
+    pub(crate) fn free_name(&self, base: &str) -> FreeName {
         if !self.by_name.contains_key(base) {
-            return base.into();
+            return FreeName { name: base.into(), suffix: 0 };
         }
         let mut n = self.free_from.get(base).copied().unwrap_or(1);
         loop {
-            let name = SmolStr::from(format!("{base}_{n}"));
+            // Built in place (no `String` for names of up to 23 bytes).
+            let name = smol_str::format_smolstr!("{base}_{n}");
             if !self.by_name.contains_key(&name) {
-                self.free_from.insert(base.into(), n + 1);
-                return name;
+                return FreeName { name, suffix: n };
             }
             n += 1;
         }
     }
+}
+
+/// A free scope name and its suffix (`robot_3`: 3; `robot`: 0).
+#[derive(Clone, Debug)]
+pub(crate) struct FreeName {
+    pub(crate) name: SmolStr,
+    suffix: u64,
 }

@@ -515,6 +515,17 @@ impl Model {
         Some(node)
     }
 
+    /// The node at `path`, mutable, for an in-place edit: each node on the path that
+    /// another version shares is copied first (path copying, done only where needed),
+    /// so a model built by in-place edits reuses the nodes it owns alone.
+    pub(crate) fn node_at_mut(&mut self, path: &[usize]) -> Option<&mut tree::NodeData> {
+        let mut node = &mut self.root;
+        for &i in path {
+            node = node.make_mut().children.get_mut(i)?;
+        }
+        Some(node.make_mut())
+    }
+
     /// The element path used in error messages: `worldbody/body[name=torso]/geom[2]`.
     pub(crate) fn describe(&self, path: &[usize]) -> String {
         let mut out = String::new();
