@@ -222,10 +222,12 @@ pub(crate) struct Scopes {
     /// attachment replaces it, so an unchanged `order` map means unchanged
     /// attachments as far as merged settings go.
     order: OrdMap<ElementId, (SmolStr, MergedCache)>,
-    by_name: HashMap<SmolStr, ElementId>,
+    /// B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
+    /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
+    by_name: OrdMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).
-    free_from: HashMap<SmolStr, u64>,
+    free_from: OrdMap<SmolStr, u64>,
 }
 
 impl Scopes {
@@ -277,7 +279,7 @@ impl Scopes {
     pub(crate) fn remove(&mut self, frame: ElementId) {
         if let Some((scope, _)) = self.order.remove(&frame) {
             self.by_name.remove(&scope);
-            self.free_from = HashMap::new();
+            self.free_from = OrdMap::new();
         }
     }
 
@@ -288,7 +290,7 @@ impl Scopes {
             self.by_name.remove(&old);
         }
         self.by_name.insert(to, frame);
-        self.free_from = HashMap::new();
+        self.free_from = OrdMap::new();
     }
 
     /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
