@@ -174,7 +174,7 @@ impl Model {
         // A new frame has no identifier, so indexing it cannot find a duplicate.
         let _ = index.insert_subtree_at(Some(parent_id), &frame, position, ord);
         let name = scope.name.clone();
-        index.scopes.push(base, scope, id, child.index.merged.clone());
+        index.scopes.push(base, scope, id);
         // The fold just made is the new version's.
         index.merged = MergedCache::filled(sections);
         Ok((id, name))

@@ -217,11 +217,9 @@ impl Index {
 /// order and the lookup by frame: two persistent maps to update per attach, not three.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Frame → (scope, the attached model's merged-settings memo). The memo is the
-    /// attached model's own (shared); it is replaced when an edit inside the
-    /// attachment replaces it, so an unchanged `order` map means unchanged
-    /// attachments as far as merged settings go.
-    order: OrdMap<ElementId, (SmolStr, MergedCache)>,
+    /// Frame → scope. (An edit inside an attachment that changes its merged settings
+    /// resets the outer model's memo itself: `Model::in_scope`.)
+    order: OrdMap<ElementId, SmolStr>,
     /// B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
     /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
     by_name: OrdMap<SmolStr, ElementId>,
@@ -237,47 +235,35 @@ impl Scopes {
 
     /// (scope, frame) in attach order.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.iter().map(|(f, (s, _))| (s, *f))
+        self.order.iter().map(|(f, s)| (s, *f))
     }
 
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.order.get(&frame).map(|(s, _)| s)
+        self.order.get(&frame)
     }
 
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
         self.by_name.get(scope).copied()
     }
 
-    /// Whether both hold the same attachments with the same merged-settings memos
-    /// (O(1): the maps are shared or not).
+    /// Whether both hold the same attachments (O(1): the maps are shared or not).
     pub(crate) fn same(&self, other: &Scopes) -> bool {
         self.order.ptr_eq(&other.order)
     }
 
-    /// Records that the model attached at `frame` now has merged-settings memo
-    /// `memo` (nothing changes if it is the same memo).
-    pub(crate) fn note_model(&mut self, frame: ElementId, memo: &MergedCache) {
-        if let Some((scope, old)) = self.order.get(&frame) {
-            if !old.same(memo) {
-                let entry = (scope.clone(), memo.clone());
-                self.order.insert(frame, entry);
-            }
-        }
-    }
-
-    /// Adds an attachment of a model whose merged-settings memo is `memo`, under
-    /// `name` (from [`Scopes::free_name`]: free, and chosen for `base`).
-    pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId, memo: MergedCache) {
+    /// Adds an attachment under `name` (from [`Scopes::free_name`]: free, and chosen
+    /// for `base`).
+    pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId) {
         if name.suffix > 0 {
             self.free_from.insert(base.into(), name.suffix + 1);
         }
-        self.order.insert(frame, (name.name.clone(), memo));
+        self.order.insert(frame, name.name.clone());
         self.by_name.insert(name.name, frame);
     }
 
     /// Removes the attachment whose frame is `frame`, if any.
     pub(crate) fn remove(&mut self, frame: ElementId) {
-        if let Some((scope, _)) = self.order.remove(&frame) {
+        if let Some(scope) = self.order.remove(&frame) {
             self.by_name.remove(&scope);
             self.free_from = OrdMap::new();
         }
@@ -285,8 +271,10 @@ impl Scopes {
 
     /// Renames the attachment whose frame is `frame` (to a free name).
     pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
-        let Some(memo) = self.order.get(&frame).map(|(_, m)| m.clone()) else { return };
-        if let Some((old, _)) = self.order.insert(frame, (to.clone(), memo)) {
+        if !self.order.contains_key(&frame) {
+            return;
+        }
+        if let Some(old) = self.order.insert(frame, to.clone()) {
             self.by_name.remove(&old);
         }
         self.by_name.insert(to, frame);
@@ -297,10 +285,15 @@ impl Scopes {
     /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
     /// are only added. Changes nothing: [`Scopes::push`] records the hint.
     pub(crate) fn free_name(&self, base: &str) -> FreeName {
-        if !self.by_name.contains_key(base) {
-            return FreeName { name: base.into(), suffix: 0 };
-        }
-        let mut n = self.free_from.get(base).copied().unwrap_or(1);
+        // A hint for `base` means `base` was taken when it was noted, and no name was
+        // freed since (that clears the hints): taken still.
+        let mut n = match self.free_from.get(base) {
+            Some(n) => *n,
+            None if !self.by_name.contains_key(base) => {
+                return FreeName { name: base.into(), suffix: 0 };
+            }
+            None => 1,
+        };
         loop {
             // Built in place (no `String` for names of up to 23 bytes).
             let name = smol_str::format_smolstr!("{base}_{n}");

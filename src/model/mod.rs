@@ -213,7 +213,9 @@ impl Model {
     /// The next version of this model: `root` and `index` after an edit (`index`
     /// starts as a copy of this model's). The one place that decides whether the
     /// merged-settings memo survives: only when every global settings section is
-    /// the same node and the attachments (with their own memos) are the same.
+    /// the same node and the attachments are the same. (An edit inside an
+    /// attachment that gives it another memo resets ours before: `in_scope`. The
+    /// in-place edits, `attach_here` and `insert_here`, decide it themselves.)
     pub(crate) fn next(&self, root: Node, mut index: Index) -> Model {
         let settings_same = {
             let old = self.root.children().iter();
