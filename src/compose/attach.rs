@@ -13,6 +13,7 @@ use crate::model::settings;
 use crate::model::tree::{Attached, ElementId, Node};
 use crate::model::{Attachment, Loc, MergedCache, Model, ScopeRef};
 use smol_str::SmolStr;
+use std::sync::Arc;
 
 impl Model {
     /// Attaches `child` at `at`, a site (of this model or of a model attached to it) or
@@ -154,8 +155,15 @@ impl Model {
         let parent_id = parent.id();
         // The merged settings: the child's folded into ours (each cached, so O(1)).
         let ours = settings::merged(self).map_err(err)?;
-        let sections =
-            settings::folded(&ours, &settings::merged(child).map_err(err)?).map_err(err)?;
+        let theirs = settings::merged(child).map_err(err)?;
+        let sections = if self.index.merged.absorbs(&theirs) {
+            ours.clone()
+        } else {
+            settings::folded(&ours, &theirs).map_err(err)?
+        };
+        // Folding `theirs` changed nothing: the next attach of the same model (its
+        // merged sections the same `Arc`) skips the fold.
+        let absorbed = Arc::ptr_eq(&sections, &ours).then_some(theirs);
         let scope = self.index.scopes.free_name(base);
         let id = ElementId::fresh();
         let frame = Node::frame(
@@ -176,7 +184,7 @@ impl Model {
         let name = scope.name.clone();
         index.scopes.push(base, scope, id);
         // The fold just made is the new version's.
-        index.merged = MergedCache::filled(sections);
+        index.merged = MergedCache::filled(sections, absorbed);
         Ok((id, name))
     }
 

@@ -53,21 +53,37 @@ pub(crate) struct Index {
 
 /// A lazily computed, shared value of the merged settings sections (root order).
 #[derive(Clone, Default)]
-pub(crate) struct MergedCache(Arc<OnceLock<Arc<[Node]>>>);
+pub(crate) struct MergedCache(Arc<OnceLock<Merged>>);
+
+/// What a [`MergedCache`] holds.
+struct Merged {
+    sections: Arc<[Node]>,
+    /// Merged sections of an attached model whose fold into `sections` changed
+    /// nothing (the last attach's, when it was so): attaching a model with these
+    /// very sections again (`Arc::ptr_eq`; a fleet of one robot) needs no fold.
+    absorbed: Option<Arc<[Node]>>,
+}
 
 impl MergedCache {
-    /// A new cache holding `sections` (the merged settings of the model it goes to).
-    pub(crate) fn filled(sections: Arc<[Node]>) -> MergedCache {
-        MergedCache(Arc::new(OnceLock::from(sections)))
+    /// A new cache holding `sections` (the merged settings of the model it goes to),
+    /// and `absorbed`, merged sections whose fold into them changes nothing.
+    pub(crate) fn filled(sections: Arc<[Node]>, absorbed: Option<Arc<[Node]>>) -> MergedCache {
+        MergedCache(Arc::new(OnceLock::from(Merged { sections, absorbed })))
     }
 
     pub(crate) fn get(&self) -> Option<&Arc<[Node]>> {
-        self.0.get()
+        self.0.get().map(|m| &m.sections)
+    }
+
+    /// Whether folding `theirs` into the sections held changes nothing, as known
+    /// without folding (the same `Arc` was folded in before, to no effect).
+    pub(crate) fn absorbs(&self, theirs: &Arc<[Node]>) -> bool {
+        self.0.get().and_then(|m| m.absorbed.as_ref()).is_some_and(|a| Arc::ptr_eq(a, theirs))
     }
 
     /// Stores `sections` (computed for this cache's model) and returns what it holds.
     pub(crate) fn fill(&self, sections: Arc<[Node]>) -> Arc<[Node]> {
-        self.0.get_or_init(|| sections).clone()
+        self.0.get_or_init(|| Merged { sections, absorbed: None }).sections.clone()
     }
 
     /// Whether two versions share one cache (their merged settings are the same).
@@ -197,7 +213,9 @@ impl Index {
     /// and slot.
     pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
         let mut cur = self.elems.get(&id)?;
-        let mut chain = vec![(id, cur.pos, cur.ord)];
+        // Room for most depths at once (one allocation, no regrowth).
+        let mut chain = Vec::with_capacity(16);
+        chain.push((id, cur.pos, cur.ord));
         while let Some(p) = cur.parent {
             cur = self.elems.get(&p)?;
             chain.push((p, cur.pos, cur.ord));
