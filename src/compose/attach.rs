@@ -64,6 +64,8 @@ impl Model {
     }
 
     /// [`Model::attach`] in place: returns the attachment (its frame and scope).
+    /// As [`Model::add_mut`], it copies only the nodes (and index nodes) that `self`
+    /// shares with other values: the way to build a fleet.
     ///
     /// Time: as [`Model::attach`].
     ///

@@ -73,6 +73,11 @@ impl Model {
 
     /// [`Model::add`] in place: adds `element` to `self` and returns its locator.
     ///
+    /// The nodes on the edited path that `self` shares with no other value (a clone,
+    /// an earlier version) are edited where they are, the others are copied, so a
+    /// model built by a loop of in-place edits copies almost nothing; a clone taken
+    /// before keeps its content either way.
+    ///
     /// Time: as [`Model::add`].
     ///
     /// # Errors
