@@ -151,13 +151,15 @@ impl Model {
             let id = self.insert_here(parent, index, &element)?;
             return Ok(self.scoped_loc(&[], id));
         }
-        let (m, id) = self.in_scope(parent.scope(), |m: &Model| {
+        let (m, loc) = self.in_scope(parent.scope(), |m: &Model| {
             let mut m = m.clone();
             let id = m.insert_here(parent, index, &element)?;
-            Ok((m, id))
+            // Named after the model it is in, as before the in-place edits.
+            let loc = m.scoped_loc(&[], id);
+            Ok((m, loc))
         })?;
         *self = m;
-        Ok(self.scoped_loc(parent.scope(), id))
+        Ok(loc.within(parent.scope()))
     }
 
     /// Inserts `element` under `loc`, an element of this model's own tree, in place;
