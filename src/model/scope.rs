@@ -335,6 +335,11 @@ impl Model {
 
     /// A locator of the element `id` of the model attached along `frames`.
     pub(crate) fn scoped_loc(&self, frames: &[ElementId], id: ElementId) -> Loc {
+        if frames.is_empty() {
+            // A locator of this model's own element holds no frame list (and making
+            // an empty `Arc` would allocate).
+            return Loc { scope: None, id, origin: self.name().into() };
+        }
         Loc::scoped(Arc::from(frames), id, self.name())
     }
 }
