@@ -16,7 +16,9 @@ pub struct ElementId(NonZeroU64);
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 impl ElementId {
-    /// A new id, never handed out before in this process.
+    /// A new id, never handed out before in this process, and larger than every id
+    /// handed out before it (one counter; an attach after another in a model's
+    /// history gets a larger frame id, which the scopes' attach order relies on).
     pub(crate) fn fresh() -> ElementId {
         let n = NEXT_ID.fetch_add(1, Ordering::Relaxed);
         // The counter would need 2^64 allocations to wrap.
@@ -33,39 +35,6 @@ impl ElementId {
     /// The id `i` places after this one (in a block from [`ElementId::fresh_block`]).
     pub(crate) fn nth(self, i: usize) -> ElementId {
         ElementId(self.0.saturating_add(i as u64))
-    }
-}
-
-/// A hasher for element ids in the crate's maps: ids are handed out by this process
-/// (never chosen by a user), so one multiply (Fibonacci hashing: the product's bits
-/// spread consecutive ids evenly over the low bits persistent hash maps branch on)
-/// replaces SipHash. User-controlled keys (names) keep SipHash.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct IdHash;
-
-impl std::hash::BuildHasher for IdHash {
-    type Hasher = IdHasher;
-    fn build_hasher(&self) -> IdHasher {
-        IdHasher(0)
-    }
-}
-
-/// See [`IdHash`].
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct IdHasher(u64);
-
-impl std::hash::Hasher for IdHasher {
-    fn finish(&self) -> u64 {
-        let h = self.0.wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        h ^ (h >> 32)
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0.rotate_left(8)) ^ u64::from(b);
-        }
-    }
-    fn write_u64(&mut self, n: u64) {
-        self.0 = self.0.rotate_left(32) ^ n;
     }
 }
 

@@ -55,20 +55,34 @@ impl<T> std::ops::Deref for Leaf<T> {
     }
 }
 
+/// A branch: its subtrees in order. One vector (of subtree, length, largest slot), so
+/// that copying a branch on an edit's path is one allocation, not three.
 #[derive(Clone)]
 struct Branch<T> {
-    kids: Vec<Tree<T>>,
-    /// `lens[k]`: the number of items under `kids[k]`.
-    lens: Vec<usize>,
-    /// `maxs[k]`: the largest slot under `kids[k]` (its last item's).
-    maxs: Vec<u64>,
+    kids: Vec<Kid<T>>,
+}
+
+/// A subtree of a branch, with what the branch needs to know of it.
+#[derive(Clone)]
+struct Kid<T> {
+    tree: Tree<T>,
+    /// The number of items under `tree`.
+    len: usize,
+    /// The largest slot under `tree` (its last item's).
+    max: u64,
+}
+
+impl<T> Kid<T> {
+    fn new(tree: Tree<T>, len: usize) -> Kid<T> {
+        Kid { max: max_ord(&tree), tree, len }
+    }
 }
 
 /// The slot of the last item of a non-empty subtree.
 fn max_ord<T>(t: &Tree<T>) -> u64 {
     match t {
         Tree::Leaf(l) => l.ords.last().copied().unwrap_or(0),
-        Tree::Branch(b) => b.maxs.last().copied().unwrap_or(0),
+        Tree::Branch(b) => b.kids.last().map_or(0, |k| k.max),
     }
 }
 
@@ -101,8 +115,8 @@ impl<T> Default for Seq<T> {
 /// The subtree of `b` holding position `i` (`i <` the branch's length, or the last
 /// subtree for `i` at the end) and the position within it.
 fn descend<T>(b: &Branch<T>, mut i: usize) -> (usize, usize) {
-    let last = b.lens.len().saturating_sub(1);
-    for (k, &l) in b.lens.iter().enumerate() {
+    let last = b.kids.len().saturating_sub(1);
+    for (k, l) in b.kids.iter().map(|c| c.len).enumerate() {
         if i < l || k == last {
             return (k, i);
         }
@@ -136,7 +150,7 @@ impl<T: Clone + Keyed> Seq<T> {
                 Tree::Leaf(l) => return Some((l, i)),
                 Tree::Branch(b) => {
                     let (k, j) = descend(b, i);
-                    t = &b.kids[k];
+                    t = &b.kids[k].tree;
                     i = j;
                 }
             }
@@ -200,7 +214,7 @@ impl<T: Clone + Keyed> Seq<T> {
         fn count<T>(t: &Tree<T>) -> usize {
             match t {
                 Tree::Leaf(_) => 1,
-                Tree::Branch(b) => b.kids.iter().map(count).sum(),
+                Tree::Branch(b) => b.kids.iter().map(|k| count(&k.tree)).sum(),
             }
         }
         self.root.as_ref().map_or(0, count)
@@ -283,17 +297,32 @@ impl<T: Clone + Keyed> Seq<T> {
         (next > prev + 1).then(|| prev + (next - prev) / 2)
     }
 
-    /// Inserts `value` at position `i` (at the end if `i >= len`); returns its slot.
+    /// The slot [`Seq::insert`] would give an item inserted at `i` (for a holder of
+    /// slots that must record it before the insert), and whether that insert numbers
+    /// the sequence afresh first (its neighbours' slots are too close).
+    pub(crate) fn slot_at_insert(&self, i: usize) -> (u64, bool) {
+        let i = i.min(self.len);
+        match self.slot_for(i) {
+            Some(o) => (o, false),
+            // Numbered afresh, item `j` has slot `fresh_ord(j)`: the midpoint of the
+            // neighbours' (or the next slot at the end).
+            None if i == self.len => (fresh_ord(i), true),
+            None => {
+                let prev = if i == 0 { 0 } else { fresh_ord(i - 1) };
+                (prev + (fresh_ord(i) - prev) / 2, true)
+            }
+        }
+    }
+
+    /// Inserts `value` at position `i` (at the end if `i >= len`); returns its slot
+    /// (the one [`Seq::slot_at_insert`] tells).
     pub(crate) fn insert(&mut self, i: usize, value: T) -> u64 {
         let i = i.min(self.len);
-        let ord = match self.slot_for(i) {
-            Some(o) => o,
-            None => {
-                // Numbered afresh; past 2^32 items slots may repeat (found by scan).
-                *self = self.iter().cloned().collect();
-                self.slot_for(i).unwrap_or_else(|| fresh_ord(i))
-            }
-        };
+        let (ord, afresh) = self.slot_at_insert(i);
+        if afresh {
+            // Past 2^32 items slots may repeat (found by scan).
+            *self = self.iter().cloned().collect();
+        }
         let Some(root) = self.root.as_mut() else {
             let leaf = Leaf { ords: vec![ord], items: vec![value] };
             self.root = Some(Tree::Leaf(Arc::new(leaf)));
@@ -303,11 +332,8 @@ impl<T: Clone + Keyed> Seq<T> {
         let old_len = self.len;
         if let Some((right, right_len)) = insert_into(root, i, ord, value) {
             let left = root.clone();
-            let maxs = vec![max_ord(&left), max_ord(&right)];
             *root = Tree::Branch(Arc::new(Branch {
-                kids: vec![left, right],
-                lens: vec![old_len + 1 - right_len, right_len],
-                maxs,
+                kids: vec![Kid::new(left, old_len + 1 - right_len), Kid::new(right, right_len)],
             }));
         }
         self.len += 1;
@@ -338,12 +364,12 @@ impl<T: Clone + Keyed> Seq<T> {
             match t {
                 Tree::Leaf(l) => return Some(at + l.ords.partition_point(|o| *o < ord)),
                 Tree::Branch(b) => {
-                    let k = b.maxs.partition_point(|m| *m < ord);
+                    let k = b.kids.partition_point(|c| c.max < ord);
                     if k >= b.kids.len() {
                         return None;
                     }
-                    at += b.lens[..k].iter().sum::<usize>();
-                    t = &b.kids[k];
+                    at += b.kids[..k].iter().map(|c| c.len).sum::<usize>();
+                    t = &b.kids[k].tree;
                 }
             }
         }
@@ -363,13 +389,35 @@ impl<T: Clone + Keyed> Seq<T> {
             // A root branch with one subtree is replaced by it.
             loop {
                 let only = match &self.root {
-                    Some(Tree::Branch(b)) if b.kids.len() == 1 => b.kids[0].clone(),
+                    Some(Tree::Branch(b)) if b.kids.len() == 1 => b.kids[0].tree.clone(),
                     _ => break,
                 };
                 self.root = Some(only);
             }
         }
         Some(removed)
+    }
+
+    /// The item at `i`, mutable: the nodes on its path that other versions share are
+    /// copied first (`Arc::make_mut`), so only this sequence sees the change, and a
+    /// uniquely owned path is edited where it is.
+    pub(crate) fn get_mut(&mut self, i: usize) -> Option<&mut T> {
+        if i >= self.len {
+            return None;
+        }
+        let mut t = self.root.as_mut()?;
+        let mut i = i;
+        loop {
+            match t {
+                Tree::Leaf(l) => return Arc::make_mut(l).items.get_mut(i),
+                Tree::Branch(b) => {
+                    let b = Arc::make_mut(b);
+                    let (k, j) = descend(b, i);
+                    t = &mut b.kids[k].tree;
+                    i = j;
+                }
+            }
+        }
     }
 
     /// Replaces the item at `i` (nothing happens past the end).
@@ -389,7 +437,7 @@ impl<T: Clone + Keyed> Seq<T> {
                 Tree::Branch(b) => {
                     let b = Arc::make_mut(b);
                     let (k, j) = descend(b, i);
-                    t = &mut b.kids[k];
+                    t = &mut b.kids[k].tree;
                     i = j;
                 }
             }
@@ -416,25 +464,20 @@ fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split
         Tree::Branch(b) => {
             let b = Arc::make_mut(b);
             let (k, j) = descend(b, i);
-            let split = insert_into(&mut b.kids[k], j, ord, value);
-            b.lens[k] += 1;
-            b.maxs[k] = max_ord(&b.kids[k]);
+            let kid = &mut b.kids[k];
+            let split = insert_into(&mut kid.tree, j, ord, value);
+            kid.len += 1;
+            kid.max = max_ord(&kid.tree);
             if let Some((right, n)) = split {
-                b.lens[k] -= n;
-                b.maxs.insert(k + 1, max_ord(&right));
-                b.kids.insert(k + 1, right);
-                b.lens.insert(k + 1, n);
+                kid.len -= n;
+                b.kids.insert(k + 1, Kid::new(right, n));
             }
             if b.kids.len() <= FANOUT {
                 return None;
             }
             let half = b.kids.len() / 2;
-            let right = Branch {
-                kids: b.kids.split_off(half),
-                lens: b.lens.split_off(half),
-                maxs: b.maxs.split_off(half),
-            };
-            let n = right.lens.iter().sum();
+            let right = Branch { kids: b.kids.split_off(half) };
+            let n = right.kids.iter().map(|c| c.len).sum();
             Some((Tree::Branch(Arc::new(right)), n))
         }
     }
@@ -452,14 +495,13 @@ fn remove_from<T: Clone>(t: &mut Tree<T>, i: usize) -> T {
         Tree::Branch(b) => {
             let b = Arc::make_mut(b);
             let (k, j) = descend(b, i);
-            let removed = remove_from(&mut b.kids[k], j);
-            b.lens[k] -= 1;
-            if b.lens[k] == 0 {
+            let kid = &mut b.kids[k];
+            let removed = remove_from(&mut kid.tree, j);
+            kid.len -= 1;
+            if kid.len == 0 {
                 b.kids.remove(k);
-                b.lens.remove(k);
-                b.maxs.remove(k);
             } else {
-                b.maxs[k] = max_ord(&b.kids[k]);
+                kid.max = max_ord(&kid.tree);
             }
             removed
         }
@@ -478,7 +520,7 @@ fn path_to<T>(root: &Tree<T>, mut i: usize) -> (Vec<(&Branch<T>, usize)>, &Leaf<
             Tree::Branch(b) => {
                 let (k, j) = descend(b, i);
                 stack.push((&**b, k));
-                t = &b.kids[k];
+                t = &b.kids[k].tree;
                 i = j;
             }
         }
@@ -497,13 +539,13 @@ fn next_leaf<'a, T>(stack: &mut Vec<(&'a Branch<T>, usize)>) -> Option<&'a Leaf<
         stack.pop();
     }
     let (b, k) = *stack.last()?;
-    let mut t = &b.kids[k];
+    let mut t = &b.kids[k].tree;
     loop {
         match t {
             Tree::Leaf(l) => return Some(l),
             Tree::Branch(b) => {
                 stack.push((&**b, 0));
-                t = &b.kids[0];
+                t = &b.kids[0].tree;
             }
         }
     }
@@ -520,14 +562,14 @@ fn prev_leaf<'a, T>(stack: &mut Vec<(&'a Branch<T>, usize)>) -> Option<&'a Leaf<
         stack.pop();
     }
     let (b, k) = *stack.last()?;
-    let mut t = &b.kids[k];
+    let mut t = &b.kids[k].tree;
     loop {
         match t {
             Tree::Leaf(l) => return Some(l),
             Tree::Branch(b) => {
                 let last = b.kids.len() - 1;
                 stack.push((&**b, last));
-                t = &b.kids[last];
+                t = &b.kids[last].tree;
             }
         }
     }
@@ -550,10 +592,10 @@ impl<T: Clone + Keyed> FromIterator<T> for Seq<T> {
             let mut up = Vec::with_capacity(level.len().div_ceil(FANOUT));
             let mut rest = level.into_iter().peekable();
             while rest.peek().is_some() {
-                let (kids, lens): (Vec<Tree<T>>, Vec<usize>) = rest.by_ref().take(FANOUT).unzip();
-                let n = lens.iter().sum();
-                let maxs = kids.iter().map(max_ord).collect();
-                up.push((Tree::Branch(Arc::new(Branch { kids, lens, maxs })), n));
+                let kids: Vec<Kid<T>> =
+                    rest.by_ref().take(FANOUT).map(|(t, n)| Kid::new(t, n)).collect();
+                let n = kids.iter().map(|c| c.len).sum();
+                up.push((Tree::Branch(Arc::new(Branch { kids })), n));
             }
             level = up;
         }
@@ -641,7 +683,7 @@ impl<'a, T> Iterator for Chunks<'a, T> {
                     self.left -= 1;
                     return Some((at, l));
                 }
-                Tree::Branch(b) => self.stack.extend(b.kids.iter().rev().map(|k| (k, 0))),
+                Tree::Branch(b) => self.stack.extend(b.kids.iter().rev().map(|k| (&k.tree, 0))),
             }
         }
         None
@@ -694,7 +736,8 @@ mod tests {
                     Op::Insert(i, v) => {
                         let i = if model.is_empty() { 0 } else { i % (model.len() + 1) };
                         model.insert(i, v);
-                        seq.insert(i, v);
+                        let (planned, _) = seq.slot_at_insert(i);
+                        prop_assert_eq!(seq.insert(i, v), planned);
                     }
                     Op::Remove(i) => {
                         let got = seq.remove(i);
@@ -702,7 +745,14 @@ mod tests {
                         prop_assert_eq!(got, want);
                     }
                     Op::Set(i, v) => {
-                        seq.set(i, v);
+                        // Through `get_mut` on odd values, `set` on even ones.
+                        if v % 2 == 1 {
+                            if let Some(x) = seq.get_mut(i) {
+                                *x = v;
+                            }
+                        } else {
+                            seq.set(i, v);
+                        }
                         if let Some(x) = model.get_mut(i) {
                             *x = v;
                         }
@@ -774,12 +824,18 @@ mod tests {
             }
         }
         assert!(s.is_empty() && s.iter().next().is_none() && s.chunks().len() == 0);
-        // Refill by inserts at the front and in the middle.
+        // Refill by inserts at the front and in the middle (numbering afresh many
+        // times: the slot told before each insert is the one it gives).
+        let mut afresh = 0;
         for i in 0..2000u32 {
             let at = if i % 2 == 0 { 0 } else { m.len() / 2 };
             m.insert(at, i);
-            s.insert(at, i);
+            let (planned, renumbers) = s.slot_at_insert(at);
+            afresh += usize::from(renumbers);
+            assert_eq!(s.insert(at, i), planned);
+            assert_eq!(s.ord_at(at), Some(planned));
         }
+        assert!(afresh > 0);
         assert!(s.iter().copied().eq(m.iter().copied()));
         assert_eq!(s.position_near(1999, 0), m.iter().position(|x| *x == 1999));
         for (i, x) in m.iter().enumerate() {

@@ -107,14 +107,14 @@ pub(crate) fn read_arena(n: usize) -> Model {
 }
 
 /// W1: attaches `robot` at each of the `n` sites `spawn_i` of `arena` (found by name),
-/// each with a freejoint on its frame.
+/// each with a freejoint on its frame; in place, as the README's quickstart builds
+/// (`attach_mut`, `add_mut`: the nodes the fleet owns alone are edited in place).
 pub(crate) fn build_fleet(arena: &Model, robot: &Model, n: usize) -> Result<Model, Error> {
     let mut m = arena.clone();
     for i in 0..n {
         let site = m.find(Namespace::Site, &format!("spawn_{i}")).expect("the arena has the site");
-        let (next, frame) = m.attach(&site, robot)?;
-        let (next, _) = next.add(frame.frame(), Element::new("freejoint"))?;
-        m = next;
+        let a = m.attach_mut(&site, robot)?;
+        m.add_mut(a.frame(), Element::new("freejoint"))?;
     }
     Ok(m)
 }
@@ -267,10 +267,15 @@ pub(crate) fn fleet_with_free_site(robot: &Model, n: usize) -> (Model, mjcf::Loc
     (fleet, site)
 }
 
-/// W7 (and the growth table): `child` attached at `site`, with a freejoint on its frame.
+/// W7 (and the growth table): `child` attached at `site`, with a freejoint on its frame,
+/// as the quickstart does it (`attach_mut`, `add_mut`) on a new version of `parent`
+/// (which is kept: the attach copies the path it shares, the freejoint then edits
+/// that copy in place).
 pub(crate) fn attach_one(parent: &Model, site: &mjcf::Loc, child: &Model) -> Model {
-    let (m, frame) = parent.attach(site, child).expect("attach");
-    m.add(frame.frame(), Element::new("freejoint")).expect("freejoint").0
+    let mut m = parent.clone();
+    let a = m.attach_mut(site, child).expect("attach");
+    m.add_mut(a.frame(), Element::new("freejoint")).expect("freejoint");
+    m
 }
 
 /// W3: the CMU humanoid (`benches/models/humanoid_CMU.xml`, from the conformance corpus).

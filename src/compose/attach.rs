@@ -11,7 +11,9 @@ use crate::error::{EditError, ErrorKind};
 use crate::model::frame::frame_attrs;
 use crate::model::settings;
 use crate::model::tree::{Attached, ElementId, Node};
-use crate::model::{Attachment, Loc, Model, ScopeRef};
+use crate::model::{Attachment, Loc, MergedCache, Model, ScopeRef};
+use smol_str::SmolStr;
+use std::sync::Arc;
 
 impl Model {
     /// Attaches `child` at `at`, a site (of this model or of a model attached to it) or
@@ -56,14 +58,14 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn attach(&self, at: &Loc, child: &Model) -> Result<(Model, Attachment), EditError> {
-        let (new, frame) = self.in_scope(at.scope(), |m: &Model| m.attach_here(at, child))?;
-        settings::check(&new).map_err(|k| EditError::new(k, String::new()))?;
-        let frame = self.scoped_loc(at.scope(), frame);
-        let scope = new.scope_of_frame(&frame).unwrap_or_default();
-        Ok((new, Attachment::new(frame, scope.into())))
+        let mut new = self.clone();
+        let a = new.attach_mut(at, child)?;
+        Ok((new, a))
     }
 
     /// [`Model::attach`] in place: returns the attachment (its frame and scope).
+    /// As [`Model::add_mut`], it copies only the nodes (and index nodes) that `self`
+    /// shares with other values: the way to build a fleet.
     ///
     /// Time: as [`Model::attach`].
     ///
@@ -83,8 +85,22 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn attach_mut(&mut self, at: &Loc, child: &Model) -> Result<Attachment, EditError> {
-        let r = self.attach(at, child);
-        self.apply(r)
+        if at.scope().is_empty() {
+            // In place: every check comes first, then the edit copies only what other
+            // versions share (nothing, when `self` owns the path alone).
+            let (frame, scope) = self.attach_here(at, child)?;
+            return Ok(Attachment::new(self.scoped_loc(&[], frame), scope));
+        }
+        let (new, frame) = self.in_scope(at.scope(), |m: &Model| {
+            let mut m = m.clone();
+            let (frame, _) = m.attach_here(at, child)?;
+            Ok((m, frame))
+        })?;
+        settings::check(&new).map_err(|k| EditError::new(k, String::new()))?;
+        let frame = self.scoped_loc(at.scope(), frame);
+        let scope = new.scope_of_frame(&frame).unwrap_or_default();
+        *self = new;
+        Ok(Attachment::new(frame, scope.into()))
     }
 
     /// Attaches `child` at the end of the worldbody (see [`Model::attach`]).
@@ -97,7 +113,10 @@ impl Model {
         self.attach(&self.worldbody(), child)
     }
 
-    fn attach_here(&self, at: &Loc, child: &Model) -> Result<(Model, ElementId), EditError> {
+    /// Attaches `child` at `at`, an element of this model's own tree, in place;
+    /// returns the frame's id and the scope name. Every check (and the settings fold,
+    /// which can fail) comes before the first change, so on error `self` is unchanged.
+    fn attach_here(&mut self, at: &Loc, child: &Model) -> Result<(ElementId, SmolStr), EditError> {
         let path = self.path_of(at.id()).ok_or_else(|| self.stale(at))?;
         let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
         let node = self.node_at(&path).ok_or_else(|| err(ErrorKind::NotFound))?;
@@ -110,8 +129,6 @@ impl Model {
                 error: ValueError::SlashInIdentifier,
             }));
         }
-        let mut index = self.index.clone();
-        let scope = index.scopes.free_name(base);
         let tag = node.kind().tag();
         let (parent_path, parent, position, body_kind, attrs) = match tag {
             "worldbody" => {
@@ -137,28 +154,40 @@ impl Model {
             }
             _ => return Err(err(ErrorKind::InvalidParent(tag))),
         };
+        let parent_id = parent.id();
+        // The merged settings: the child's folded into ours (each cached, so O(1)).
+        let ours = settings::merged(self).map_err(err)?;
+        let theirs = settings::merged(child).map_err(err)?;
+        let sections = if self.index.merged.absorbs(&theirs) {
+            ours.clone()
+        } else {
+            settings::folded(&ours, &theirs).map_err(err)?
+        };
+        // Folding `theirs` changed nothing: the next attach of the same model (its
+        // merged sections the same `Arc`) skips the fold.
+        let absorbed = Arc::ptr_eq(&sections, &ours).then_some(theirs);
+        let scope = self.index.scopes.free_name(base);
         let id = ElementId::fresh();
         let frame = Node::frame(
             id,
             body_kind,
             attrs,
-            Attached { scope: scope.clone(), model: child.clone() },
+            Attached { scope: scope.name.clone(), model: child.clone() },
         );
-        let mut children = parent.children().clone();
-        let ord = children.insert(position, frame.clone());
-        let parent_new = parent.with_children(children);
+        // No check is left: from here on `self` changes.
+        let Some(parent) = self.node_at_mut(&parent_path) else {
+            // Found above, so this cannot happen; no content changed if it did.
+            return Err(EditError::new(ErrorKind::NotFound, String::new()));
+        };
+        let ord = parent.children.insert(position, frame.clone());
+        let index = &mut self.index;
         // A new frame has no identifier, so indexing it cannot find a duplicate.
-        let _ = index.insert_subtree_at(Some(parent.id()), &frame, position, ord);
-        // The merged settings: the child's folded into ours (each cached, so O(1)).
-        let mut sections = settings::merged(self).map_err(err)?.to_vec();
-        settings::fold_sections(&mut sections, &settings::merged(child).map_err(err)?)
-            .map_err(err)?;
-        index.scopes.push(scope, id, child.index.merged.clone());
-        let root = self.root.update_path(&parent_path, |_| Ok::<_, EditError>(parent_new))?;
-        let new = self.next(root, index);
-        // The fold just made is the new version's (its memo is new and empty).
-        new.index.merged.fill(sections.into());
-        Ok((new, id))
+        let _ = index.insert_subtree_at(Some(parent_id), &frame, position, ord);
+        let name = scope.name.clone();
+        index.scopes.push(base, scope, id);
+        // The fold just made is the new version's.
+        index.merged = MergedCache::filled(sections, absorbed);
+        Ok((id, name))
     }
 
     /// The model without the attachment at `scope` (an [`Attachment`], or a scope

@@ -14,8 +14,9 @@ use crate::value::{AttrInput, Value};
 
 use super::build::{self, Input, ValueCtx, apply_attrs, check_class_named, empty_node};
 use super::frame::{check_frame_child, frame_settable};
-use super::tree::Node;
-use super::{Attrs, Element, Loc, Model};
+use super::settings::is_settings_section;
+use super::tree::{ElementId, Node};
+use super::{Attrs, Element, Loc, MergedCache, Model};
 
 impl Model {
     /// Replaces `self` with the model of a successful edit and returns the edit's
@@ -72,6 +73,11 @@ impl Model {
 
     /// [`Model::add`] in place: adds `element` to `self` and returns its locator.
     ///
+    /// The nodes on the edited path that `self` shares with no other value (a clone,
+    /// an earlier version) are edited where they are, the others are copied, so a
+    /// model built by a loop of in-place edits copies almost nothing; a clone taken
+    /// before keeps its content either way.
+    ///
     /// Time: as [`Model::add`].
     ///
     /// # Errors
@@ -88,8 +94,7 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn add_mut(&mut self, parent: &Loc, element: Element) -> Result<Loc, EditError> {
-        let r = self.add(parent, element);
-        self.apply(r)
+        self.insert_at_mut(parent, None, element)
     }
 
     /// Inserts `element` at `index` among the parent's repeated and on-demand children
@@ -121,8 +126,7 @@ impl Model {
         index: usize,
         element: Element,
     ) -> Result<Loc, EditError> {
-        let r = self.insert(parent, index, element);
-        self.apply(r)
+        self.insert_at_mut(parent, Some(index), element)
     }
 
     fn insert_at(
@@ -131,43 +135,73 @@ impl Model {
         index: Option<usize>,
         element: Element,
     ) -> Result<(Model, Loc), EditError> {
-        let (m, new) =
-            self.in_scope(parent.scope(), |m: &Model| m.insert_here(parent, index, &element))?;
-        Ok((m, new.within(parent.scope())))
+        let mut new = self.clone();
+        let loc = new.insert_at_mut(parent, index, element)?;
+        Ok((new, loc))
     }
 
+    fn insert_at_mut(
+        &mut self,
+        parent: &Loc,
+        index: Option<usize>,
+        element: Element,
+    ) -> Result<Loc, EditError> {
+        if parent.scope().is_empty() {
+            // In place: on error nothing changed (see `insert_here`).
+            let id = self.insert_here(parent, index, &element)?;
+            return Ok(self.scoped_loc(&[], id));
+        }
+        let (m, loc) = self.in_scope(parent.scope(), |m: &Model| {
+            let mut m = m.clone();
+            let id = m.insert_here(parent, index, &element)?;
+            // Named after the model it is in, as before the in-place edits.
+            let loc = m.scoped_loc(&[], id);
+            Ok((m, loc))
+        })?;
+        *self = m;
+        Ok(loc.within(parent.scope()))
+    }
+
+    /// Inserts `element` under `loc`, an element of this model's own tree, in place;
+    /// returns the new element's id. The element is built and checked, then indexed
+    /// (a duplicate name found there is taken out again), and only then does the tree
+    /// change, so on error `self` holds what it held. Nodes (and index nodes) that
+    /// other versions share are copied; those `self` owns alone are edited in place.
     fn insert_here(
-        &self,
+        &mut self,
         loc: &Loc,
         index: Option<usize>,
         element: &Element,
-    ) -> Result<(Model, Loc), EditError> {
+    ) -> Result<ElementId, EditError> {
         let path = self.locate(loc)?;
         // The element path for errors, made only when there is one: the parent's path
         // (O(width) to describe) and the new element's own part.
         let mut sub = String::new();
-        let at = |sub: &str| -> String {
-            let outer = self.describe(&path);
+        let at = |m: &Model, sub: &str| -> String {
+            let outer = m.describe(&path);
             match (outer.is_empty(), sub.is_empty()) {
                 (true, _) => sub.to_string(),
                 (false, true) => outer,
                 (false, false) => format!("{outer}/{sub}"),
             }
         };
-        let parent_node = self.node_at(&path).cloned().ok_or_else(|| self.stale(loc))?;
+        let parent_node = self.node_at(&path).ok_or_else(|| self.stale(loc))?;
         let basepaths = self.basepaths();
         let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
         let node = build::build(&ctx, parent_node.kind(), element, &mut sub)
-            .map_err(|k| EditError::new(k, at(&sub)))?;
+            .map_err(|k| EditError::new(k, at(self, &sub)))?;
         if let Some(a) = parent_node.attached() {
             let grand = path.split_last().and_then(|(_, p)| self.node_at(p));
-            check_frame_child(grand, &parent_node, &node, &a.scope)
-                .map_err(|k| EditError::new(k, at(&sub)))?;
+            check_frame_child(grand, parent_node, &node, &a.scope)
+                .map_err(|k| EditError::new(k, at(self, &sub)))?;
         }
         if node.kind().multiplicity() == Multiplicity::OnDemand
             && parent_node.children().iter().any(|c| c.kind() == node.kind())
         {
-            return Err(EditError::new(ErrorKind::DuplicateChild(node.kind().tag()), at(&sub)));
+            return Err(EditError::new(
+                ErrorKind::DuplicateChild(node.kind().tag()),
+                at(self, &sub),
+            ));
         }
         let children = parent_node.children();
         let singletons = children
@@ -178,19 +212,35 @@ impl Model {
             Some(i) => (singletons + i).min(children.len()),
             None => children.len(),
         };
+        let parent_id = parent_node.id();
         let id = node.id();
-        let mut children = children.clone();
-        let ord = children.insert(position, node.clone());
-        let mut index_ = self.index.clone();
-        if let Err(d) = index_.insert_subtree_at(Some(parent_node.id()), &node, position, ord) {
+        // The index is filled first (with the slot the insert will give), so that a
+        // duplicate name leaves the tree untouched.
+        let (ord, _) = children.slot_at_insert(position);
+        if let Err(d) = self.index.insert_subtree_at(Some(parent_id), &node, position, ord) {
+            // Back to the index as it was: what was inserted is taken out (the
+            // duplicate's own name stays with the element that has it).
+            self.index.remove_subtree(&node);
             return Err(EditError::new(
                 ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name },
-                at(&sub),
+                at(self, &sub),
             ));
         }
-        let parent_new = parent_node.with_children(children);
-        let root = self.root.update_path(&path, |_| Ok::<_, EditError>(parent_new))?;
-        Ok((self.next(root, index_), self.scoped_loc(&[], id)))
+        // An edit inside a global settings section (or of the root's own children)
+        // may change the merged settings: their memo starts afresh, as `Model::next`
+        // decides for the other edits.
+        let in_settings = path.first().is_none_or(|&s| {
+            self.root.children().get(s).is_none_or(|n| is_settings_section(n.kind()))
+        });
+        if in_settings {
+            self.index.merged = MergedCache::default();
+        }
+        let Some(parent) = self.node_at_mut(&path) else {
+            // Found above, so this cannot happen.
+            return Err(self.stale(loc));
+        };
+        parent.children.insert(position, node);
+        Ok(id)
     }
 
     /// Sets and clears attributes of the element at `loc`, all or nothing. The

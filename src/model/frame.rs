@@ -18,14 +18,28 @@ pub(crate) fn frame_settable(name: &str) -> bool {
 
 /// The frame attributes copied from a site, as attributes of `body_kind`.
 pub(crate) fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
-    let site_kind = site.kind();
-    FRAME_ATTRS
+    let theirs = frame_attr_indices(site.kind());
+    let ours = frame_attr_indices(body_kind);
+    theirs
         .iter()
-        .filter_map(|name| {
-            let v = site.attr(site_kind.attr_index(name)?)?;
-            Some((u16::try_from(body_kind.attr_index(name)?).ok()?, v.clone()))
-        })
+        .zip(ours)
+        .filter_map(|(s, b)| Some(((*b)?, site.attr(usize::from((*s)?))?.clone())))
         .collect()
+}
+
+/// The schema indices of [`FRAME_ATTRS`] in `kind` (`None` where it has no such
+/// attribute), from a table computed once for all kinds: an attach asks for two
+/// kinds, which by name would be 14 binary searches of attribute names.
+fn frame_attr_indices(kind: ElementKind) -> &'static [Option<u16>; FRAME_ATTRS.len()] {
+    static TABLE: std::sync::OnceLock<Vec<[Option<u16>; FRAME_ATTRS.len()]>> =
+        std::sync::OnceLock::new();
+    const NONE: [Option<u16>; FRAME_ATTRS.len()] = [None; FRAME_ATTRS.len()];
+    let table = TABLE.get_or_init(|| {
+        ElementKind::all()
+            .map(|k| FRAME_ATTRS.map(|n| k.attr_index(n).and_then(|i| u16::try_from(i).ok())))
+            .collect()
+    });
+    table.get(kind.0 as usize).unwrap_or(&NONE)
 }
 
 /// Checks a new child of an attachment frame: joints, one inertial, and one freejoint

@@ -20,16 +20,12 @@
 use std::borrow::Cow;
 use std::sync::{Arc, OnceLock};
 
-use imbl::{GenericHashMap, HashMap, OrdMap};
+use imbl::{HashMap, OrdMap};
 use smol_str::SmolStr;
 
 use super::tree::{ElementId, Node};
-use crate::id::IdHash;
 use crate::schema::{ElementKind, Multiplicity, Namespace};
 use crate::seq::fresh_ord;
-
-/// A persistent map keyed by element ids, hashed cheaply (ids are not user input).
-pub(crate) type IdMap<V> = GenericHashMap<ElementId, V, IdHash, imbl::shared_ptr::DefaultSharedPtr>;
 
 /// What the index knows about one element.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,16 +64,37 @@ pub(crate) struct Index {
 
 /// A lazily computed, shared value of the merged settings sections (root order).
 #[derive(Clone, Default)]
-pub(crate) struct MergedCache(Arc<OnceLock<Arc<[Node]>>>);
+pub(crate) struct MergedCache(Arc<OnceLock<Merged>>);
+
+/// What a [`MergedCache`] holds.
+struct Merged {
+    sections: Arc<[Node]>,
+    /// Merged sections of an attached model whose fold into `sections` changed
+    /// nothing (the last attach's, when it was so): attaching a model with these
+    /// very sections again (`Arc::ptr_eq`; a fleet of one robot) needs no fold.
+    absorbed: Option<Arc<[Node]>>,
+}
 
 impl MergedCache {
+    /// A new cache holding `sections` (the merged settings of the model it goes to),
+    /// and `absorbed`, merged sections whose fold into them changes nothing.
+    pub(crate) fn filled(sections: Arc<[Node]>, absorbed: Option<Arc<[Node]>>) -> MergedCache {
+        MergedCache(Arc::new(OnceLock::from(Merged { sections, absorbed })))
+    }
+
     pub(crate) fn get(&self) -> Option<&Arc<[Node]>> {
-        self.0.get()
+        self.0.get().map(|m| &m.sections)
+    }
+
+    /// Whether folding `theirs` into the sections held changes nothing, as known
+    /// without folding (the same `Arc` was folded in before, to no effect).
+    pub(crate) fn absorbs(&self, theirs: &Arc<[Node]>) -> bool {
+        self.0.get().and_then(|m| m.absorbed.as_ref()).is_some_and(|a| Arc::ptr_eq(a, theirs))
     }
 
     /// Stores `sections` (computed for this cache's model) and returns what it holds.
     pub(crate) fn fill(&self, sections: Arc<[Node]>) -> Arc<[Node]> {
-        self.0.get_or_init(|| sections).clone()
+        self.0.get_or_init(|| Merged { sections, absorbed: None }).sections.clone()
     }
 
     /// Whether two versions share one cache (their merged settings are the same).
@@ -262,7 +279,9 @@ impl Index {
     /// and slot.
     pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
         let mut cur = self.entry(id)?;
-        let mut chain = vec![(id, cur.pos, cur.ord)];
+        // Room for most depths at once (one allocation, no regrowth).
+        let mut chain = Vec::with_capacity(16);
+        chain.push((id, cur.pos, cur.ord));
         while let Some(p) = cur.parent {
             cur = self.entry(p)?;
             chain.push((p, cur.pos, cur.ord));
@@ -274,19 +293,23 @@ impl Index {
 
 /// A model's own attachments: (scope name, frame) in attach order, found by name and
 /// by frame in O(log n). Persistent, like the rest of the index.
+///
+/// Attach order is frame-id order: a frame gets a fresh id when it is attached
+/// (`ElementId::fresh`, one atomic counter), every attach of a model's history comes
+/// after the attaches it builds on, and a frame keeps its id for life (renames and
+/// edits inside the attachment keep it). So one map keyed by frame serves both the
+/// order and the lookup by frame: two persistent maps to update per attach, not three.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Attach sequence number → (scope, frame, the attached model's merged-settings
-    /// memo). The memo is the attached model's own (shared); it is replaced when an
-    /// edit inside the attachment replaces it, so an unchanged `order` map means
-    /// unchanged attachments as far as merged settings go.
-    order: OrdMap<u64, (SmolStr, ElementId, MergedCache)>,
-    by_name: HashMap<SmolStr, (u64, ElementId)>,
-    by_frame: IdMap<u64>,
-    next: u64,
+    /// Frame → scope. (An edit inside an attachment that changes its merged settings
+    /// resets the outer model's memo itself: `Model::in_scope`.)
+    order: OrdMap<ElementId, SmolStr>,
+    /// B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
+    /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
+    by_name: OrdMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).
-    free_from: HashMap<SmolStr, u64>,
+    free_from: OrdMap<SmolStr, u64>,
 }
 
 impl Scopes {
@@ -296,80 +319,70 @@ impl Scopes {
 
     /// (scope, frame) in attach order.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.values().map(|(s, f, _)| (s, *f))
+        self.order.iter().map(|(f, s)| (s, *f))
     }
 
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        let seq = self.by_frame.get(&frame)?;
-        self.order.get(seq).map(|(s, _, _)| s)
+        self.order.get(&frame)
     }
 
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.by_name.get(scope).map(|(_, f)| *f)
+        self.by_name.get(scope).copied()
     }
 
-    /// Whether both hold the same attachments with the same merged-settings memos
-    /// (O(1): the maps are shared or not).
+    /// Whether both hold the same attachments (O(1): the maps are shared or not).
     pub(crate) fn same(&self, other: &Scopes) -> bool {
         self.order.ptr_eq(&other.order)
     }
 
-    /// Records that the model attached at `frame` now has merged-settings memo
-    /// `memo` (nothing changes if it is the same memo).
-    pub(crate) fn note_model(&mut self, frame: ElementId, memo: &MergedCache) {
-        let Some(&seq) = self.by_frame.get(&frame) else { return };
-        if let Some((scope, f, old)) = self.order.get(&seq) {
-            if !old.same(memo) {
-                let entry = (scope.clone(), *f, memo.clone());
-                self.order.insert(seq, entry);
-            }
+    /// Adds an attachment under `name` (from [`Scopes::free_name`]: free, and chosen
+    /// for `base`).
+    pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId) {
+        if name.suffix > 0 {
+            self.free_from.insert(base.into(), name.suffix + 1);
         }
-    }
-
-    /// Adds an attachment (its scope name is free) of a model whose merged-settings
-    /// memo is `memo`.
-    pub(crate) fn push(&mut self, scope: SmolStr, frame: ElementId, memo: MergedCache) {
-        let seq = self.next;
-        self.next += 1;
-        self.order.insert(seq, (scope.clone(), frame, memo));
-        self.by_name.insert(scope, (seq, frame));
-        self.by_frame.insert(frame, seq);
+        self.order.insert(frame, name.name.clone());
+        self.by_name.insert(name.name, frame);
     }
 
     /// Removes the attachment whose frame is `frame`, if any.
     pub(crate) fn remove(&mut self, frame: ElementId) {
-        if let Some(seq) = self.by_frame.remove(&frame) {
-            if let Some((scope, _, _)) = self.order.remove(&seq) {
-                self.by_name.remove(&scope);
-            }
-            self.free_from = HashMap::new();
+        if let Some(scope) = self.order.remove(&frame) {
+            self.by_name.remove(&scope);
+            self.free_from = OrdMap::new();
         }
     }
 
     /// Renames the attachment whose frame is `frame` (to a free name).
     pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
-        let Some(&seq) = self.by_frame.get(&frame) else { return };
-        let memo = self.order.get(&seq).map(|(_, _, m)| m.clone()).unwrap_or_default();
-        if let Some((old, _, _)) = self.order.insert(seq, (to.clone(), frame, memo)) {
+        if !self.order.contains_key(&frame) {
+            return;
+        }
+        if let Some(old) = self.order.insert(frame, to.clone()) {
             self.by_name.remove(&old);
         }
-        self.by_name.insert(to, (seq, frame));
-        self.free_from = HashMap::new();
+        self.by_name.insert(to, frame);
+        self.free_from = OrdMap::new();
     }
 
     /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
     /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
-    /// are only added.
-    pub(crate) fn free_name(&mut self, base: &str) -> SmolStr {
-        if !self.by_name.contains_key(base) {
-            return base.into();
-        }
-        let mut n = self.free_from.get(base).copied().unwrap_or(1);
+    /// are only added. Changes nothing: [`Scopes::push`] records the hint.
+    pub(crate) fn free_name(&self, base: &str) -> FreeName {
+        // A hint for `base` means `base` was taken when it was noted, and no name was
+        // freed since (that clears the hints): taken still.
+        let mut n = match self.free_from.get(base) {
+            Some(n) => *n,
+            None if !self.by_name.contains_key(base) => {
+                return FreeName { name: base.into(), suffix: 0 };
+            }
+            None => 1,
+        };
         loop {
-            let name = SmolStr::from(format!("{base}_{n}"));
+            // Built in place (no `String` for names of up to 23 bytes).
+            let name = smol_str::format_smolstr!("{base}_{n}");
             if !self.by_name.contains_key(&name) {
-                self.free_from.insert(base.into(), n + 1);
-                return name;
+                return FreeName { name, suffix: n };
             }
             n += 1;
         }
@@ -402,4 +415,11 @@ fn singleton_run(n: &Node) -> usize {
         }
     }
     if count < 2 || count > usize::from(u8::MAX) { 0 } else { count }
+}
+
+/// A free scope name and its suffix (`robot_3`: 3; `robot`: 0).
+#[derive(Clone, Debug)]
+pub(crate) struct FreeName {
+    pub(crate) name: SmolStr,
+    suffix: u64,
 }

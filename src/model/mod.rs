@@ -214,7 +214,9 @@ impl Model {
     /// The next version of this model: `root` and `index` after an edit (`index`
     /// starts as a copy of this model's). The one place that decides whether the
     /// merged-settings memo survives: only when every global settings section is
-    /// the same node and the attachments (with their own memos) are the same.
+    /// the same node and the attachments are the same. (An edit inside an
+    /// attachment that gives it another memo resets ours before: `in_scope`. The
+    /// in-place edits, `attach_here` and `insert_here`, decide it themselves.)
     pub(crate) fn next(&self, root: Node, mut index: Index) -> Model {
         let settings_same = {
             let old = self.root.children().iter();
@@ -514,6 +516,17 @@ impl Model {
             node = node.children().get(i)?;
         }
         Some(node)
+    }
+
+    /// The node at `path`, mutable, for an in-place edit: each node on the path that
+    /// another version shares is copied first (path copying, done only where needed),
+    /// so a model built by in-place edits reuses the nodes it owns alone.
+    pub(crate) fn node_at_mut(&mut self, path: &[usize]) -> Option<&mut tree::NodeData> {
+        let mut node = &mut self.root;
+        for &i in path {
+            node = node.make_mut().children.get_mut(i)?;
+        }
+        Some(node.make_mut())
     }
 
     /// The element path used in error messages: `worldbody/body[name=torso]/geom[2]`.

@@ -9,7 +9,7 @@ use smol_str::SmolStr;
 use crate::error::{EditError, ErrorKind};
 
 use super::tree::{Attached, ElementId, Node};
-use super::{Loc, Model};
+use super::{Loc, MergedCache, Model};
 
 /// An attachment made by [`Model::attach`]: its frame and its scope path.
 ///
@@ -229,7 +229,15 @@ impl Model {
         // Up: put each new model back into its frame.
         for (outer, path, scope) in chain.into_iter().rev() {
             let mut index = outer.index.clone();
-            index.scopes.note_model(path_last_id(outer, &path), &inner.index.merged);
+            // Our merged settings fold the attached model's: if its memo is another
+            // (the edit may have changed them), ours starts afresh.
+            let memo_kept = outer
+                .node_at(&path)
+                .and_then(Node::attached)
+                .is_some_and(|a| a.model.index.merged.same(&inner.index.merged));
+            if !memo_kept {
+                index.merged = MergedCache::default();
+            }
             let root = outer.root.update_path(&path, |n| {
                 Ok::<_, EditError>(n.with_attached(Attached { scope, model: inner }))
             })?;
@@ -358,14 +366,13 @@ impl Model {
 
     /// A locator of the element `id` of the model attached along `frames`.
     pub(crate) fn scoped_loc(&self, frames: &[ElementId], id: ElementId) -> Loc {
+        if frames.is_empty() {
+            // A locator of this model's own element holds no frame list (and making
+            // an empty `Arc` would allocate).
+            return Loc { scope: None, id, origin: self.name().into() };
+        }
         Loc::scoped(Arc::from(frames), id, self.name())
     }
-}
-
-/// The id of the node at the end of `path` in `m` (the frame an `in_scope` step
-/// went through).
-fn path_last_id(m: &Model, path: &[usize]) -> ElementId {
-    m.node_at(path).map_or_else(|| m.root.id(), Node::id)
 }
 
 fn scoped_path(scope: &str, path: &str) -> String {

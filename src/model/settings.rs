@@ -50,40 +50,58 @@ fn compute_is_settings_section(kind: ElementKind) -> bool {
 }
 
 /// Folds `theirs` (an attachment's merged section) into `ours`, by the merge rules.
+/// `ours` itself (shared) when the fold changes nothing, as in a fleet of one robot
+/// after the first attach: no copy is made until the first change.
 pub(crate) fn fold(ours: &Node, theirs: &Node) -> Result<Node, ErrorKind> {
     let kind = ours.kind();
-    let mut attrs: Vec<Attr> = ours.attrs().to_vec();
-    let mut changed = false;
+    // A copy of our attributes, made at the first change.
+    let mut attrs: Option<Vec<Attr>> = None;
     for (i, v) in theirs.attrs() {
         let spec = kind.attr(*i as usize);
         if spec.merge == Merge::Replace || matches!(spec.ty, AttrType::Basepath { .. }) {
             continue;
         }
-        match attrs.binary_search_by_key(i, |(k, _)| *k) {
+        let now = attrs.as_deref().unwrap_or(ours.attrs());
+        match now.binary_search_by_key(i, |(k, _)| *k) {
             Ok(p) => {
-                let new = combine(kind, *i as usize, &attrs[p].1, v, spec.merge)?;
-                if new != attrs[p].1 {
-                    attrs[p].1 = new;
-                    changed = true;
+                if let Some(new) = combined(kind, *i as usize, &now[p].1, v, spec.merge)? {
+                    attrs.get_or_insert_with(|| ours.attrs().to_vec())[p].1 = new;
                 }
             }
-            Err(p) => {
-                attrs.insert(p, (*i, v.clone()));
-                changed = true;
-            }
+            Err(p) => attrs.get_or_insert_with(|| ours.attrs().to_vec()).insert(p, (*i, v.clone())),
         }
     }
-    let mut children = ours.children().clone();
+    let mut children = None;
     for (p, c) in ours.children().iter().enumerate() {
         if let Some(t) = theirs.child_of_kind(c.kind()) {
             let merged = fold(c, t)?;
             if !merged.ptr_eq(c) {
-                children.set(p, merged);
-                changed = true;
+                children.get_or_insert_with(|| ours.children().clone()).set(p, merged);
             }
         }
     }
-    Ok(if changed { ours.with_parts(attrs, children) } else { ours.clone() })
+    Ok(match (attrs, children) {
+        (None, None) => ours.clone(),
+        (attrs, children) => ours.with_parts(
+            attrs.unwrap_or_else(|| ours.attrs().to_vec()),
+            children.unwrap_or_else(|| ours.children().clone()),
+        ),
+    })
+}
+
+/// `ours` with `theirs` folded in (both merged sections in root order): `ours` itself
+/// (shared) when that changes nothing.
+pub(crate) fn folded(ours: &Arc<[Node]>, theirs: &[Node]) -> Result<Arc<[Node]>, ErrorKind> {
+    let mut acc: Option<Vec<Node>> = None;
+    for (k, o) in ours.iter().enumerate() {
+        if let Some(t) = theirs.iter().find(|t| t.kind() == o.kind()) {
+            let f = fold(o, t)?;
+            if !f.ptr_eq(o) {
+                acc.get_or_insert_with(|| ours.to_vec())[k] = f;
+            }
+        }
+    }
+    Ok(acc.map_or_else(|| ours.clone(), Arc::from))
 }
 
 /// The merged settings sections of `model` (root order): its own, each folded with
@@ -153,6 +171,31 @@ pub(crate) fn attachments(model: &Model) -> Vec<&Model> {
 /// Refuses a model whose settings cannot be merged (reports the first conflict).
 pub(crate) fn check(model: &Model) -> Result<(), ErrorKind> {
     merged(model).map(|_| ())
+}
+
+/// [`combine`] for a fold: `None` when the result is `ours` (no copy made).
+fn combined(
+    kind: ElementKind,
+    i: usize,
+    ours: &Value,
+    theirs: &Value,
+    merge: Merge,
+) -> Result<Option<Value>, ErrorKind> {
+    // The cases where `combine` gives back `ours` (an equal value), told without
+    // cloning; every other case (NaN included) goes through `combine`.
+    let keep = match (merge, ours, theirs) {
+        (Merge::MustAgree, a, b) => values_agree(a, b),
+        (Merge::Min, Value::Float(a), Value::Float(b)) => b >= a,
+        (Merge::Max, Value::Float(a), Value::Float(b)) => b <= a,
+        (Merge::Min, Value::Int(a), Value::Int(b)) => b >= a,
+        (Merge::Max, Value::Int(a), Value::Int(b)) => b <= a,
+        _ => false,
+    };
+    if keep {
+        return Ok(None);
+    }
+    let new = combine(kind, i, ours, theirs, merge)?;
+    Ok((new != *ours).then_some(new))
 }
 
 /// Combines two set values of one attribute by its merge rule (the copying variant:

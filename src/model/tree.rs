@@ -147,6 +147,12 @@ impl Node {
         }
     }
 
+    /// The node's data, mutable: copied first if another version shares it
+    /// (`Arc::make_mut`), so an in-place edit never shows in another value.
+    pub(crate) fn make_mut(&mut self) -> &mut NodeData {
+        Arc::make_mut(&mut self.0)
+    }
+
     /// Whether both are the same shared node.
     pub(crate) fn ptr_eq(&self, other: &Node) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
