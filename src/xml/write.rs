@@ -24,6 +24,17 @@ use crate::model::{Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::value::{FloatStyle, Reference, Value};
 
+/// The output reserved per element of the composed model, before writing: about what
+/// an element with a short name and a few attributes takes once indented (a robot
+/// fleet takes 35 bytes per element, counting the empty singletons of its default
+/// classes, which are not written; a tree of bodies with geoms and joints ~120).
+/// Where it is too little, the output grows by doubling; where it is more than twice
+/// too much (by over a MiB), the excess is given back at the end.
+const BYTES_PER_ELEMENT: usize = 40;
+
+/// At most this much is reserved up front (1 GiB).
+const MAX_RESERVE: usize = 1 << 30;
+
 /// The deepest indentation, in levels (deeper elements are indented as much).
 const MAX_INDENT: usize = 100;
 
@@ -138,7 +149,13 @@ impl Model {
         if let Some((tag, attribute, character)) = w.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
-        Ok(w.out)
+        let mut out = w.out;
+        if out.capacity() > 2 * out.len() && out.capacity() - out.len() > 1 << 20 {
+            // The reservation was far too much (elements not written: the empty
+            // singletons of many default classes).
+            out.shrink_to_fit();
+        }
+        Ok(out)
     }
 }
 
@@ -255,6 +272,9 @@ impl<'a> Writer<'a> {
                     auto_index: None,
                 });
             }
+            if substitute && matches!(step, Step::Enter(Item { depth: 0, .. })) {
+                self.reserve_output();
+            }
             match step {
                 Step::Enter(item)
                     if substitute
@@ -287,6 +307,15 @@ impl<'a> Writer<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Reserves the output's room once every model of the composition is known (the
+    /// root's children list them all): `BYTES_PER_ELEMENT` per element of each. Grown
+    /// by doubling instead, a large output is copied and its fresh pages touched
+    /// again at every step (77 MB allocated for 19 MB of text).
+    fn reserve_output(&mut self) {
+        let elements: usize = self.insts.iter().map(|i| i.model.index.elems.len()).sum();
+        self.out.reserve(elements.saturating_mul(BYTES_PER_ELEMENT).min(MAX_RESERVE));
     }
 
     /// Writes the composed keys in place of the keyframe section.
