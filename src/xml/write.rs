@@ -164,11 +164,25 @@ struct Inst<'a> {
     model: &'a Model,
     /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
     prefix: String,
-    /// Running auto-name counters (document order of this model's own elements).
-    counters: HashMap<Namespace, usize>,
+    /// Running auto-name counters (document order of this model's own elements), by
+    /// namespace (`ns as usize`; a hash per element cost more than the rest of its
+    /// counting).
+    counters: Vec<usize>,
     /// Auto-name indices of every element (and whether it is inside a `<replicate>`),
     /// counted once when a reference needs one.
     auto_index: Option<HashMap<ElementId, (usize, bool)>>,
+}
+
+impl Inst<'_> {
+    /// The auto-name index of the next element of `ns` (counted).
+    fn next_auto_index(&mut self, ns: Namespace) -> usize {
+        let k = ns as usize;
+        if self.counters.len() <= k {
+            self.counters.resize(k + 1, 0);
+        }
+        self.counters[k] += 1;
+        self.counters[k] - 1
+    }
 }
 
 /// An element whose start tag is not finished yet.
@@ -234,6 +248,9 @@ struct Writer<'a> {
 /// Whether a singleton writes anything: a written attribute, or a child that does.
 fn singleton_emits(node: &Node) -> bool {
     let kind = node.kind();
+    if facts(kind).class.is_some() || kind.identifier().is_some() {
+        return true;
+    }
     if node
         .attrs()
         .iter()
@@ -241,12 +258,12 @@ fn singleton_emits(node: &Node) -> bool {
     {
         return true;
     }
-    if facts(kind).class.is_some() || kind.identifier().is_some() {
-        return true;
-    }
-    node.children()
-        .iter()
-        .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
+    // (Most singletons are empty: no iterator for them.)
+    let children = node.children();
+    !children.is_empty()
+        && children
+            .iter()
+            .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
 }
 
 fn emits(node: &Node) -> bool {
@@ -268,7 +285,7 @@ impl<'a> Writer<'a> {
                 self.insts.push(Inst {
                     model: i.model,
                     prefix,
-                    counters: HashMap::new(),
+                    counters: Vec::new(),
                     auto_index: None,
                 });
             }
@@ -558,7 +575,7 @@ impl<'a> Writer<'a> {
     /// A frame's attributes (copied from its site), then `name` last; the frame counts
     /// as a body of its model for auto names.
     fn write_frame_attrs(&mut self, inst: usize, frame: &Node, name: &str) {
-        *self.insts[inst].counters.entry(Namespace::Body).or_insert(0) += 1;
+        self.insts[inst].next_auto_index(Namespace::Body);
         let kind = frame.kind();
         for (i, v) in frame.attrs() {
             self.value.clear();
@@ -586,9 +603,7 @@ impl<'a> Writer<'a> {
         // render their own).
         let auto_name = match (kind.identifier(), kind.namespace()) {
             (Some(i), Some(ns)) => {
-                let n = self.insts[inst].counters.entry(ns).or_insert(0);
-                let index = *n;
-                *n += 1;
+                let index = self.insts[inst].next_auto_index(ns);
                 (node.attr(i).is_none() || is_default || frame.is_some()).then_some((i, ns, index))
             }
             _ => None,
