@@ -640,7 +640,13 @@ impl<'a> Writer<'a> {
                             self.value.push('/');
                         }
                     } else if is_default {
-                        self.default_class_name(inst, node.identifier());
+                        self.emit_default_class(
+                            inst,
+                            kind.tag(),
+                            kind.attr(i).name,
+                            node.identifier(),
+                        );
+                        continue;
                     } else if let Some((_, ns, index)) = auto_name {
                         let replicated = self.open.last().is_some_and(|o| o.replicated);
                         self.auto_name(inst, ns, index, replicated);
@@ -648,7 +654,8 @@ impl<'a> Writer<'a> {
                 } else {
                     // Implicit class: the model's root class.
                     let root_class = self.root_class_name(inst);
-                    self.default_class_name(inst, root_class);
+                    self.emit_default_class(inst, kind.tag(), kind.attr(i).name, root_class);
+                    continue;
                 }
                 self.emit_attr(kind.tag(), kind.attr(i).name);
             } else if let Some((i, v)) = set.next() {
@@ -669,8 +676,8 @@ impl<'a> Writer<'a> {
                     self.out.push_str("=\"");
                     v.write_plain(&mut self.out, self.style);
                     self.out.push('"');
-                } else if self.value_text(inst, node, i, v)? {
-                    self.emit_attr(kind.tag(), spec.name);
+                } else {
+                    self.emit_value(inst, node, i, v)?;
                 }
             }
         }
@@ -681,16 +688,18 @@ impl<'a> Writer<'a> {
         section_of(self.insts[inst].model, "default")?.identifier()
     }
 
-    /// Writes `P + name`, or `/` when both are empty, into `self.value`.
-    fn default_class_name(&mut self, inst: usize, name: Option<&str>) {
+    /// Appends ` attr="P + name"` (`/` when both are empty).
+    fn emit_default_class(
+        &mut self,
+        inst: usize,
+        tag: &'static str,
+        attr: &'static str,
+        name: Option<&str>,
+    ) {
         let prefix = &self.insts[inst].prefix;
         let name = name.unwrap_or("");
-        if name.is_empty() && prefix.is_empty() {
-            self.value.push('/');
-        } else {
-            self.value.push_str(prefix);
-            self.value.push_str(name);
-        }
+        let parts = if name.is_empty() && prefix.is_empty() { ["/", ""] } else { [prefix, name] };
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts);
     }
 
     /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`, and a `_` after it
@@ -706,60 +715,63 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// Writes the text of attribute `i` into `self.value`; `false` if it is not written.
-    fn value_text(
+    /// Appends ` name="value"` for attribute `i` (holding `v`), if it is written.
+    fn emit_value(
         &mut self,
         inst: usize,
         node: &Node,
         i: usize,
         v: &Value,
-    ) -> Result<bool, WriteError> {
-        match v {
-            Value::Basepath(_) => Ok(false),
-            Value::File(f) => {
-                self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
-                Ok(true)
-            }
+    ) -> Result<(), WriteError> {
+        let kind = node.kind();
+        let (tag, attr) = (kind.tag(), kind.attr(i).name);
+        // Names are written as prefix and name, each escaped, with no copy between.
+        let prefix = self.insts[inst].prefix.as_str();
+        let parts = match v {
+            Value::Basepath(_) => return Ok(()),
             Value::Reference(Reference::Element(target)) => {
-                self.reference_text(inst, node, i, *target)
+                return self.emit_reference(inst, node, i, *target);
             }
-            Value::Identifier(n) => {
-                self.value.push_str(&self.insts[inst].prefix);
-                self.value.push_str(n);
-                Ok(true)
-            }
-            Value::String(n) if node.kind().attr(i).ty == AttrType::NamePrefix => {
-                self.value.push_str(&self.insts[inst].prefix);
-                self.value.push_str(n);
-                Ok(true)
-            }
+            Value::Identifier(n) => [prefix, n.as_str()],
+            Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
             Value::Reference(Reference::Name(n)) => {
                 // The one world body is `world` in every scope; a name in another
                 // model (`RefTarget::Unless`) is not this model's.
-                let ty = node.kind().attr(i).ty;
+                let ty = kind.attr(i).ty;
                 let to_body = matches!(ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
                 let elsewhere = matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
-                if !(elsewhere || to_body && n == "world") {
-                    self.value.push_str(&self.insts[inst].prefix);
+                if elsewhere || to_body && n == "world" {
+                    ["", n.as_str()]
+                } else {
+                    [prefix, n.as_str()]
                 }
-                self.value.push_str(n);
-                Ok(true)
+            }
+            Value::File(f) => {
+                self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
+                self.emit_attr(tag, attr);
+                return Ok(());
             }
             _ => {
                 v.write_plain(&mut self.value, self.style);
-                Ok(true)
+                self.emit_attr(tag, attr);
+                return Ok(());
             }
-        }
+        };
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts);
+        Ok(())
     }
 
-    fn reference_text(
+    /// Appends ` name="…"` for attribute `i`, a reference to element `target`, if it
+    /// is written (an optional reference to a removed element is not).
+    fn emit_reference(
         &mut self,
         inst: usize,
         node: &Node,
         i: usize,
         target: ElementId,
-    ) -> Result<bool, WriteError> {
+    ) -> Result<(), WriteError> {
         let kind = node.kind();
+        let (tag, attr) = (kind.tag(), kind.attr(i).name);
         let model = self.insts[inst].model;
         let Some(entry) = model.index.elems.get(&target) else {
             let spec = kind.attr(i);
@@ -770,38 +782,36 @@ impl<'a> Writer<'a> {
                     path: model.path_of(node.id()).map(|p| model.describe(&p)).unwrap_or_default(),
                 });
             }
-            return Ok(false);
+            return Ok(());
         };
         if entry.kind.tag() == "default" {
-            let name = entry.name.clone();
-            self.default_class_name(inst, name.as_deref());
-            return Ok(true);
+            self.emit_default_class(inst, tag, attr, entry.name.as_deref());
+            return Ok(());
         }
         // A frame, or a joint of a frame.
         if let Some(scope) = model.index.scope_of(target) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
-            return Ok(true);
-        }
-        if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
+        } else if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
             if let Some(n) = &entry.name {
                 let _ = write!(self.value, "{n}/");
             }
-            return Ok(true);
-        }
-        match (&entry.name, entry.kind.namespace()) {
-            (Some(n), _) => {
-                let prefix = &self.insts[inst].prefix;
-                self.value.push_str(prefix);
-                self.value.push_str(n);
+        } else {
+            match (&entry.name, entry.kind.namespace()) {
+                (Some(n), _) => {
+                    let prefix = &self.insts[inst].prefix;
+                    emit_parts(&mut self.out, &mut self.bad_char, tag, attr, [prefix, n]);
+                    return Ok(());
+                }
+                (None, Some(ns)) => {
+                    let (index, replicated) = self.auto_index_of(inst, target);
+                    self.auto_name(inst, ns, index, replicated);
+                }
+                (None, None) => return Ok(()),
             }
-            (None, Some(ns)) => {
-                let (index, replicated) = self.auto_index_of(inst, target);
-                self.auto_name(inst, ns, index, replicated);
-            }
-            (None, None) => return Ok(false),
         }
-        Ok(true)
+        self.emit_attr(tag, attr);
+        Ok(())
     }
 
     fn auto_index_of(&mut self, inst: usize, id: ElementId) -> (usize, bool) {
@@ -827,14 +837,30 @@ impl<'a> Writer<'a> {
 
     /// Appends ` name="<escaped self.value>"`.
     fn emit_attr(&mut self, tag: &'static str, name: &'static str) {
-        self.out.push(' ');
-        self.out.push_str(name);
-        self.out.push_str("=\"");
-        if let Some(c) = escape_into(&mut self.out, &self.value) {
-            self.bad_char.get_or_insert((tag, name, c));
-        }
-        self.out.push('"');
+        emit_parts(&mut self.out, &mut self.bad_char, tag, name, [&self.value, ""]);
     }
+}
+
+/// Appends ` name="<escaped parts[0] + parts[1]>"` (a prefix and a name, escaped
+/// one after the other: escaping goes character by character) and records the first
+/// character XML cannot hold in `bad`.
+fn emit_parts(
+    out: &mut String,
+    bad: &mut Option<(&'static str, &'static str, char)>,
+    tag: &'static str,
+    name: &'static str,
+    parts: [&str; 2],
+) {
+    out.reserve(name.len() + parts[0].len() + parts[1].len() + 4);
+    out.push(' ');
+    out.push_str(name);
+    out.push_str("=\"");
+    for p in parts {
+        if let Some(c) = escape_into(out, p) {
+            bad.get_or_insert((tag, name, c));
+        }
+    }
+    out.push('"');
 }
 
 /// Whether an attachment frame in the world is written as MuJoCo's `<frame>` rather
@@ -915,6 +941,40 @@ fn has_live(model: &Model, node: &Node, i: usize) -> bool {
     }
 }
 
+/// Whether a byte is written as it is: printable ASCII other than `& < > "`.
+fn clean_byte(b: u8) -> bool {
+    (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"')
+}
+
+/// Whether every byte of `s` is [`clean_byte`]: eight bytes at a time (names are
+/// scanned once per attribute written, and most are a few dozen bytes).
+fn is_clean(s: &[u8]) -> bool {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    // Nonzero iff some byte of `x` is zero (exact as to whether one is).
+    fn zero_byte(x: u64) -> u64 {
+        x.wrapping_sub(ONES) & !x & HIGH
+    }
+    let mut chunks = s.chunks_exact(8);
+    for c in &mut chunks {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(c);
+        let x = u64::from_le_bytes(w);
+        // A byte below 0x20; a byte of 0x7f or more (the +1 carries out of a byte
+        // only from 0xff, itself caught by `x & HIGH`); one of the four to escape.
+        let special = (x.wrapping_sub(ONES * 0x20) & !x & HIGH)
+            | ((x | x.wrapping_add(ONES)) & HIGH)
+            | zero_byte(x ^ (ONES * u64::from(b'&')))
+            | zero_byte(x ^ (ONES * u64::from(b'<')))
+            | zero_byte(x ^ (ONES * u64::from(b'>')))
+            | zero_byte(x ^ (ONES * u64::from(b'"')));
+        if special != 0 {
+            return false;
+        }
+    }
+    chunks.remainder().iter().all(|&b| clean_byte(b))
+}
+
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
 /// carriage return as character references, and every non-ASCII character as a
 /// numeric character reference.
@@ -922,9 +982,7 @@ fn has_live(model: &Model, node: &Node, i: usize) -> bool {
 /// Returns the first character that XML 1.0 cannot hold at all (most control
 /// characters, U+FFFE, U+FFFF), if any; it is written as a reference all the same.
 pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
-    let clean =
-        s.bytes().all(|b| (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"'));
-    if clean {
+    if is_clean(s.as_bytes()) {
         out.push_str(s);
         return None;
     }
@@ -942,4 +1000,40 @@ pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
         }
     }
     bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The eight-bytes-at-a-time scan says what the byte-by-byte one says: every byte
+    /// value at every position of strings of every length up to 24, and random ones.
+    #[test]
+    fn is_clean_is_every_byte_clean() {
+        for len in 1..=24 {
+            for at in 0..len {
+                for b in 0..=255u8 {
+                    let mut s = vec![b'a'; len];
+                    s[at] = b;
+                    assert_eq!(is_clean(&s), clean_byte(b), "{b:#x} at {at} of {len}");
+                }
+            }
+        }
+        let mut r: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..100_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let len = (r % 40) as usize;
+            // Mostly clean bytes, with a few of anything.
+            let s: Vec<u8> = (0..len)
+                .map(|k| {
+                    let x = r.rotate_left(k as u32 * 7);
+                    if x % 16 == 0 { (x >> 8) as u8 } else { 0x20 + ((x >> 8) % 95) as u8 }
+                })
+                .collect();
+            assert_eq!(is_clean(&s), s.iter().all(|&b| clean_byte(b)), "{s:?}");
+        }
+        assert!(is_clean(b""));
+    }
 }
