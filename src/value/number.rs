@@ -465,8 +465,9 @@ mod tests {
     /// general case) at every small binary exponent.
     #[test]
     fn shortest_is_rusts_on_ties_and_exact_values() {
-        assert_eq!(short(-1149636667324797.25), "-1149636667324797.3");
-        assert_eq!(short(1149636667324796.25), "1149636667324796.3");
+        // (Exact: the step between doubles there is 0.25.)
+        assert_eq!(short(-(1_149_636_667_324_797.0 + 0.25)), "-1149636667324797.3");
+        assert_eq!(short(1_149_636_667_324_796.0 + 0.25), "1149636667324796.3");
         let mut r = Rng(0x2545_f491_4f6c_dd1d);
         // In [2^50, 2^51) the step is 0.25: N + 0.25 and N + 0.75 are all ties.
         for _ in 0..100_000 {
