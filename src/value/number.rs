@@ -168,6 +168,22 @@ fn shortest_into(buf: &mut [u8], mut at: usize, x: f64) -> usize {
             return at + len;
         }
     }
+    // Short decimals (`0.05`, `1.57`, `-0.3`: most of MJCF's non-integers), found
+    // directly: the shortest text has k decimals when some integer r makes r / 10^k
+    // this double. r and 10^k are exact doubles and the division is correctly
+    // rounded (to even, as the rounding interval takes its bounds: when the mantissa
+    // is even), so the test is exact; the first k that passes gives the shortest
+    // length, and in this range an interval holds at most one multiple of 10^-6 (its
+    // width is below 2.4e-7), so that r is Rust's candidate too.
+    if (1e-3..1e9).contains(&a) {
+        const POW10: [f64; 7] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6];
+        for (k, p) in POW10.iter().enumerate().skip(1) {
+            let r = (a * p + 0.5) as i64;
+            if r as f64 / p == a {
+                return layout_into(buf, at, r as u64, -(k as i32), 17);
+            }
+        }
+    }
     let (mut digits, mut e10) = shortest::digits(a);
     while digits % 10 == 0 {
         digits /= 10;
@@ -456,6 +472,27 @@ mod tests {
             let x = f64::from_bits(r.next());
             if x.is_finite() {
                 same_as_rust(x);
+            }
+        }
+    }
+
+    /// The short-decimal shortcut's range, densely: random bit patterns there, and
+    /// decimals of 1 to 7 places with their neighbouring doubles.
+    #[test]
+    fn shortest_is_rusts_on_short_decimals_range() {
+        let mut r = Rng(0x5851_f42d_4c95_7f2d);
+        let (lo, hi) = (1e-3f64.to_bits() - 2, 1e9f64.to_bits() + 2);
+        for _ in 0..1_000_000 {
+            same_as_rust(f64::from_bits(lo + r.next() % (hi - lo)));
+        }
+        for _ in 0..300_000 {
+            let places = (r.next() % 7 + 1) as i32;
+            let digits = r.next() % 10u64.pow(places as u32 + (r.next() % 9) as u32);
+            let x = digits as f64 / 10f64.powi(places);
+            for y in
+                [x, f64::from_bits(x.to_bits() + 1), f64::from_bits(x.to_bits().saturating_sub(1))]
+            {
+                same_as_rust(y);
             }
         }
     }
