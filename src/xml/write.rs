@@ -18,9 +18,10 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use crate::error::WriteError;
+use crate::id::IdHash;
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
-use crate::model::{Item, Model, Step, Walk};
+use crate::model::{Entry, Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::value::{FloatStyle, Reference, Value};
 
@@ -141,6 +142,7 @@ impl Model {
             options,
             value: String::new(),
             bad_char: None,
+            entries: HashMap::with_hasher(IdHash),
             open: Vec::new(),
             pending: None,
             in_default: false,
@@ -159,6 +161,9 @@ impl Model {
     }
 }
 
+/// A model's index entries by id.
+type ElemMap = imbl::OrdMap<ElementId, Entry>;
+
 /// What the writer keeps per model of the composition (per instance of the walk).
 struct Inst<'a> {
     model: &'a Model,
@@ -171,6 +176,8 @@ struct Inst<'a> {
     /// Auto-name indices of every element (and whether it is inside a `<replicate>`),
     /// counted once when a reference needs one.
     auto_index: Option<HashMap<ElementId, (usize, bool)>>,
+    /// The name of the model's root default class.
+    root_class: Option<&'a str>,
 }
 
 impl Inst<'_> {
@@ -243,6 +250,10 @@ struct Writer<'a> {
     /// Inside `<default>`, the wrapper of the root class and the attached models'
     /// root classes (one level deeper than the walk says).
     in_default: bool,
+    /// Index entries looked up by references, with the map they came from: an
+    /// attached model's elements are looked up again for each attachment of it
+    /// (the same shared map), and a class is looked up twice (is it there, its name).
+    entries: HashMap<ElementId, (&'a ElemMap, Option<&'a Entry>), IdHash>,
 }
 
 /// Whether a singleton writes anything: a written attribute, or a child that does.
@@ -287,6 +298,7 @@ impl<'a> Writer<'a> {
                     prefix,
                     counters: Vec::new(),
                     auto_index: None,
+                    root_class: section_of(i.model, "default").and_then(Node::identifier),
                 });
             }
             if substitute && matches!(step, Step::Enter(Item { depth: 0, .. })) {
@@ -477,8 +489,7 @@ impl<'a> Writer<'a> {
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
-        let child_cc =
-            cc_here || (node.attached().is_none() && sets_childclass(self.insts[inst].model, node));
+        let child_cc = cc_here || (node.attached().is_none() && self.sets_childclass(inst, node));
         // A frame's own joints are named after the frame.
         let frame_name =
             if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
@@ -609,7 +620,7 @@ impl<'a> Writer<'a> {
             _ => None,
         };
         let implicit_class = match facts(kind).class {
-            Some(c) if !has_live(self.insts[inst].model, node, c) && !childclass => Some(c),
+            Some(c) if !childclass && !self.has_live(inst, node, c) => Some(c),
             _ => None,
         };
         let mut set = node.attrs().iter().peekable();
@@ -653,7 +664,7 @@ impl<'a> Writer<'a> {
                     }
                 } else {
                     // Implicit class: the model's root class.
-                    let root_class = self.root_class_name(inst);
+                    let root_class = self.insts[inst].root_class;
                     self.emit_default_class(inst, kind.tag(), kind.attr(i).name, root_class);
                     continue;
                 }
@@ -684,8 +695,31 @@ impl<'a> Writer<'a> {
         Ok(())
     }
 
-    fn root_class_name(&self, inst: usize) -> Option<&'a str> {
-        section_of(self.insts[inst].model, "default")?.identifier()
+    /// The index entry of `id` in the model of instance `inst`.
+    fn entry(&mut self, inst: usize, id: ElementId) -> Option<&'a Entry> {
+        let elems = &self.insts[inst].model.index.elems;
+        if let Some((m, e)) = self.entries.get(&id) {
+            if m.ptr_eq(elems) {
+                return *e;
+            }
+        }
+        let e = elems.get(&id);
+        self.entries.insert(id, (elems, e));
+        e
+    }
+
+    fn sets_childclass(&mut self, inst: usize, node: &Node) -> bool {
+        facts(node.kind()).childclass.is_some_and(|i| self.has_live(inst, node, i))
+    }
+
+    /// Whether attribute `i` of `node` is set and will be written: a reference to an
+    /// element that was removed is not (an optional reference; a required one fails).
+    fn has_live(&mut self, inst: usize, node: &Node, i: usize) -> bool {
+        match node.attr(i) {
+            None => false,
+            Some(Value::Reference(Reference::Element(id))) => self.entry(inst, *id).is_some(),
+            Some(_) => true,
+        }
     }
 
     /// Appends ` attr="P + name"` (`/` when both are empty).
@@ -773,7 +807,7 @@ impl<'a> Writer<'a> {
         let kind = node.kind();
         let (tag, attr) = (kind.tag(), kind.attr(i).name);
         let model = self.insts[inst].model;
-        let Some(entry) = model.index.elems.get(&target) else {
+        let Some(entry) = self.entry(inst, target) else {
             let spec = kind.attr(i);
             if spec.required {
                 return Err(WriteError::MissingRequired {
@@ -925,20 +959,6 @@ fn facts(kind: ElementKind) -> &'static KindFacts {
             .collect()
     });
     table.get(kind.0 as usize).unwrap_or(&NONE)
-}
-
-fn sets_childclass(model: &Model, node: &Node) -> bool {
-    facts(node.kind()).childclass.is_some_and(|i| has_live(model, node, i))
-}
-
-/// Whether attribute `i` of `node` is set and will be written: a reference to an
-/// element that was removed is not (an optional reference; a required one fails).
-fn has_live(model: &Model, node: &Node, i: usize) -> bool {
-    match node.attr(i) {
-        None => false,
-        Some(Value::Reference(Reference::Element(id))) => model.index.elems.contains_key(id),
-        Some(_) => true,
-    }
 }
 
 /// Whether a byte is written as it is: printable ASCII other than `& < > "`.
