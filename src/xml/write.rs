@@ -178,6 +178,8 @@ struct Inst<'a> {
     auto_index: Option<HashMap<ElementId, (usize, bool)>>,
     /// The name of the model's root default class.
     root_class: Option<&'a str>,
+    /// Whether `prefix` is written as it is (no character to escape).
+    prefix_clean: bool,
 }
 
 impl Inst<'_> {
@@ -295,6 +297,7 @@ impl<'a> Writer<'a> {
                 };
                 self.insts.push(Inst {
                     model: i.model,
+                    prefix_clean: is_clean(prefix.as_bytes()),
                     prefix,
                     counters: Vec::new(),
                     auto_index: None,
@@ -733,7 +736,8 @@ impl<'a> Writer<'a> {
         let prefix = &self.insts[inst].prefix;
         let name = name.unwrap_or("");
         let parts = if name.is_empty() && prefix.is_empty() { ["/", ""] } else { [prefix, name] };
-        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts);
+        let clean = self.insts[inst].prefix_clean;
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
     }
 
     /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`, and a `_` after it
@@ -791,7 +795,8 @@ impl<'a> Writer<'a> {
                 return Ok(());
             }
         };
-        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts);
+        let clean = self.insts[inst].prefix_clean;
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
         Ok(())
     }
 
@@ -834,7 +839,8 @@ impl<'a> Writer<'a> {
             match (&entry.name, entry.kind.namespace()) {
                 (Some(n), _) => {
                     let prefix = &self.insts[inst].prefix;
-                    emit_parts(&mut self.out, &mut self.bad_char, tag, attr, [prefix, n]);
+                    let clean = self.insts[inst].prefix_clean;
+                    emit_parts(&mut self.out, &mut self.bad_char, tag, attr, [prefix, n], clean);
                     return Ok(());
                 }
                 (None, Some(ns)) => {
@@ -871,26 +877,30 @@ impl<'a> Writer<'a> {
 
     /// Appends ` name="<escaped self.value>"`.
     fn emit_attr(&mut self, tag: &'static str, name: &'static str) {
-        emit_parts(&mut self.out, &mut self.bad_char, tag, name, [&self.value, ""]);
+        emit_parts(&mut self.out, &mut self.bad_char, tag, name, [&self.value, ""], false);
     }
 }
 
 /// Appends ` name="<escaped parts[0] + parts[1]>"` (a prefix and a name, escaped
 /// one after the other: escaping goes character by character) and records the first
-/// character XML cannot hold in `bad`.
+/// character XML cannot hold in `bad`. `first_clean`: `parts[0]` is known to need no
+/// escaping (a scope prefix, checked once per instance).
 fn emit_parts(
     out: &mut String,
     bad: &mut Option<(&'static str, &'static str, char)>,
     tag: &'static str,
     name: &'static str,
     parts: [&str; 2],
+    first_clean: bool,
 ) {
     out.reserve(name.len() + parts[0].len() + parts[1].len() + 4);
     out.push(' ');
     out.push_str(name);
     out.push_str("=\"");
-    for p in parts {
-        if let Some(c) = escape_into(out, p) {
+    for (k, p) in parts.into_iter().enumerate() {
+        if k == 0 && first_clean {
+            out.push_str(p);
+        } else if let Some(c) = escape_into(out, p) {
             bad.get_or_insert((tag, name, c));
         }
     }
@@ -962,11 +972,12 @@ fn facts(kind: ElementKind) -> &'static KindFacts {
 }
 
 /// Whether a byte is written as it is: printable ASCII other than `& < > "`.
+#[cfg(test)]
 fn clean_byte(b: u8) -> bool {
     (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"')
 }
 
-/// Whether every byte of `s` is [`clean_byte`]: eight bytes at a time (names are
+/// Whether every byte of `s` is written as it is (`clean_byte` in the tests): eight bytes at a time (names are
 /// scanned once per attribute written, and most are a few dozen bytes).
 fn is_clean(s: &[u8]) -> bool {
     const ONES: u64 = 0x0101_0101_0101_0101;
@@ -975,10 +986,7 @@ fn is_clean(s: &[u8]) -> bool {
     fn zero_byte(x: u64) -> u64 {
         x.wrapping_sub(ONES) & !x & HIGH
     }
-    let mut chunks = s.chunks_exact(8);
-    for c in &mut chunks {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(c);
+    fn clean8(w: [u8; 8]) -> bool {
         let x = u64::from_le_bytes(w);
         // A byte below 0x20; a byte of 0x7f or more (the +1 carries out of a byte
         // only from 0xff, itself caught by `x & HIGH`); one of the four to escape.
@@ -988,11 +996,23 @@ fn is_clean(s: &[u8]) -> bool {
             | zero_byte(x ^ (ONES * u64::from(b'<')))
             | zero_byte(x ^ (ONES * u64::from(b'>')))
             | zero_byte(x ^ (ONES * u64::from(b'"')));
-        if special != 0 {
+        special == 0
+    }
+    let mut chunks = s.chunks_exact(8);
+    for c in &mut chunks {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(c);
+        if !clean8(w) {
             return false;
         }
     }
-    chunks.remainder().iter().all(|&b| clean_byte(b))
+    // The last 1 to 7 bytes, padded with clean ones.
+    let rest = chunks.remainder();
+    let mut w = [b'a'; 8];
+    for (d, &b) in w.iter_mut().zip(rest) {
+        *d = b;
+    }
+    clean8(w)
 }
 
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
