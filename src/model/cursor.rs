@@ -132,20 +132,42 @@ pub(crate) struct Walk<'a> {
     stack: Vec<Step<'a>>,
     /// The element just entered, whose subtree `skip_subtree` would skip.
     entered: Option<usize>,
+    /// Elements below the sections for which this holds are not entered at all (see
+    /// [`Walk::pruned`]).
+    prune: Option<fn(&Node) -> bool>,
 }
 
 impl<'a> Walk<'a> {
     /// The walk of the whole composed `model`, from its root.
     pub(crate) fn new(model: &'a Model) -> Walk<'a> {
         let item = Item { inst: 0, node: &model.root, depth: 0, in_frame: false };
-        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+        Walk {
+            insts: Insts::new(model),
+            stack: vec![Step::Enter(item)],
+            entered: None,
+            prune: None,
+        }
     }
 
     /// A walk of a plain subtree with no attachments in it (such as a merged
     /// settings section), written as part of instance 0 at `depth`.
     pub(crate) fn plain(model: &'a Model, node: &'a Node, depth: usize) -> Walk<'a> {
         let item = Item { inst: 0, node, depth, in_frame: false };
-        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+        Walk {
+            insts: Insts::new(model),
+            stack: vec![Step::Enter(item)],
+            entered: None,
+            prune: None,
+        }
+    }
+
+    /// The same walk without the plain children (below depth 1, of neither a frame
+    /// nor a top-level section) for which `prune` holds: they are neither entered nor
+    /// left. The writer prunes the empty singletons (every default class has 21),
+    /// which it would skip anyway.
+    pub(crate) fn pruned(mut self, prune: fn(&Node) -> bool) -> Walk<'a> {
+        self.prune = Some(prune);
+        self
     }
 
     /// Skips the children and the `Leave` of the element entered last.
@@ -241,8 +263,12 @@ impl<'a> Iterator for Walk<'a> {
                 // pushed without a list in between (and most have none).
                 let children = node.children();
                 if !children.is_empty() {
+                    let prune = self.prune.filter(|_| depth >= 1);
                     self.stack.reserve(children.len());
                     for c in children.iter().rev() {
+                        if prune.is_some_and(|p| p(c)) {
+                            continue;
+                        }
                         let item = Item { inst, node: c, depth: depth + 1, in_frame: false };
                         self.stack.push(Step::Enter(item));
                     }

@@ -147,7 +147,7 @@ impl Model {
             pending: None,
             in_default: false,
         };
-        w.run(Walk::new(self), true)?;
+        w.run(Walk::new(self).pruned(silent), true)?;
         if let Some((tag, attribute, character)) = w.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
@@ -283,6 +283,13 @@ fn emits(node: &Node) -> bool {
     node.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(node)
 }
 
+/// An element that writes nothing and is not an attachment frame: below the
+/// sections, the writer skips it where it meets it (`enter`), so the walk need not
+/// give it (`Walk::pruned`).
+fn silent(node: &Node) -> bool {
+    node.attached().is_none() && !emits(node)
+}
+
 impl<'a> Writer<'a> {
     /// Writes every step of `walk`; `substitute` writes the merged settings in place
     /// of the root model's own settings sections.
@@ -330,7 +337,8 @@ impl<'a> Writer<'a> {
                         walk.skip_subtree();
                         if let Some(m) = self.merged.iter().find(|m| m.kind() == item.node.kind()) {
                             if emits(m) {
-                                self.run(Walk::plain(self.insts[0].model, m, 1), false)?;
+                                let walk = Walk::plain(self.insts[0].model, m, 1).pruned(silent);
+                                self.run(walk, false)?;
                             }
                         }
                     }
