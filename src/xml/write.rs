@@ -582,9 +582,12 @@ impl<'a> Writer<'a> {
 
     fn indent(&mut self, depth: usize) {
         if self.options.pretty_print {
-            for _ in 0..depth.min(MAX_INDENT) {
-                self.out.push_str("  ");
-            }
+            // One copy from a line of spaces (two a level), not one per level.
+            const SPACES: &str = match std::str::from_utf8(&[b' '; 2 * MAX_INDENT]) {
+                Ok(s) => s,
+                Err(_) => "",
+            };
+            self.out.push_str(&SPACES[..2 * depth.min(MAX_INDENT)]);
         }
     }
 
