@@ -33,8 +33,8 @@ use crate::value::{FloatStyle, Reference, Value};
 /// too much (by over a MiB), the excess is given back at the end.
 const BYTES_PER_ELEMENT: usize = 40;
 
-/// At most this much is reserved up front (1 GiB).
-const MAX_RESERVE: usize = 1 << 30;
+/// At most this much is reserved up front (256 MiB; a larger output grows from it).
+const MAX_RESERVE: usize = 1 << 28;
 
 /// The deepest indentation, in levels (deeper elements are indented as much).
 const MAX_INDENT: usize = 100;
