@@ -38,6 +38,39 @@ impl ElementId {
     }
 }
 
+/// A hasher for element ids in the crate's maps: ids are handed out by this process
+/// (never chosen by a user), so one multiply (Fibonacci hashing: the product's bits
+/// spread consecutive ids evenly over the low bits persistent hash maps branch on)
+/// replaces SipHash. User-controlled keys (names) keep SipHash.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct IdHash;
+
+impl std::hash::BuildHasher for IdHash {
+    type Hasher = IdHasher;
+    fn build_hasher(&self) -> IdHasher {
+        IdHasher(0)
+    }
+}
+
+/// See [`IdHash`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct IdHasher(u64);
+
+impl std::hash::Hasher for IdHasher {
+    fn finish(&self) -> u64 {
+        let h = self.0.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        h ^ (h >> 32)
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8)) ^ u64::from(b);
+        }
+    }
+    fn write_u64(&mut self, n: u64) {
+        self.0 = self.0.rotate_left(32) ^ n;
+    }
+}
+
 impl ElementId {
     /// The id as a number (unique, never 0).
     pub(crate) fn get(self) -> u64 {

@@ -43,6 +43,9 @@ pub(crate) struct Inst<'a> {
 pub(crate) struct Insts<'a> {
     pub(crate) list: Vec<Inst<'a>>,
     by_frame: HashMap<(usize, ElementId), usize>,
+    /// `attached_under(0)`, once asked: the root and every top-level section ask
+    /// (each lookup of a frame is a path search).
+    under_root: Option<Arc<[usize]>>,
 }
 
 impl<'a> Insts<'a> {
@@ -50,6 +53,7 @@ impl<'a> Insts<'a> {
         Insts {
             list: vec![Inst { model: top, frames: Arc::from([]), parent: None }],
             by_frame: HashMap::new(),
+            under_root: None,
         }
     }
 
@@ -128,20 +132,42 @@ pub(crate) struct Walk<'a> {
     stack: Vec<Step<'a>>,
     /// The element just entered, whose subtree `skip_subtree` would skip.
     entered: Option<usize>,
+    /// Elements below the sections for which this holds are not entered at all (see
+    /// [`Walk::pruned`]).
+    prune: Option<fn(&Node) -> bool>,
 }
 
 impl<'a> Walk<'a> {
     /// The walk of the whole composed `model`, from its root.
     pub(crate) fn new(model: &'a Model) -> Walk<'a> {
         let item = Item { inst: 0, node: &model.root, depth: 0, in_frame: false };
-        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+        Walk {
+            insts: Insts::new(model),
+            stack: vec![Step::Enter(item)],
+            entered: None,
+            prune: None,
+        }
     }
 
     /// A walk of a plain subtree with no attachments in it (such as a merged
     /// settings section), written as part of instance 0 at `depth`.
     pub(crate) fn plain(model: &'a Model, node: &'a Node, depth: usize) -> Walk<'a> {
         let item = Item { inst: 0, node, depth, in_frame: false };
-        Walk { insts: Insts::new(model), stack: vec![Step::Enter(item)], entered: None }
+        Walk {
+            insts: Insts::new(model),
+            stack: vec![Step::Enter(item)],
+            entered: None,
+            prune: None,
+        }
+    }
+
+    /// The same walk without the plain children (below depth 1, of neither a frame
+    /// nor a top-level section) for which `prune` holds: they are neither entered nor
+    /// left. The writer prunes the empty singletons (every default class has 21),
+    /// which it would skip anyway.
+    pub(crate) fn pruned(mut self, prune: fn(&Node) -> bool) -> Walk<'a> {
+        self.prune = Some(prune);
+        self
     }
 
     /// Skips the children and the `Leave` of the element entered last.
@@ -185,9 +211,9 @@ impl<'a> Walk<'a> {
             };
             let kind = out[p].node.kind();
             let siblings: Vec<Item<'a>> = self
-                .attached_under(0)
-                .into_iter()
-                .filter_map(|j| {
+                .attached_under_root()
+                .iter()
+                .filter_map(|&j| {
                     let sec = self.insts.list[j].model.root.child_of_kind(kind)?;
                     Some(Item { inst: j, node: sec, depth: 1, in_frame: false })
                 })
@@ -199,7 +225,7 @@ impl<'a> Walk<'a> {
         if matches!(kind.tag(), "worldbody" | "default") || is_settings_section(kind) {
             return out;
         }
-        for j in self.attached_under(0) {
+        for &j in self.attached_under_root().iter() {
             if let Some(sec) = self.insts.list[j].model.root.child_of_kind(kind) {
                 out.extend(sec.children().iter().map(|c| plain(c, j, false)));
             }
@@ -207,8 +233,14 @@ impl<'a> Walk<'a> {
         out
     }
 
-    fn attached_under(&mut self, inst: usize) -> Vec<usize> {
-        self.insts.attached_under(inst)
+    /// Every instance attached under the outermost model, depth first in attach order.
+    fn attached_under_root(&mut self) -> Arc<[usize]> {
+        if let Some(u) = &self.insts.under_root {
+            return u.clone();
+        }
+        let u: Arc<[usize]> = self.insts.attached_under(0).into();
+        self.insts.under_root = Some(u.clone());
+        u
     }
 }
 
@@ -228,10 +260,19 @@ impl<'a> Iterator for Walk<'a> {
                     || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT));
             if own_only {
                 // Most elements: their own children only (what `expand` gives them),
-                // pushed without a list in between.
-                self.stack.extend(node.children().iter().rev().map(|c| {
-                    Step::Enter(Item { inst, node: c, depth: depth + 1, in_frame: false })
-                }));
+                // pushed without a list in between (and most have none).
+                let children = node.children();
+                if !children.is_empty() {
+                    let prune = self.prune.filter(|_| depth >= 1);
+                    self.stack.reserve(children.len());
+                    for c in children.iter().rev() {
+                        if prune.is_some_and(|p| p(c)) {
+                            continue;
+                        }
+                        let item = Item { inst, node: c, depth: depth + 1, in_frame: false };
+                        self.stack.push(Step::Enter(item));
+                    }
+                }
             } else {
                 let children = self.expand(item);
                 self.stack.extend(children.into_iter().rev().map(Step::Enter));

@@ -10,10 +10,12 @@
 //!   (about twice the memory, and as many cache misses, for large models).
 //! - `runs`: the singleton children an element is created with (a default class's 21
 //!   `geom`, `joint`, `position`, ...; `visual`'s `global`, `quality`, ...), which
-//!   have consecutive ids, no name and their schema places, indexed as one entry per
-//!   parent (first child's id → parent, count) instead of one each: their entries are
-//!   derived on lookup. For deeply nested default classes this is 1 entry per class
-//!   instead of 22.
+//!   have consecutive ids, kinds without identifiers and their schema places, indexed
+//!   as one entry per parent (first child's id → parent, count) instead of one each:
+//!   their entries are derived on lookup ([`Index::entry`]). For deeply nested default
+//!   classes this is 1 entry per class instead of 22. No reference can name a member
+//!   of a run (its kind has no identifier), so a reference's target always has an
+//!   entry in `elems`.
 //!
 //! The index of an attached child lives in the child value, never in the parent's.
 
@@ -395,7 +397,9 @@ fn singleton_kinds(kind: ElementKind) -> impl Iterator<Item = ElementKind> {
 }
 
 /// How many of `n`'s first children form a run (module docs): all its singleton
-/// children, in schema order, unnamed, with consecutive ids; 0 when they do not (a
+/// children, in schema order, of kinds without identifiers (so that no reference
+/// can name them, and every reference target has an entry of its own), with
+/// consecutive ids; 0 when they do not (a
 /// singleton read from a file has the id of where it was read), or when there are
 /// fewer than two.
 fn singleton_run(n: &Node) -> usize {
@@ -407,7 +411,7 @@ fn singleton_run(n: &Node) -> usize {
             Some(c)
                 if c.kind() == kind
                     && c.id().get() == first.id().get() + i as u64
-                    && c.identifier().is_none() =>
+                    && kind.namespace().is_none() =>
             {
                 count += 1;
             }

@@ -37,7 +37,7 @@ pub(crate) use build::{
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
-pub(crate) use index::{Index, MergedCache};
+pub(crate) use index::{Entry, Index, MergedCache};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 

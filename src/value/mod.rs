@@ -372,14 +372,7 @@ impl Value {
             }
             Value::String(s) | Value::Identifier(s) | Value::Basepath(s) => out.push_str(s),
             Value::Keyword(k) => out.push_str(k),
-            Value::Floats(v) => {
-                for (i, x) in v.iter().enumerate() {
-                    if i > 0 {
-                        out.push(' ');
-                    }
-                    number::write_float(out, *x, style);
-                }
-            }
+            Value::Floats(v) => number::write_floats(out, v, style),
             Value::Ints(v) => {
                 for (i, x) in v.iter().enumerate() {
                     if i > 0 {

@@ -9,6 +9,9 @@
 use std::fmt;
 use std::fmt::Write as _;
 
+mod shortest;
+mod tables;
+
 /// How floats are written.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FloatStyle {
@@ -57,18 +60,180 @@ pub(crate) fn float_to_int(v: f64) -> Option<i64> {
 
 /// Appends the text of `x` in the given style.
 pub(crate) fn write_float(out: &mut String, x: f64, style: FloatStyle) {
-    let x = if x.abs() < style.zero_threshold { 0.0 } else { x };
+    write_floats(out, std::slice::from_ref(&x), style);
+}
+
+/// Appends the texts of `xs` in the given style, separated by single spaces.
+pub(crate) fn write_floats(out: &mut String, xs: &[f64], style: FloatStyle) {
+    if let Some(p) = style.precision {
+        for (i, &x) in xs.iter().enumerate() {
+            if i > 0 {
+                out.push(' ');
+            }
+            match special(x, style.zero_threshold) {
+                Ok(x) => write_g(out, x, p.max(1)),
+                Err(text) => out.push_str(text),
+            }
+        }
+        return;
+    }
+    // The shortest texts are gathered on the stack and appended a few hundred bytes at
+    // a time: one UTF-8 check and one copy per batch instead of per number.
+    let mut buf = [0u8; 256];
+    let mut n = 0;
+    for (i, &x) in xs.iter().enumerate() {
+        if n > buf.len() - 2 * MAX_SHORTEST {
+            out.push_str(std::str::from_utf8(&buf[..n]).unwrap_or_default());
+            n = 0;
+        }
+        if i > 0 {
+            buf[n] = b' ';
+            n += 1;
+        }
+        n = match special(x, style.zero_threshold) {
+            Ok(x) => shortest_into(&mut buf, n, x),
+            Err(text) => put(&mut buf, n, text.as_bytes()),
+        };
+    }
+    out.push_str(std::str::from_utf8(&buf[..n]).unwrap_or_default());
+}
+
+/// `x`, or `0` below the zero threshold, or the text of a NaN or an infinity.
+fn special(x: f64, zero_threshold: f64) -> Result<f64, &'static str> {
+    let x = if x.abs() < zero_threshold { 0.0 } else { x };
     if x.is_nan() {
-        out.push_str("nan");
-        return;
+        Err("nan")
+    } else if x.is_infinite() {
+        Err(if x > 0.0 { "inf" } else { "-inf" })
+    } else {
+        Ok(x)
     }
-    if x.is_infinite() {
-        out.push_str(if x > 0.0 { "inf" } else { "-inf" });
-        return;
+}
+
+/// The longest shortest text: a sign, 17 digits, a point and `e-308`, or a sign,
+/// `0.000` and 17 digits.
+const MAX_SHORTEST: usize = 25;
+
+/// Copies `bytes` into `buf` at `at`; returns the end.
+fn put(buf: &mut [u8], at: usize, bytes: &[u8]) -> usize {
+    buf[at..at + bytes.len()].copy_from_slice(bytes);
+    at + bytes.len()
+}
+
+const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// Writes the `len` decimal digits of `v` into `buf[at..at + len]`.
+fn digits_into(buf: &mut [u8], at: usize, len: usize, mut v: u64) {
+    let mut end = at + len;
+    while v >= 100 {
+        let r = (v % 100) as usize * 2;
+        v /= 100;
+        buf[end - 2..end].copy_from_slice(&PAIRS[r..r + 2]);
+        end -= 2;
     }
-    match style.precision {
-        None => write_shortest(out, x),
-        Some(p) => write_g(out, x, p.max(1)),
+    if v >= 10 {
+        let r = v as usize * 2;
+        buf[end - 2..end].copy_from_slice(&PAIRS[r..r + 2]);
+    } else {
+        buf[end - 1] = b'0' + v as u8;
+    }
+}
+
+fn digit_count(v: u64) -> usize {
+    v.checked_ilog10().map_or(1, |l| l as usize + 1)
+}
+
+/// Writes the shortest text of a finite `x` into `buf` at `at`; returns the end.
+fn shortest_into(buf: &mut [u8], mut at: usize, x: f64) -> usize {
+    if x.is_sign_negative() {
+        buf[at] = b'-';
+        at += 1;
+    }
+    let a = x.abs();
+    // Integers below 2^53 are exact, and their shortest digits are their own (with
+    // trailing zeros, which the layout puts back): the same text, without the float
+    // digit search. (`as` truncates; `-0` keeps its sign above.)
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if a < EXACT {
+        // (Through i64: one instruction each way, where u64 takes several.)
+        let i = a as i64;
+        if i as f64 == a {
+            let i = i as u64;
+            let len = digit_count(i);
+            digits_into(buf, at, len, i);
+            return at + len;
+        }
+    }
+    // Short decimals (`0.05`, `1.57`, `-0.3`: most of MJCF's non-integers), found
+    // directly: the shortest text has k decimals when some integer r makes r / 10^k
+    // this double. r and 10^k are exact doubles and the division is correctly
+    // rounded (to even, as the rounding interval takes its bounds: when the mantissa
+    // is even), so the test is exact; the first k that passes gives the shortest
+    // length, and in this range an interval holds at most one multiple of 10^-6 (its
+    // width is below 2.4e-7), so that r is Rust's candidate too.
+    if (1e-3..1e9).contains(&a) {
+        const POW10: [f64; 7] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6];
+        for (k, p) in POW10.iter().enumerate().skip(1) {
+            let r = (a * p + 0.5) as i64;
+            if r as f64 / p == a {
+                return layout_into(buf, at, r as u64, -(k as i32), 17);
+            }
+        }
+    }
+    let (mut digits, mut e10) = shortest::digits(a);
+    while digits % 10 == 0 {
+        digits /= 10;
+        e10 += 1;
+    }
+    layout_into(buf, at, digits, e10, 17)
+}
+
+/// Lays out the decimal `digits` × 10^`e10` (`digits` > 0, without trailing zeros) in
+/// `%g` form with room for `room` digits (as [`layout`]) into `buf` at `at`; returns
+/// the end.
+fn layout_into(buf: &mut [u8], at: usize, digits: u64, e10: i32, room: i32) -> usize {
+    let len = digit_count(digits);
+    // The exponent of the first digit, as `{:e}` gives it.
+    let exp = e10 + len as i32 - 1;
+    if exp < -4 || exp >= room {
+        // d.ddde±XX: the digits one place right, the first moved back before the point.
+        digits_into(buf, at + 1, len, digits);
+        buf[at] = buf[at + 1];
+        let mut n = at + 1;
+        if len > 1 {
+            buf[at + 1] = b'.';
+            n = at + 1 + len;
+        }
+        n = put(buf, n, if exp < 0 { b"e-" } else { b"e+" });
+        // At least two digits, as C's `%g`.
+        let a = exp.unsigned_abs() as usize;
+        if a >= 100 {
+            buf[n] = b'0' + (a / 100) as u8;
+            n += 1;
+        }
+        put(buf, n, &PAIRS[a % 100 * 2..a % 100 * 2 + 2])
+    } else if exp < 0 {
+        let zeros = (-exp - 1) as usize;
+        let n = put(buf, at, b"0.0000");
+        let n = n - 4 + zeros;
+        digits_into(buf, n, len, digits);
+        n + len
+    } else {
+        let int_len = exp as usize + 1;
+        if len <= int_len {
+            digits_into(buf, at, len, digits);
+            buf[at + len..at + int_len].fill(b'0');
+            at + int_len
+        } else {
+            digits_into(buf, at + 1, len, digits);
+            buf.copy_within(at + 1..at + 1 + int_len, at);
+            buf[at + int_len] = b'.';
+            at + 1 + len
+        }
     }
 }
 
@@ -193,20 +358,6 @@ fn layout_sci(out: &mut String, sci: &[u8], room: i32) {
     layout(out, neg, std::str::from_utf8(digits).unwrap_or("0"), exp, room);
 }
 
-fn write_shortest(out: &mut String, x: f64) {
-    // Integers below 2^53 are exact, and their shortest digits are their own (with
-    // trailing zeros, which the layout puts back): the same text, without formatting
-    // a float. (`-0` keeps its sign through the general path.)
-    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
-    if x.fract() == 0.0 && x.abs() < EXACT && x != 0.0 {
-        let _ = write!(out, "{}", x as i64);
-        return;
-    }
-    let mut s = Buf::new();
-    let _ = write!(s, "{x:e}");
-    layout_sci(out, s.as_bytes(), 17);
-}
-
 fn write_g(out: &mut String, x: f64, p: u32) {
     let p = p.min(400);
     let mut s = Buf::new();
@@ -292,6 +443,164 @@ mod tests {
             assert_eq!(short(x), old_shortest(x), "{x:e}");
             for p in [1, 5, 17] {
                 assert_eq!(g(x, p), old_g(x, p), "{x:e} at {p}");
+            }
+        }
+    }
+
+    /// A xorshift generator for the comparisons below.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+    }
+
+    fn same_as_rust(x: f64) {
+        assert_eq!(short(x), old_shortest(x), "{:#x}", x.to_bits());
+    }
+
+    /// The shortest digits are Rust's own (`{:e}`), on random bit patterns of every
+    /// exponent.
+    #[test]
+    fn shortest_is_rusts_on_random_bits() {
+        let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..2_000_000 {
+            let x = f64::from_bits(r.next());
+            if x.is_finite() {
+                same_as_rust(x);
+            }
+        }
+    }
+
+    /// The short-decimal shortcut's range, densely: random bit patterns there, and
+    /// decimals of 1 to 7 places with their neighbouring doubles.
+    #[test]
+    fn shortest_is_rusts_on_short_decimals_range() {
+        let mut r = Rng(0x5851_f42d_4c95_7f2d);
+        let (lo, hi) = (1e-3f64.to_bits() - 2, 1e9f64.to_bits() + 2);
+        for _ in 0..1_000_000 {
+            same_as_rust(f64::from_bits(lo + r.next() % (hi - lo)));
+        }
+        for _ in 0..300_000 {
+            let places = (r.next() % 7 + 1) as i32;
+            let digits = r.next() % 10u64.pow(places as u32 + (r.next() % 9) as u32);
+            let x = digits as f64 / 10f64.powi(places);
+            for y in
+                [x, f64::from_bits(x.to_bits() + 1), f64::from_bits(x.to_bits().saturating_sub(1))]
+            {
+                same_as_rust(y);
+            }
+        }
+    }
+
+    /// Exact ties (the value halfway between the two shortest candidates), where Ryu
+    /// would round to even and Rust rounds up; exact values and exact bounds (Ryu's
+    /// general case) at every small binary exponent.
+    #[test]
+    fn shortest_is_rusts_on_ties_and_exact_values() {
+        // (Exact: the step between doubles there is 0.25.)
+        assert_eq!(short(-(1_149_636_667_324_797.0 + 0.25)), "-1149636667324797.3");
+        assert_eq!(short(1_149_636_667_324_796.0 + 0.25), "1149636667324796.3");
+        let mut r = Rng(0x2545_f491_4f6c_dd1d);
+        // In [2^50, 2^51) the step is 0.25: N + 0.25 and N + 0.75 are all ties.
+        for _ in 0..100_000 {
+            let n = (1u64 << 50) + (r.next() >> 14);
+            for f in [0.25, 0.5, 0.75] {
+                same_as_rust(n as f64 + f);
+                same_as_rust(-(n as f64 + f));
+            }
+        }
+        // m × 2^e for every exponent near 0, with short and full mantissas.
+        for e in -80..=80 {
+            for _ in 0..2_000 {
+                let bits = r.next();
+                for m in
+                    [bits >> 11, bits >> 40, bits >> 50, (bits >> 11) | 1, (bits >> 11) & !0xff]
+                {
+                    same_as_rust(m as f64 * 2f64.powi(e));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shortest_is_rusts_on_subnormals_powers_and_short_decimals() {
+        let mut xs: Vec<f64> = Vec::new();
+        // Subnormals, the smallest normal and their neighbours.
+        let mut r = Rng(0x1234_5678_9abc_def1);
+        for k in 1..2_000u64 {
+            xs.push(f64::from_bits(k));
+            xs.push(f64::from_bits((1 << 52) - k));
+            xs.push(f64::from_bits(r.next() & ((1 << 52) - 1)));
+            xs.push(f64::from_bits((1 << 52) - 1 + k));
+        }
+        // Powers of two and ten, and the doubles either side of them.
+        for e in -1074i64..=1023 {
+            let p = if e >= -1022 {
+                f64::from_bits(((e + 1023) as u64) << 52)
+            } else {
+                f64::from_bits(1 << (e + 1074))
+            };
+            xs.extend([p, f64::from_bits(p.to_bits() + 1), f64::from_bits(p.to_bits() - 1)]);
+        }
+        for e in -330..=308 {
+            let p: f64 = format!("1e{e}").parse().unwrap();
+            if p > 0.0 && p.is_finite() {
+                xs.extend([p, f64::from_bits(p.to_bits() + 1), f64::from_bits(p.to_bits() - 1)]);
+            }
+        }
+        xs.retain(|x| x.is_finite());
+        xs.extend([f64::MAX, f64::MIN_POSITIVE, 5e-324, f64::EPSILON]);
+        // Short decimals as MJCF files hold them (`0.05`, `-1.57`, `2.5e-3`).
+        for k in 1..20_000u32 {
+            for text in [
+                format!("0.{k}"),
+                format!("{}.{}", k / 100, k % 100),
+                format!("{k}e-3"),
+                format!("{k}e-7"),
+                format!("{k}.{k}"),
+                format!("{k}e20"),
+            ] {
+                xs.push(text.parse().unwrap());
+            }
+        }
+        // Integers beyond 2^53, where the integer shortcut does not apply.
+        for _ in 0..100_000 {
+            xs.push((r.next() >> (r.next() % 11)) as f64);
+        }
+        for x in xs {
+            same_as_rust(x);
+            same_as_rust(-x);
+        }
+    }
+
+    /// Arrays are the texts of their numbers joined by spaces, however long.
+    #[test]
+    fn arrays_join_the_texts_of_their_numbers() {
+        let mut r = Rng(0x0123_4567_89ab_cdef);
+        let xs: Vec<f64> = (0..1_000)
+            .map(|i| match i % 5 {
+                0 => f64::from_bits(r.next()),
+                1 => (r.next() % 2000) as f64 / 100.0 - 10.0,
+                2 => f64::NAN,
+                3 => -1e-300,
+                _ => (r.next() >> 20) as f64,
+            })
+            .collect();
+        for style in [
+            FloatStyle::default(),
+            FloatStyle { precision: Some(17), zero_threshold: 0.0 },
+            FloatStyle { precision: None, zero_threshold: 1e-3 },
+        ] {
+            for len in [0, 1, 2, 7, 10, 11, 100, 1_000] {
+                let mut joined = String::new();
+                write_floats(&mut joined, &xs[..len], style);
+                let each: Vec<String> = xs[..len].iter().map(|x| float_text(*x, style)).collect();
+                assert_eq!(joined, each.join(" "));
             }
         }
     }

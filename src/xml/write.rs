@@ -18,11 +18,23 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use crate::error::WriteError;
+use crate::id::IdHash;
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
-use crate::model::{Item, Model, Step, Walk};
+use crate::model::{Entry, Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::value::{FloatStyle, Reference, Value};
+
+/// The output reserved per element of the composed model, before writing: about what
+/// an element with a short name and a few attributes takes once indented (a robot
+/// fleet takes 35 bytes per element, counting the empty singletons of its default
+/// classes, which are not written; a tree of bodies with geoms and joints ~120).
+/// Where it is too little, the output grows by doubling; where it is more than twice
+/// too much (by over a MiB), the excess is given back at the end.
+const BYTES_PER_ELEMENT: usize = 40;
+
+/// At most this much is reserved up front (256 MiB; a larger output grows from it).
+const MAX_RESERVE: usize = 1 << 28;
 
 /// The deepest indentation, in levels (deeper elements are indented as much).
 const MAX_INDENT: usize = 100;
@@ -130,28 +142,56 @@ impl Model {
             options,
             value: String::new(),
             bad_char: None,
+            entries: HashMap::with_hasher(IdHash),
             open: Vec::new(),
             pending: None,
             in_default: false,
         };
-        w.run(Walk::new(self), true)?;
+        w.run(Walk::new(self).pruned(silent), true)?;
         if let Some((tag, attribute, character)) = w.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
-        Ok(w.out)
+        let mut out = w.out;
+        if out.capacity() > 2 * out.len() && out.capacity() - out.len() > 1 << 20 {
+            // The reservation was far too much (elements not written: the empty
+            // singletons of many default classes).
+            out.shrink_to_fit();
+        }
+        Ok(out)
     }
 }
+
+/// A model's index entries by id.
+type ElemMap = imbl::OrdMap<ElementId, Entry>;
 
 /// What the writer keeps per model of the composition (per instance of the walk).
 struct Inst<'a> {
     model: &'a Model,
     /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
     prefix: String,
-    /// Running auto-name counters (document order of this model's own elements).
-    counters: HashMap<Namespace, usize>,
+    /// Running auto-name counters (document order of this model's own elements), by
+    /// namespace (`ns as usize`; a hash per element cost more than the rest of its
+    /// counting).
+    counters: Vec<usize>,
     /// Auto-name indices of every element (and whether it is inside a `<replicate>`),
     /// counted once when a reference needs one.
     auto_index: Option<HashMap<ElementId, (usize, bool)>>,
+    /// The name of the model's root default class.
+    root_class: Option<&'a str>,
+    /// Whether `prefix` is written as it is (no character to escape).
+    prefix_clean: bool,
+}
+
+impl Inst<'_> {
+    /// The auto-name index of the next element of `ns` (counted).
+    fn next_auto_index(&mut self, ns: Namespace) -> usize {
+        let k = ns as usize;
+        if self.counters.len() <= k {
+            self.counters.resize(k + 1, 0);
+        }
+        self.counters[k] += 1;
+        self.counters[k] - 1
+    }
 }
 
 /// An element whose start tag is not finished yet.
@@ -212,11 +252,18 @@ struct Writer<'a> {
     /// Inside `<default>`, the wrapper of the root class and the attached models'
     /// root classes (one level deeper than the walk says).
     in_default: bool,
+    /// Index entries looked up by references, with the map they came from: an
+    /// attached model's elements are looked up again for each attachment of it
+    /// (the same shared map), and a class is looked up twice (is it there, its name).
+    entries: HashMap<ElementId, (&'a ElemMap, Option<&'a Entry>), IdHash>,
 }
 
 /// Whether a singleton writes anything: a written attribute, or a child that does.
 fn singleton_emits(node: &Node) -> bool {
     let kind = node.kind();
+    if facts(kind).class.is_some() || kind.identifier().is_some() {
+        return true;
+    }
     if node
         .attrs()
         .iter()
@@ -224,16 +271,23 @@ fn singleton_emits(node: &Node) -> bool {
     {
         return true;
     }
-    if facts(kind).class.is_some() || kind.identifier().is_some() {
-        return true;
-    }
-    node.children()
-        .iter()
-        .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
+    // (Most singletons are empty: no iterator for them.)
+    let children = node.children();
+    !children.is_empty()
+        && children
+            .iter()
+            .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
 }
 
 fn emits(node: &Node) -> bool {
     node.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(node)
+}
+
+/// An element that writes nothing and is not an attachment frame: below the
+/// sections, the writer skips it where it meets it (`enter`), so the walk need not
+/// give it (`Walk::pruned`).
+fn silent(node: &Node) -> bool {
+    node.attached().is_none() && !emits(node)
 }
 
 impl<'a> Writer<'a> {
@@ -250,10 +304,15 @@ impl<'a> Writer<'a> {
                 };
                 self.insts.push(Inst {
                     model: i.model,
+                    prefix_clean: is_clean(prefix.as_bytes()),
                     prefix,
-                    counters: HashMap::new(),
+                    counters: Vec::new(),
                     auto_index: None,
+                    root_class: section_of(i.model, "default").and_then(Node::identifier),
                 });
+            }
+            if substitute && matches!(step, Step::Enter(Item { depth: 0, .. })) {
+                self.reserve_output();
             }
             match step {
                 Step::Enter(item)
@@ -278,7 +337,8 @@ impl<'a> Writer<'a> {
                         walk.skip_subtree();
                         if let Some(m) = self.merged.iter().find(|m| m.kind() == item.node.kind()) {
                             if emits(m) {
-                                self.run(Walk::plain(self.insts[0].model, m, 1), false)?;
+                                let walk = Walk::plain(self.insts[0].model, m, 1).pruned(silent);
+                                self.run(walk, false)?;
                             }
                         }
                     }
@@ -287,6 +347,15 @@ impl<'a> Writer<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Reserves the output's room once every model of the composition is known (the
+    /// root's children list them all): `BYTES_PER_ELEMENT` per element of each. Grown
+    /// by doubling instead, a large output is copied and its fresh pages touched
+    /// again at every step (77 MB allocated for 19 MB of text).
+    fn reserve_output(&mut self) {
+        let elements: usize = self.insts.iter().map(|i| i.model.index.elems.len()).sum();
+        self.out.reserve(elements.saturating_mul(BYTES_PER_ELEMENT).min(MAX_RESERVE));
     }
 
     /// Writes the composed keys in place of the keyframe section.
@@ -431,8 +500,7 @@ impl<'a> Writer<'a> {
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
-        let child_cc =
-            cc_here || (node.attached().is_none() && sets_childclass(self.insts[inst].model, node));
+        let child_cc = cc_here || (node.attached().is_none() && self.sets_childclass(inst, node));
         // A frame's own joints are named after the frame.
         let frame_name =
             if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
@@ -514,9 +582,12 @@ impl<'a> Writer<'a> {
 
     fn indent(&mut self, depth: usize) {
         if self.options.pretty_print {
-            for _ in 0..depth.min(MAX_INDENT) {
-                self.out.push_str("  ");
-            }
+            // One copy from a line of spaces (two a level), not one per level.
+            const SPACES: &str = match std::str::from_utf8(&[b' '; 2 * MAX_INDENT]) {
+                Ok(s) => s,
+                Err(_) => "",
+            };
+            self.out.push_str(&SPACES[..2 * depth.min(MAX_INDENT)]);
         }
     }
 
@@ -529,7 +600,7 @@ impl<'a> Writer<'a> {
     /// A frame's attributes (copied from its site), then `name` last; the frame counts
     /// as a body of its model for auto names.
     fn write_frame_attrs(&mut self, inst: usize, frame: &Node, name: &str) {
-        *self.insts[inst].counters.entry(Namespace::Body).or_insert(0) += 1;
+        self.insts[inst].next_auto_index(Namespace::Body);
         let kind = frame.kind();
         for (i, v) in frame.attrs() {
             self.value.clear();
@@ -557,15 +628,13 @@ impl<'a> Writer<'a> {
         // render their own).
         let auto_name = match (kind.identifier(), kind.namespace()) {
             (Some(i), Some(ns)) => {
-                let n = self.insts[inst].counters.entry(ns).or_insert(0);
-                let index = *n;
-                *n += 1;
+                let index = self.insts[inst].next_auto_index(ns);
                 (node.attr(i).is_none() || is_default || frame.is_some()).then_some((i, ns, index))
             }
             _ => None,
         };
         let implicit_class = match facts(kind).class {
-            Some(c) if !has_live(self.insts[inst].model, node, c) && !childclass => Some(c),
+            Some(c) if !childclass && !self.has_live(inst, node, c) => Some(c),
             _ => None,
         };
         let mut set = node.attrs().iter().peekable();
@@ -596,15 +665,22 @@ impl<'a> Writer<'a> {
                             self.value.push('/');
                         }
                     } else if is_default {
-                        self.default_class_name(inst, node.identifier());
+                        self.emit_default_class(
+                            inst,
+                            kind.tag(),
+                            kind.attr(i).name,
+                            node.identifier(),
+                        );
+                        continue;
                     } else if let Some((_, ns, index)) = auto_name {
                         let replicated = self.open.last().is_some_and(|o| o.replicated);
                         self.auto_name(inst, ns, index, replicated);
                     }
                 } else {
                     // Implicit class: the model's root class.
-                    let root_class = self.root_class_name(inst);
-                    self.default_class_name(inst, root_class);
+                    let root_class = self.insts[inst].root_class;
+                    self.emit_default_class(inst, kind.tag(), kind.attr(i).name, root_class);
+                    continue;
                 }
                 self.emit_attr(kind.tag(), kind.attr(i).name);
             } else if let Some((i, v)) = set.next() {
@@ -625,28 +701,54 @@ impl<'a> Writer<'a> {
                     self.out.push_str("=\"");
                     v.write_plain(&mut self.out, self.style);
                     self.out.push('"');
-                } else if self.value_text(inst, node, i, v)? {
-                    self.emit_attr(kind.tag(), spec.name);
+                } else {
+                    self.emit_value(inst, node, i, v)?;
                 }
             }
         }
         Ok(())
     }
 
-    fn root_class_name(&self, inst: usize) -> Option<&'a str> {
-        section_of(self.insts[inst].model, "default")?.identifier()
+    /// The index entry of `id` in the model of instance `inst`.
+    fn entry(&mut self, inst: usize, id: ElementId) -> Option<&'a Entry> {
+        let elems = &self.insts[inst].model.index.elems;
+        if let Some((m, e)) = self.entries.get(&id) {
+            if m.ptr_eq(elems) {
+                return *e;
+            }
+        }
+        let e = elems.get(&id);
+        self.entries.insert(id, (elems, e));
+        e
     }
 
-    /// Writes `P + name`, or `/` when both are empty, into `self.value`.
-    fn default_class_name(&mut self, inst: usize, name: Option<&str>) {
+    fn sets_childclass(&mut self, inst: usize, node: &Node) -> bool {
+        facts(node.kind()).childclass.is_some_and(|i| self.has_live(inst, node, i))
+    }
+
+    /// Whether attribute `i` of `node` is set and will be written: a reference to an
+    /// element that was removed is not (an optional reference; a required one fails).
+    fn has_live(&mut self, inst: usize, node: &Node, i: usize) -> bool {
+        match node.attr(i) {
+            None => false,
+            Some(Value::Reference(Reference::Element(id))) => self.entry(inst, *id).is_some(),
+            Some(_) => true,
+        }
+    }
+
+    /// Appends ` attr="P + name"` (`/` when both are empty).
+    fn emit_default_class(
+        &mut self,
+        inst: usize,
+        tag: &'static str,
+        attr: &'static str,
+        name: Option<&str>,
+    ) {
         let prefix = &self.insts[inst].prefix;
         let name = name.unwrap_or("");
-        if name.is_empty() && prefix.is_empty() {
-            self.value.push('/');
-        } else {
-            self.value.push_str(prefix);
-            self.value.push_str(name);
-        }
+        let parts = if name.is_empty() && prefix.is_empty() { ["/", ""] } else { [prefix, name] };
+        let clean = self.insts[inst].prefix_clean;
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
     }
 
     /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`, and a `_` after it
@@ -662,62 +764,66 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// Writes the text of attribute `i` into `self.value`; `false` if it is not written.
-    fn value_text(
+    /// Appends ` name="value"` for attribute `i` (holding `v`), if it is written.
+    fn emit_value(
         &mut self,
         inst: usize,
         node: &Node,
         i: usize,
         v: &Value,
-    ) -> Result<bool, WriteError> {
-        match v {
-            Value::Basepath(_) => Ok(false),
-            Value::File(f) => {
-                self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
-                Ok(true)
-            }
+    ) -> Result<(), WriteError> {
+        let kind = node.kind();
+        let (tag, attr) = (kind.tag(), kind.attr(i).name);
+        // Names are written as prefix and name, each escaped, with no copy between.
+        let prefix = self.insts[inst].prefix.as_str();
+        let parts = match v {
+            Value::Basepath(_) => return Ok(()),
             Value::Reference(Reference::Element(target)) => {
-                self.reference_text(inst, node, i, *target)
+                return self.emit_reference(inst, node, i, *target);
             }
-            Value::Identifier(n) => {
-                self.value.push_str(&self.insts[inst].prefix);
-                self.value.push_str(n);
-                Ok(true)
-            }
-            Value::String(n) if node.kind().attr(i).ty == AttrType::NamePrefix => {
-                self.value.push_str(&self.insts[inst].prefix);
-                self.value.push_str(n);
-                Ok(true)
-            }
+            Value::Identifier(n) => [prefix, n.as_str()],
+            Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
             Value::Reference(Reference::Name(n)) => {
                 // The one world body is `world` in every scope; a name in another
                 // model (`RefTarget::Unless`) is not this model's.
-                let ty = node.kind().attr(i).ty;
+                let ty = kind.attr(i).ty;
                 let to_body = matches!(ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
                 let elsewhere = matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
-                if !(elsewhere || to_body && n == "world") {
-                    self.value.push_str(&self.insts[inst].prefix);
+                if elsewhere || to_body && n == "world" {
+                    ["", n.as_str()]
+                } else {
+                    [prefix, n.as_str()]
                 }
-                self.value.push_str(n);
-                Ok(true)
+            }
+            Value::File(f) => {
+                self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
+                self.emit_attr(tag, attr);
+                return Ok(());
             }
             _ => {
                 v.write_plain(&mut self.value, self.style);
-                Ok(true)
+                self.emit_attr(tag, attr);
+                return Ok(());
             }
-        }
+        };
+        let clean = self.insts[inst].prefix_clean;
+        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
+        Ok(())
     }
 
-    fn reference_text(
+    /// Appends ` name="…"` for attribute `i`, a reference to element `target`, if it
+    /// is written (an optional reference to a removed element is not).
+    fn emit_reference(
         &mut self,
         inst: usize,
         node: &Node,
         i: usize,
         target: ElementId,
-    ) -> Result<bool, WriteError> {
+    ) -> Result<(), WriteError> {
         let kind = node.kind();
+        let (tag, attr) = (kind.tag(), kind.attr(i).name);
         let model = self.insts[inst].model;
-        let Some(entry) = model.index.entry(target) else {
+        let Some(entry) = self.entry(inst, target) else {
             let spec = kind.attr(i);
             if spec.required {
                 return Err(WriteError::MissingRequired {
@@ -726,38 +832,37 @@ impl<'a> Writer<'a> {
                     path: model.path_of(node.id()).map(|p| model.describe(&p)).unwrap_or_default(),
                 });
             }
-            return Ok(false);
+            return Ok(());
         };
         if entry.kind.tag() == "default" {
-            let name = entry.name.clone();
-            self.default_class_name(inst, name.as_deref());
-            return Ok(true);
+            self.emit_default_class(inst, tag, attr, entry.name.as_deref());
+            return Ok(());
         }
         // A frame, or a joint of a frame.
         if let Some(scope) = model.index.scope_of(target) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
-            return Ok(true);
-        }
-        if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
+        } else if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
             if let Some(n) = &entry.name {
                 let _ = write!(self.value, "{n}/");
             }
-            return Ok(true);
-        }
-        match (&entry.name, entry.kind.namespace()) {
-            (Some(n), _) => {
-                let prefix = &self.insts[inst].prefix;
-                self.value.push_str(prefix);
-                self.value.push_str(n);
+        } else {
+            match (&entry.name, entry.kind.namespace()) {
+                (Some(n), _) => {
+                    let prefix = &self.insts[inst].prefix;
+                    let clean = self.insts[inst].prefix_clean;
+                    emit_parts(&mut self.out, &mut self.bad_char, tag, attr, [prefix, n], clean);
+                    return Ok(());
+                }
+                (None, Some(ns)) => {
+                    let (index, replicated) = self.auto_index_of(inst, target);
+                    self.auto_name(inst, ns, index, replicated);
+                }
+                (None, None) => return Ok(()),
             }
-            (None, Some(ns)) => {
-                let (index, replicated) = self.auto_index_of(inst, target);
-                self.auto_name(inst, ns, index, replicated);
-            }
-            (None, None) => return Ok(false),
         }
-        Ok(true)
+        self.emit_attr(tag, attr);
+        Ok(())
     }
 
     fn auto_index_of(&mut self, inst: usize, id: ElementId) -> (usize, bool) {
@@ -783,14 +888,34 @@ impl<'a> Writer<'a> {
 
     /// Appends ` name="<escaped self.value>"`.
     fn emit_attr(&mut self, tag: &'static str, name: &'static str) {
-        self.out.push(' ');
-        self.out.push_str(name);
-        self.out.push_str("=\"");
-        if let Some(c) = escape_into(&mut self.out, &self.value) {
-            self.bad_char.get_or_insert((tag, name, c));
-        }
-        self.out.push('"');
+        emit_parts(&mut self.out, &mut self.bad_char, tag, name, [&self.value, ""], false);
     }
+}
+
+/// Appends ` name="<escaped parts[0] + parts[1]>"` (a prefix and a name, escaped
+/// one after the other: escaping goes character by character) and records the first
+/// character XML cannot hold in `bad`. `first_clean`: `parts[0]` is known to need no
+/// escaping (a scope prefix, checked once per instance).
+fn emit_parts(
+    out: &mut String,
+    bad: &mut Option<(&'static str, &'static str, char)>,
+    tag: &'static str,
+    name: &'static str,
+    parts: [&str; 2],
+    first_clean: bool,
+) {
+    out.reserve(name.len() + parts[0].len() + parts[1].len() + 4);
+    out.push(' ');
+    out.push_str(name);
+    out.push_str("=\"");
+    for (k, p) in parts.into_iter().enumerate() {
+        if k == 0 && first_clean {
+            out.push_str(p);
+        } else if let Some(c) = escape_into(out, p) {
+            bad.get_or_insert((tag, name, c));
+        }
+    }
+    out.push('"');
 }
 
 /// Whether an attachment frame in the world is written as MuJoCo's `<frame>` rather
@@ -857,18 +982,48 @@ fn facts(kind: ElementKind) -> &'static KindFacts {
     table.get(kind.0 as usize).unwrap_or(&NONE)
 }
 
-fn sets_childclass(model: &Model, node: &Node) -> bool {
-    facts(node.kind()).childclass.is_some_and(|i| has_live(model, node, i))
+/// Whether a byte is written as it is: printable ASCII other than `& < > "`.
+#[cfg(test)]
+fn clean_byte(b: u8) -> bool {
+    (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"')
 }
 
-/// Whether attribute `i` of `node` is set and will be written: a reference to an
-/// element that was removed is not (an optional reference; a required one fails).
-fn has_live(model: &Model, node: &Node, i: usize) -> bool {
-    match node.attr(i) {
-        None => false,
-        Some(Value::Reference(Reference::Element(id))) => model.index.contains(*id),
-        Some(_) => true,
+/// Whether every byte of `s` is written as it is (`clean_byte` in the tests): eight bytes at a time (names are
+/// scanned once per attribute written, and most are a few dozen bytes).
+fn is_clean(s: &[u8]) -> bool {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    const HIGH: u64 = 0x8080_8080_8080_8080;
+    // Nonzero iff some byte of `x` is zero (exact as to whether one is).
+    fn zero_byte(x: u64) -> u64 {
+        x.wrapping_sub(ONES) & !x & HIGH
     }
+    fn clean8(w: [u8; 8]) -> bool {
+        let x = u64::from_le_bytes(w);
+        // A byte below 0x20; a byte of 0x7f or more (the +1 carries out of a byte
+        // only from 0xff, itself caught by `x & HIGH`); one of the four to escape.
+        let special = (x.wrapping_sub(ONES * 0x20) & !x & HIGH)
+            | ((x | x.wrapping_add(ONES)) & HIGH)
+            | zero_byte(x ^ (ONES * u64::from(b'&')))
+            | zero_byte(x ^ (ONES * u64::from(b'<')))
+            | zero_byte(x ^ (ONES * u64::from(b'>')))
+            | zero_byte(x ^ (ONES * u64::from(b'"')));
+        special == 0
+    }
+    let mut chunks = s.chunks_exact(8);
+    for c in &mut chunks {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(c);
+        if !clean8(w) {
+            return false;
+        }
+    }
+    // The last 1 to 7 bytes, padded with clean ones.
+    let rest = chunks.remainder();
+    let mut w = [b'a'; 8];
+    for (d, &b) in w.iter_mut().zip(rest) {
+        *d = b;
+    }
+    clean8(w)
 }
 
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
@@ -878,9 +1033,7 @@ fn has_live(model: &Model, node: &Node, i: usize) -> bool {
 /// Returns the first character that XML 1.0 cannot hold at all (most control
 /// characters, U+FFFE, U+FFFF), if any; it is written as a reference all the same.
 pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
-    let clean =
-        s.bytes().all(|b| (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"'));
-    if clean {
+    if is_clean(s.as_bytes()) {
         out.push_str(s);
         return None;
     }
@@ -898,4 +1051,40 @@ pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
         }
     }
     bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The eight-bytes-at-a-time scan says what the byte-by-byte one says: every byte
+    /// value at every position of strings of every length up to 24, and random ones.
+    #[test]
+    fn is_clean_is_every_byte_clean() {
+        for len in 1..=24 {
+            for at in 0..len {
+                for b in 0..=255u8 {
+                    let mut s = vec![b'a'; len];
+                    s[at] = b;
+                    assert_eq!(is_clean(&s), clean_byte(b), "{b:#x} at {at} of {len}");
+                }
+            }
+        }
+        let mut r: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..100_000 {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            let len = (r % 40) as usize;
+            // Mostly clean bytes, with a few of anything.
+            let s: Vec<u8> = (0..len)
+                .map(|k| {
+                    let x = r.rotate_left(k as u32 * 7);
+                    if x % 16 == 0 { (x >> 8) as u8 } else { 0x20 + ((x >> 8) % 95) as u8 }
+                })
+                .collect();
+            assert_eq!(is_clean(&s), s.iter().all(|&b| clean_byte(b)), "{s:?}");
+        }
+        assert!(is_clean(b""));
+    }
 }
