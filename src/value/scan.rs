@@ -144,12 +144,45 @@ mod tests {
     #[test]
     fn plain_floats_read_as_rust_reads_them() {
         for s in [
-            "0", "-0", "0.0", "-0.0", ".5", "5.", "-.5", "-5.", ".", "-", "", "-.", "1.2.3", "1e5",
-            "+1", " 1", "1 ", "0.1", "0.2", "0.3", "1.7976931348623157", "9007199254740993",
-            "9007199254740992", "900719925474099.3", "0.0000000000000000000001",
-            "0.00000000000000000000001", "12345678901234567890", "1234567890123456789",
-            "99999999999999999999", "-999999999999999999.9", "inf", "nan", "0x10", "1_0",
-            "١", "0.35", "0.0012", "30.0", "-30.0",
+            "0",
+            "-0",
+            "0.0",
+            "-0.0",
+            ".5",
+            "5.",
+            "-.5",
+            "-5.",
+            ".",
+            "-",
+            "",
+            "-.",
+            "1.2.3",
+            "1e5",
+            "+1",
+            " 1",
+            "1 ",
+            "0.1",
+            "0.2",
+            "0.3",
+            "1.7976931348623157",
+            "9007199254740993",
+            "9007199254740992",
+            "900719925474099.3",
+            "0.0000000000000000000001",
+            "0.00000000000000000000001",
+            "12345678901234567890",
+            "1234567890123456789",
+            "99999999999999999999",
+            "-999999999999999999.9",
+            "inf",
+            "nan",
+            "0x10",
+            "1_0",
+            "١",
+            "0.35",
+            "0.0012",
+            "30.0",
+            "-30.0",
         ] {
             check_float(s);
         }
@@ -161,7 +194,11 @@ mod tests {
                 .map(|_| {
                     // Mostly digits, some of the rest.
                     let k = rng.below(30) as usize;
-                    char::from(if k < 20 { b'0' + (k % 10) as u8 } else { alphabet[10 + (k - 20) % 5] })
+                    char::from(if k < 20 {
+                        b'0' + (k % 10) as u8
+                    } else {
+                        alphabet[10 + (k - 20) % 5]
+                    })
                 })
                 .collect();
             check_float(&s);
@@ -169,7 +206,8 @@ mod tests {
         // Random decimals of every length and scale the fast path takes.
         for _ in 0..200_000 {
             let digits = 1 + rng.below(19) as usize;
-            let mut s: String = (0..digits).map(|_| char::from(b'0' + rng.below(10) as u8)).collect();
+            let mut s: String =
+                (0..digits).map(|_| char::from(b'0' + rng.below(10) as u8)).collect();
             let point = rng.below(digits as u64 + 1) as usize;
             s.insert(point, '.');
             if rng.below(2) == 0 {
@@ -189,7 +227,8 @@ mod tests {
     #[test]
     fn plain_ints_read_as_rust_reads_them() {
         let mut rng = Rng(12345);
-        for s in ["0", "-0", "-", "", "+1", "1.0", "999999999999999999", "9999999999999999999", " 1"]
+        for s in
+            ["0", "-0", "-", "", "+1", "1.0", "999999999999999999", "9999999999999999999", " 1"]
         {
             if let Some(v) = plain_int(s.as_bytes()) {
                 assert_eq!(Some(v), s.parse::<i64>().ok(), "{s:?}");
@@ -212,8 +251,18 @@ mod tests {
     fn arrays_split_as_split_ascii_whitespace_does() {
         let slow = |s: &str| s.trim().parse::<f64>().ok();
         for s in [
-            "", " ", "1", " 1 ", "1 2 3", "1\t2\n3\r4\x0C5", "1\u{A0}", "1\u{A0}2", "\u{2003}1 2",
-            "1e3 -inf nan", "1  x", "0 0 0.1",
+            "",
+            " ",
+            "1",
+            " 1 ",
+            "1 2 3",
+            "1\t2\n3\r4\x0C5",
+            "1\u{A0}",
+            "1\u{A0}2",
+            "\u{2003}1 2",
+            "1e3 -inf nan",
+            "1  x",
+            "0 0 0.1",
         ] {
             let want: Option<Vec<f64>> = s.split_ascii_whitespace().map(slow).collect();
             let got = parse_array(s, plain_float, slow).map(|a| a.to_vec());

@@ -29,7 +29,7 @@ use smol_str::SmolStr;
 
 use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
-use crate::model::tree::{Attr, ElementId, Node};
+use crate::model::tree::{Attr, ElementId, Node, no_attrs, take_attrs};
 use crate::model::{
     Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
     name_from_file,
@@ -290,7 +290,8 @@ fn utf8<'b>(bytes: &'b [u8], file: Option<&Path>) -> Result<&'b str, ReadError> 
 struct Pending {
     kind: ElementKind,
     id: ElementId,
-    attrs: Vec<Attr>,
+    /// In their final form (sorted, one allocation), as the node will hold them.
+    attrs: Arc<[Attr]>,
     children: Vec<usize>,
     /// The singleton and on-demand children read so far (few), found without
     /// scanning `children`, which may be long.
@@ -309,6 +310,9 @@ struct Reader<'t> {
     /// element kind and attribute index: an `<include>` that sets it too is merged
     /// as MuJoCo reads includes, the later one in the document winning.
     settings_set_at: HashMap<(ElementKind, u16), usize>,
+    /// The attributes of the tag being read: one buffer for all, so that each
+    /// element allocates its attributes once, at their final size.
+    scratch: Vec<Attr>,
 }
 
 impl Reader<'_> {
@@ -316,7 +320,7 @@ impl Reader<'_> {
         ReadError::new(kind, self.file.clone(), Some(TextPos::of_offset(self.text, offset)))
     }
 
-    /// Reads the attributes of a tag into `attrs` (later values win).
+    /// Reads the attributes of a tag into `attrs` (later values win), sorted by index.
     fn read_attrs(
         &mut self,
         kind: ElementKind,
@@ -324,22 +328,47 @@ impl Reader<'_> {
         attrs: &mut Vec<Attr>,
         offset: usize,
     ) -> Result<(), ReadError> {
-        for a in tag.attributes() {
-            let a = a.map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
-            let name = a.key.as_ref();
+        let settings = in_settings(kind);
+        // Duplicate names are found by attribute index here (a bit per index below
+        // 256), not by quick-xml's check, which compares every name with every earlier
+        // one and allocates a list of them per tag. Two names with one index are
+        // `class` and `dclass`, or a duplicate: for those (and any syntax error) the
+        // tag's attributes are iterated again with quick-xml's checks, which report the
+        // error exactly as they always did (or none, for `class` and `dclass`).
+        let mut seen = [0u64; 4];
+        let mut attributes = tag.attributes();
+        attributes.with_checks(false);
+        for (n, a) in attributes.enumerate() {
+            let Ok(a) = a else { return Err(self.checked_attrs_error(tag, n + 1, offset)) };
+            let name: &str = a.key.as_ref();
+            let name = if name == "dclass" { "class" } else { name };
+            let found = kind.attr_index(name);
+            if let Some(index) = found {
+                let (word, bit) = (index / 64, 1u64 << (index % 64));
+                if seen.get(word).is_none_or(|w| w & bit != 0) {
+                    self.check_attrs(tag, n + 1, offset)?;
+                }
+                if let Some(w) = seen.get_mut(word) {
+                    *w |= bit;
+                }
+            }
             let raw = a
                 .normalized_value(quick_xml::XmlVersion::default())
                 .map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
+            let Some(index) = found else {
+                return Err(self.err(ErrorKind::unknown_attribute(kind, name), offset));
+            };
             let ctx = ValueCtx { files: &self.ctx, basepaths: &self.basepaths };
-            let (index, value) =
-                ctx.assign(kind, name, Some(Input::Text(&raw))).map_err(|k| self.err(k, offset))?;
+            let value = ctx
+                .assign_at(kind, index, Some(Input::Text(&raw)))
+                .map_err(|k| self.err(k, offset))?;
             let spec = kind.attr(index);
             if let AttrType::Basepath { path_namespace } = spec.ty {
                 self.basepaths
                     .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
             let i = index as u16;
-            if in_settings(kind) {
+            if settings {
                 self.settings_set_at.insert((kind, i), offset);
             }
             let pos = attrs.iter().position(|(k, _)| *k == i);
@@ -354,6 +383,32 @@ impl Reader<'_> {
         }
         attrs.sort_by_key(|(k, _)| *k);
         Ok(())
+    }
+
+    /// The first error quick-xml's checked iteration of the tag's first `upto`
+    /// attributes finds (a syntax error or a duplicate name), as reading always
+    /// reported it.
+    fn check_attrs(
+        &self,
+        tag: &BytesStart<'_>,
+        upto: usize,
+        offset: usize,
+    ) -> Result<(), ReadError> {
+        match tag.attributes().take(upto).find_map(Result::err) {
+            Some(e) => Err(self.err(ErrorKind::Syntax(e.to_string()), offset)),
+            None => Ok(()),
+        }
+    }
+
+    /// The error of a tag whose unchecked attribute iteration failed at attribute
+    /// `upto - 1`: the checked one fails there too (with a duplicate name there, it
+    /// reports that first).
+    fn checked_attrs_error(&self, tag: &BytesStart<'_>, upto: usize, offset: usize) -> ReadError {
+        match self.check_attrs(tag, upto, offset) {
+            Err(e) => e,
+            // Cannot happen: both iterations parse alike.
+            Ok(()) => self.err(ErrorKind::Syntax("malformed attributes".into()), offset),
+        }
     }
 }
 
@@ -429,7 +484,7 @@ fn parse(
             r.arena.push(Pending {
                 kind: root_kind,
                 id: ElementId::fresh(),
-                attrs: Vec::new(),
+                attrs: no_attrs(),
                 children: Vec::new(),
                 unique: Vec::new(),
                 offset,
@@ -492,9 +547,12 @@ fn parse(
         };
         let index = match (kind.multiplicity(), existing) {
             (Multiplicity::Singleton, Some(e)) => {
-                let mut attrs = std::mem::take(&mut r.arena[e].attrs);
+                let mut attrs = std::mem::take(&mut r.scratch);
+                attrs.clear();
+                attrs.extend(r.arena[e].attrs.iter().cloned());
                 let res = r.read_attrs(kind, &tag, &mut attrs, offset);
-                r.arena[e].attrs = attrs;
+                r.arena[e].attrs = take_attrs(&mut attrs);
+                r.scratch = attrs;
                 res?;
                 e
             }
@@ -502,13 +560,17 @@ fn parse(
                 return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
             }
             (m, _) => {
-                let mut attrs = Vec::new();
+                let mut attrs = std::mem::take(&mut r.scratch);
+                attrs.clear();
                 r.read_attrs(kind, &tag, &mut attrs, offset)?;
                 if m != Multiplicity::Singleton {
                     name_from_file(kind, &mut attrs);
                     check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
                     check_class_named(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
                 }
+                let stored = take_attrs(&mut attrs);
+                r.scratch = attrs;
+                let attrs = stored;
                 let i = r.arena.len();
                 r.arena.push(Pending {
                     kind,
@@ -552,6 +614,7 @@ fn read_document(
         arena: Vec::new(),
         basepaths: Basepaths::default(),
         settings_set_at: HashMap::new(),
+        scratch: Vec::new(),
     };
     let Parsed { includes, model_name } =
         parse(&mut r, ElementKind::ROOT, max_depth, include_stack)?;
@@ -665,6 +728,7 @@ fn inline_include(
         arena: Vec::new(),
         basepaths: r.basepaths.clone(),
         settings_set_at: HashMap::new(),
+        scratch: Vec::new(),
     };
     include_stack.push(key);
     let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, include_stack);
@@ -732,13 +796,22 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         names.entry((crate::Namespace::Default, SmolStr::from("main"))).or_insert(d.id);
     }
     for p in &mut r.arena {
-        resolve_attrs(p.kind, &mut p.attrs, |ns, n| names.get(&(ns, SmolStr::from(n))).copied());
+        // Only lists with a named reference change (and are uniquely owned here).
+        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
+            resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), |ns, n| {
+                names.get(&(ns, SmolStr::from(n))).copied()
+            });
+        }
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
         let name =
             model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| crate::model::UNNAMED.into());
-        r.arena[0].attrs.push((i as u16, Value::String(name)));
+        let mut attrs = r.arena[0].attrs.to_vec();
+        attrs.retain(|(k, _)| *k as usize != i);
+        attrs.push((i as u16, Value::String(name)));
+        attrs.sort_by_key(|(k, _)| *k);
+        r.arena[0].attrs = attrs.into();
     }
     // Bottom-up: children always have larger arena indices than their parent.
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
@@ -763,7 +836,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         children.extend(singles.into_iter().map(|(n, _)| n));
         children.extend(p.children.iter().filter_map(|c| built[*c].take()));
         let children: Seq<Node> = children.into_iter().collect();
-        built[i] = Some(Node::new(p.id, p.kind, std::mem::take(&mut p.attrs), children));
+        built[i] = Some(Node::from_sorted(p.id, p.kind, std::mem::take(&mut p.attrs), children));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
     let mut index = Index::default();
@@ -809,9 +882,9 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
         return composed;
     }
     let ident = arena[only].kind.identifier();
-    let mut attrs = std::mem::take(&mut arena[only].attrs);
+    let mut attrs = std::mem::take(&mut arena[only].attrs).to_vec();
     attrs.retain(|(k, _)| Some(*k as usize) != ident);
-    arena[d].attrs = rekind(arena[only].kind, root_default, attrs);
+    arena[d].attrs = rekind(arena[only].kind, root_default, attrs).into();
     let children = std::mem::take(&mut arena[only].children);
     arena[only].unique.clear();
     // The moved children are now children of the root class, whose child kinds are
@@ -819,8 +892,8 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
     for &c in &children {
         let old = arena[c].kind;
         if let Some(new) = root_default.child(old.tag()) {
-            let attrs = std::mem::take(&mut arena[c].attrs);
-            arena[c].attrs = rekind(old, new, attrs);
+            let attrs = std::mem::take(&mut arena[c].attrs).to_vec();
+            arena[c].attrs = rekind(old, new, attrs).into();
             arena[c].kind = new;
         }
     }
@@ -897,9 +970,14 @@ fn settings_in_document_order(
 fn forget_auto_names(arena: &mut [Pending]) {
     for p in arena.iter_mut() {
         let Some(ident) = p.kind.identifier() else { continue };
-        p.attrs.retain(|(k, v)| {
-            !(*k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_")))
-        });
+        let auto = |(k, v): &Attr| {
+            *k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_"))
+        };
+        if p.attrs.iter().any(auto) {
+            let mut attrs = p.attrs.to_vec();
+            attrs.retain(|a| !auto(a));
+            p.attrs = attrs.into();
+        }
     }
 }
 
