@@ -131,6 +131,22 @@ impl Index {
         Ok(())
     }
 
+    /// The index of a model just read: `names` holds every identifier of the tree
+    /// `root` (the reader collected them, in document order, finding duplicates at
+    /// their second occurrence); the elements are added here. A read model has no
+    /// attachments, so every name is registered.
+    pub(crate) fn from_read(root: &Node, names: HashMap<(Namespace, SmolStr), ElementId>) -> Index {
+        let mut index = Index { names, ..Index::default() };
+        let mut stack: Vec<(Option<ElementId>, &Node, usize)> = vec![(None, root, 0)];
+        while let Some((parent, n, pos)) = stack.pop() {
+            let name = n.identifier().map(SmolStr::from);
+            let entry = Entry { parent, kind: n.kind(), name, pos, ord: fresh_ord(pos) };
+            index.elems.insert(n.id(), entry);
+            stack.extend(n.children().iter().enumerate().map(|(i, c)| (Some(n.id()), c, i)));
+        }
+        index
+    }
+
     fn insert_one(
         &mut self,
         parent: Option<ElementId>,
@@ -141,11 +157,13 @@ impl Index {
     ) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
+            // One hash of the name: insert, and put the earlier element back if the
+            // name was taken.
             let key = (ns, name.clone());
-            if self.names.contains_key(&key) {
+            if let Some(earlier) = self.names.insert(key.clone(), n.id()) {
+                self.names.insert(key, earlier);
                 return Err(Duplicate { id: n.id(), namespace: ns, name: name.clone() });
             }
-            self.names.insert(key, n.id());
         }
         self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos, ord });
         Ok(())

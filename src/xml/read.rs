@@ -381,7 +381,8 @@ impl Reader<'_> {
                 (None, None) => {}
             }
         }
-        attrs.sort_by_key(|(k, _)| *k);
+        // Indices are unique here: an unstable sort orders them alike, in place.
+        attrs.sort_unstable_by_key(|(k, _)| *k);
         Ok(())
     }
 
@@ -768,9 +769,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     if !hoist_root_class(&mut r.arena) {
         forget_auto_names(&mut r.arena);
     }
-    // Index names first (document order), so references can be resolved in the arena.
-    let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> =
-        HashMap::with_capacity(r.arena.len());
+    // The index's names first (document order, so that a duplicate is reported at its
+    // second occurrence), so that references can be resolved in the arena.
+    let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
     for p in &r.arena {
         if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
             if let Some(Value::Identifier(n)) =
@@ -785,22 +786,24 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             }
         }
     }
-    if let Some(d) = r
+    // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name) both
+    // name the root class, unless a class has that name.
+    let root_class = r
         .arena
         .iter()
         .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
-    {
-        // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name)
-        // both name the root class, unless a class has that name.
-        names.entry((crate::Namespace::Default, SmolStr::from("/"))).or_insert(d.id);
-        names.entry((crate::Namespace::Default, SmolStr::from("main"))).or_insert(d.id);
-    }
+        .map(|d| d.id);
+    let lookup = |ns: crate::Namespace, n: &str| {
+        names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
+            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
+                .then_some(root_class)
+                .flatten()
+        })
+    };
     for p in &mut r.arena {
         // Only lists with a named reference change (and are uniquely owned here).
         if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
-            resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), |ns, n| {
-                names.get(&(ns, SmolStr::from(n))).copied()
-            });
+            resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
         }
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
@@ -816,36 +819,41 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // Bottom-up: children always have larger arena indices than their parent.
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
     let r_offsets: Vec<usize> = r.arena.iter().map(|p| p.offset).collect();
+    // One buffer for every element's children.
+    let mut children: Vec<Node> = Vec::new();
+    let empty = no_attrs();
     for i in (0..r.arena.len()).rev() {
         let p = &mut r.arena[i];
-        // Singletons in schema order, each with where it was read (if it was).
-        let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
-        for k in p.kind.spec().children {
-            if k.multiplicity() == Multiplicity::Singleton {
-                let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
-                match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
-                    Some((n, offset)) => singles.push((n, Some(offset))),
-                    None => singles.push((empty_node(*k), None)),
+        children.clear();
+        let spec = p.kind.spec();
+        if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
+            // Singletons in schema order, each with where it was read (if it was).
+            let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
+            for k in spec.children {
+                if k.multiplicity() == Multiplicity::Singleton {
+                    let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
+                    match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
+                        Some((n, offset)) => singles.push((n, Some(offset))),
+                        None => singles.push((empty_node(*k), None)),
+                    }
                 }
             }
+            if p.kind.tag() == "default" {
+                keep_actuator_default_order(&mut singles);
+            }
+            children.extend(singles.into_iter().map(|(n, _)| n));
         }
-        if p.kind.tag() == "default" {
-            keep_actuator_default_order(&mut singles);
-        }
-        let mut children: Vec<Node> = Vec::with_capacity(singles.len() + p.children.len());
-        children.extend(singles.into_iter().map(|(n, _)| n));
         children.extend(p.children.iter().filter_map(|c| built[*c].take()));
-        let children: Seq<Node> = children.into_iter().collect();
-        built[i] = Some(Node::from_sorted(p.id, p.kind, std::mem::take(&mut p.attrs), children));
+        let children: Seq<Node> = children.drain(..).collect();
+        built[i] = Some(Node::from_sorted(
+            p.id,
+            p.kind,
+            std::mem::replace(&mut p.attrs, empty.clone()),
+            children,
+        ));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
-    let mut index = Index::default();
-    if let Err(d) = index.insert_subtree(None, &root, 0) {
-        let offset = r.arena.iter().find(|p| p.id == d.id).map_or(0, |p| p.offset);
-        return Err(
-            r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset)
-        );
-    }
+    let index = Index::from_read(&root, names);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
