@@ -1,13 +1,14 @@
 //! The identifier index of one model: a persistent map kept exact by every edit.
 //!
-//! Two maps, both `imbl` (so a model clone shares them, and an edit copies
+//! Two persistent maps (so a model clone shares them, and an edit copies
 //! O(log n) of them):
 //! - `names`: (namespace, identifier) → element, for `find` and duplicate checks;
 //! - `elems`: element → (parent, kind, identifier), for locating an element by its id
-//!   and for writing references to it. A B-tree (`OrdMap`): ids are handed out in
-//!   increasing order, so a model read or built in order fills its nodes, where a
-//!   hash trie holding every element left most slots of its 32-slot nodes empty
-//!   (about twice the memory, and as many cache misses, for large models).
+//!   and for writing references to it. A B-tree (`ElemMap`, `super::elems`): ids are
+//!   handed out in increasing order, so a model read or built in order fills its
+//!   nodes (a read model's is built in one pass), where a hash trie holding every
+//!   element left most slots of its 32-slot nodes empty (about twice the memory, and
+//!   as many cache misses, for large models).
 //!
 //! The index of an attached child lives in the child value, never in the parent's.
 
@@ -16,6 +17,7 @@ use std::sync::{Arc, OnceLock};
 use imbl::{GenericHashMap, HashMap, OrdMap};
 use smol_str::SmolStr;
 
+use super::elems::ElemMap;
 use super::tree::{ElementId, Node};
 use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace};
@@ -42,7 +44,7 @@ pub(crate) struct Entry {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
-    pub(crate) elems: OrdMap<ElementId, Entry>,
+    pub(crate) elems: ElemMap,
     /// The model's own attachments: scope names and frames, in attach order.
     pub(crate) scopes: Scopes,
     /// The model's name where it differs from its `model` attribute: `include_copy`
@@ -136,15 +138,17 @@ impl Index {
     /// their second occurrence); the elements are added here. A read model has no
     /// attachments, so every name is registered.
     pub(crate) fn from_read(root: &Node, names: HashMap<(Namespace, SmolStr), ElementId>) -> Index {
-        let mut index = Index { names, ..Index::default() };
+        // Collected, then built in one pass (in document order the ids mostly
+        // increase: the reader hands them out in that order).
+        let mut entries: Vec<(ElementId, Entry)> = Vec::new();
         let mut stack: Vec<(Option<ElementId>, &Node, usize)> = vec![(None, root, 0)];
         while let Some((parent, n, pos)) = stack.pop() {
             let name = n.identifier().map(SmolStr::from);
             let entry = Entry { parent, kind: n.kind(), name, pos, ord: fresh_ord(pos) };
-            index.elems.insert(n.id(), entry);
-            stack.extend(n.children().iter().enumerate().map(|(i, c)| (Some(n.id()), c, i)));
+            entries.push((n.id(), entry));
+            stack.extend(n.children().iter().enumerate().rev().map(|(i, c)| (Some(n.id()), c, i)));
         }
-        index
+        Index { names, elems: ElemMap::from_entries(entries), ..Index::default() }
     }
 
     fn insert_one(

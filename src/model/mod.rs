@@ -9,6 +9,7 @@ pub(crate) mod check;
 mod cursor;
 pub(crate) mod diff;
 mod edit;
+mod elems;
 mod eq;
 pub(crate) mod frame;
 mod index;
