@@ -190,14 +190,12 @@ pub(crate) fn parse_text(
             .ok_or(ValueError::NotKeyword { valid }),
         AttrType::Array { elem, max_len } => {
             let value = match elem {
-                ArrayType::Float => Value::Floats(
-                    scan::parse_array(text, scan::plain_float, number::parse_float)
-                        .ok_or(ValueError::NotFloatArray)?,
-                ),
-                ArrayType::Int => Value::Ints(
-                    scan::parse_array(text, scan::plain_int, number::parse_int)
-                        .ok_or(ValueError::NotIntArray)?,
-                ),
+                ArrayType::Float => {
+                    Value::Floats(scan::parse_array(text).ok_or(ValueError::NotFloatArray)?)
+                }
+                ArrayType::Int => {
+                    Value::Ints(scan::parse_array(text).ok_or(ValueError::NotIntArray)?)
+                }
             };
             check_len(&value, max_len)?;
             Ok(value)

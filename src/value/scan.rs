@@ -19,32 +19,38 @@ const POW10: [f64; 23] = [
 /// division rounds their quotient correctly, as `f64::from_str` rounds (Clinger's
 /// fast path). Anything else is `None`.
 pub(crate) fn plain_float(text: &[u8]) -> Option<f64> {
-    let (neg, digits) = match text.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        _ => (false, text),
-    };
-    if digits.len() > 20 {
-        return None;
+    let mut i = 0;
+    let x = lead_float(text, &mut i)?;
+    (i == text.len()).then_some(x)
+}
+
+/// The plain decimal (as [`plain_float`] reads it) that starts at `bytes[*i]` and
+/// ends at the end or at ASCII whitespace; `*i` is moved to where the digits and
+/// point stop (also when the text there is not a plain decimal: `None`).
+fn lead_float(bytes: &[u8], i: &mut usize) -> Option<f64> {
+    let neg = bytes.get(*i) == Some(&b'-');
+    if neg {
+        *i += 1;
     }
     let mut mantissa: u64 = 0;
-    let mut count = 0;
-    let mut frac: Option<usize> = None;
-    for &b in digits {
-        match b {
-            b'0'..=b'9' => {
-                // 19 digits cannot overflow u64; more are left to the parser.
-                if count == 19 {
-                    return None;
-                }
-                mantissa = mantissa * 10 + u64::from(b - b'0');
-                count += 1;
-            }
-            b'.' if frac.is_none() => frac = Some(count),
-            _ => return None,
+    let mut count: usize = 0;
+    let mut point: Option<usize> = None;
+    while let Some(&b) = bytes.get(*i) {
+        let d = b.wrapping_sub(b'0');
+        if d < 10 {
+            // Wraps only past 19 digits, which are refused below.
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+            count += 1;
+        } else if b == b'.' && point.is_none() {
+            point = Some(count);
+        } else {
+            break;
         }
+        *i += 1;
     }
-    let after = count - frac.unwrap_or(count);
-    if count == 0 || mantissa > 1 << 53 || after >= POW10.len() {
+    let ends = bytes.get(*i).is_none_or(u8::is_ascii_whitespace);
+    let after = count - point.unwrap_or(count);
+    if !ends || count == 0 || count > 19 || mantissa > 1 << 53 || after >= POW10.len() {
         return None;
     }
     let x = mantissa as f64 / POW10[after];
@@ -54,32 +60,69 @@ pub(crate) fn plain_float(text: &[u8]) -> Option<f64> {
 /// `text` as an integer if it is plain: an optional `-` and 1 to 18 digits (which
 /// cannot overflow). Anything else is `None`.
 pub(crate) fn plain_int(text: &[u8]) -> Option<i64> {
-    let (neg, digits) = match text.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        _ => (false, text),
-    };
-    if digits.is_empty() || digits.len() > 18 {
-        return None;
+    let mut i = 0;
+    let v = lead_int(text, &mut i)?;
+    (i == text.len()).then_some(v)
+}
+
+/// The plain integer (as [`plain_int`] reads it) that starts at `bytes[*i]` and ends
+/// at the end or at ASCII whitespace; `*i` is moved to where the digits stop.
+fn lead_int(bytes: &[u8], i: &mut usize) -> Option<i64> {
+    let neg = bytes.get(*i) == Some(&b'-');
+    if neg {
+        *i += 1;
     }
+    let start = *i;
     let mut v: i64 = 0;
-    for &b in digits {
-        if !b.is_ascii_digit() {
-            return None;
+    while let Some(&b) = bytes.get(*i) {
+        let d = b.wrapping_sub(b'0');
+        if d >= 10 {
+            break;
         }
-        v = v * 10 + i64::from(b - b'0');
+        // Wraps only past 18 digits, which are refused below.
+        v = v.wrapping_mul(10).wrapping_add(i64::from(d));
+        *i += 1;
+    }
+    let count = *i - start;
+    let ends = bytes.get(*i).is_none_or(u8::is_ascii_whitespace);
+    if !ends || count == 0 || count > 18 {
+        return None;
     }
     Some(if neg { -v } else { v })
 }
 
+/// Which numbers an array holds: how its parts are read fast, and by the general
+/// parser.
+pub(crate) trait Number: Copy + Default {
+    /// As [`lead_float`]: the plain number at `bytes[*i]`, or `None`.
+    fn lead(bytes: &[u8], i: &mut usize) -> Option<Self>;
+    /// The general parser, for parts that are not plain.
+    fn parse(text: &str) -> Option<Self>;
+}
+
+impl Number for f64 {
+    fn lead(bytes: &[u8], i: &mut usize) -> Option<f64> {
+        lead_float(bytes, i)
+    }
+    fn parse(text: &str) -> Option<f64> {
+        super::number::parse_float(text)
+    }
+}
+
+impl Number for i64 {
+    fn lead(bytes: &[u8], i: &mut usize) -> Option<i64> {
+        lead_int(bytes, i)
+    }
+    fn parse(text: &str) -> Option<i64> {
+        super::number::parse_int(text)
+    }
+}
+
 /// The whitespace-separated parts of `text` (as `str::split_ascii_whitespace` splits),
-/// each read by `fast` or else by `slow`; `None` if one cannot be read. The numbers go
-/// straight into their one shared allocation (the first 16 through a buffer on the
-/// stack, as arrays are short).
-pub(crate) fn parse_array<T: Copy + Default>(
-    text: &str,
-    fast: impl Fn(&[u8]) -> Option<T>,
-    slow: impl Fn(&str) -> Option<T>,
-) -> Option<Arc<[T]>> {
+/// each read in one pass when it is plain, else by the general parser; `None` if one
+/// cannot be read. The numbers go straight into their one shared allocation (the
+/// first 16 through a buffer on the stack, as arrays are short).
+pub(crate) fn parse_array<T: Number>(text: &str) -> Option<Arc<[T]>> {
     let bytes = text.as_bytes();
     let mut buf = [T::default(); 16];
     let mut n = 0;
@@ -93,14 +136,16 @@ pub(crate) fn parse_array<T: Copy + Default>(
             break;
         }
         let start = i;
-        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        // Both ends are at ASCII bytes or the text's ends: character boundaries.
-        let part = &bytes[start..i];
-        let x = match fast(part) {
+        let x = match T::lead(bytes, &mut i) {
             Some(x) => x,
-            None => slow(text.get(start..i)?)?,
+            None => {
+                while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+                    i += 1;
+                }
+                // Both ends are at ASCII bytes or the text's ends: character
+                // boundaries.
+                T::parse(text.get(start..i)?)?
+            }
         };
         if n < buf.len() {
             buf[n] = x;
@@ -249,7 +294,11 @@ mod tests {
 
     #[test]
     fn arrays_split_as_split_ascii_whitespace_does() {
-        let slow = |s: &str| s.trim().parse::<f64>().ok();
+        // The reader's rules before the fast paths.
+        let slow = |s: &str| {
+            let t = s.trim();
+            if t.is_empty() { None } else { t.parse::<f64>().ok() }
+        };
         for s in [
             "",
             " ",
@@ -265,15 +314,58 @@ mod tests {
             "0 0 0.1",
         ] {
             let want: Option<Vec<f64>> = s.split_ascii_whitespace().map(slow).collect();
-            let got = parse_array(s, plain_float, slow).map(|a| a.to_vec());
+            let got = parse_array::<f64>(s).map(|a| a.to_vec());
             assert_eq!(
                 got.map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()),
                 want.map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()),
                 "{s:?}"
             );
         }
+        let slow_int = |s: &str| {
+            let t = s.trim();
+            t.parse::<i64>().ok().or_else(|| crate::value::number::float_to_int(slow(t)?))
+        };
+        // Random arrays of plain and other parts, with every kind of separator.
+        let mut rng = Rng(777);
+        let parts = [
+            "0",
+            "-0",
+            "1",
+            "-1.5",
+            ".5",
+            "5.",
+            "1e2",
+            "+3",
+            "x",
+            "1.2.3",
+            "-",
+            "007",
+            "12345678901234567890",
+            "0.1234567890123456789",
+            "2.0",
+            "nan",
+            "\u{A0}1",
+        ];
+        let seps = [" ", "  ", "\t", "\n", "\r\n", "\x0C", "\u{A0}"];
+        for _ in 0..20_000 {
+            let mut s = String::new();
+            for _ in 0..rng.below(6) {
+                s.push_str(seps[rng.below(seps.len() as u64) as usize]);
+                s.push_str(parts[rng.below(parts.len() as u64) as usize]);
+            }
+            if rng.below(2) == 0 {
+                s.push(' ');
+            }
+            let want: Option<Vec<u64>> =
+                s.split_ascii_whitespace().map(|p| slow(p).map(f64::to_bits)).collect();
+            let got = parse_array::<f64>(&s).map(|a| a.iter().map(|x| x.to_bits()).collect());
+            assert_eq!(got, want, "{s:?}");
+            let want: Option<Vec<i64>> = s.split_ascii_whitespace().map(slow_int).collect();
+            let got = parse_array::<i64>(&s).map(|a| a.to_vec());
+            assert_eq!(got, want, "{s:?}");
+        }
         let long: String = (0..40).map(|i| format!("{i}.5 ")).collect();
-        let got = parse_array(&long, plain_float, slow).expect("reads");
+        let got = parse_array::<f64>(&long).expect("reads");
         assert_eq!(got.len(), 40);
         assert_eq!(got[39], 39.5);
     }
