@@ -292,11 +292,49 @@ struct Pending {
     id: ElementId,
     /// In their final form (sorted, one allocation), as the node will hold them.
     attrs: Arc<[Attr]>,
-    children: Vec<usize>,
+    /// The children, in document order, as a list through the arena (no allocation
+    /// per element): the first and last child, and the next sibling (or [`NONE`]).
+    first_child: usize,
+    last_child: usize,
+    next_sibling: usize,
     /// The singleton and on-demand children read so far (few), found without
-    /// scanning `children`, which may be long.
+    /// scanning the children, which may be many.
     unique: Vec<(ElementKind, usize)>,
     offset: usize,
+}
+
+/// No arena entry (the end of a children list).
+const NONE: usize = usize::MAX;
+
+impl Pending {
+    fn new(kind: ElementKind, attrs: Arc<[Attr]>, offset: usize) -> Pending {
+        Pending {
+            kind,
+            id: ElementId::fresh(),
+            attrs,
+            first_child: NONE,
+            last_child: NONE,
+            next_sibling: NONE,
+            unique: Vec::new(),
+            offset,
+        }
+    }
+}
+
+/// Appends the entry `c` to the children of `parent`.
+fn push_child(arena: &mut [Pending], parent: usize, c: usize) {
+    arena[c].next_sibling = NONE;
+    match arena[parent].last_child {
+        NONE => arena[parent].first_child = c,
+        last => arena[last].next_sibling = c,
+    }
+    arena[parent].last_child = c;
+}
+
+/// The children of the entry `i`, in document order.
+fn children_of(arena: &[Pending], i: usize) -> impl Iterator<Item = usize> + '_ {
+    let first = Some(arena[i].first_child).filter(|&c| c != NONE);
+    std::iter::successors(first, move |&c| Some(arena[c].next_sibling).filter(|&n| n != NONE))
 }
 
 struct Reader<'t> {
@@ -482,14 +520,7 @@ fn parse(
                     model_name = Some(SmolStr::from(v.as_ref()));
                 }
             }
-            r.arena.push(Pending {
-                kind: root_kind,
-                id: ElementId::fresh(),
-                attrs: no_attrs(),
-                children: Vec::new(),
-                unique: Vec::new(),
-                offset,
-            });
+            r.arena.push(Pending::new(root_kind, no_attrs(), offset));
             if !empty {
                 stack.push(0);
             }
@@ -573,15 +604,8 @@ fn parse(
                 r.scratch = attrs;
                 let attrs = stored;
                 let i = r.arena.len();
-                r.arena.push(Pending {
-                    kind,
-                    id: ElementId::fresh(),
-                    attrs,
-                    children: Vec::new(),
-                    unique: Vec::new(),
-                    offset,
-                });
-                r.arena[parent].children.push(i);
+                r.arena.push(Pending::new(kind, attrs, offset));
+                push_child(&mut r.arena, parent, i);
                 if m != Multiplicity::Repeated {
                     r.arena[parent].unique.push((kind, i));
                 }
@@ -742,16 +766,24 @@ fn inline_include(
     }
     // Graft: the sub-arena's root is `parent`; its other entries follow ours.
     let base = r.arena.len() - 1;
-    let shift = |i: usize| if i == 0 { parent } else { i + base };
+    let shift = |i: usize| match i {
+        NONE => NONE,
+        0 => parent,
+        i => i + base,
+    };
+    let root_children: Vec<usize> = children_of(&sub.arena, 0).map(shift).collect();
     let mut entries = sub.arena.into_iter();
-    let Some(root) = entries.next() else { return Ok(()) };
+    if entries.next().is_none() {
+        return Ok(());
+    }
     for mut p in entries {
-        p.children.iter_mut().for_each(|c| *c = shift(*c));
+        p.first_child = shift(p.first_child);
+        p.last_child = shift(p.last_child);
+        p.next_sibling = shift(p.next_sibling);
         p.unique.iter_mut().for_each(|(_, c)| *c = shift(*c));
         r.arena.push(p);
     }
-    for c in root.children {
-        let c = shift(c);
+    for c in root_children {
         let kind = r.arena[c].kind;
         if kind.multiplicity() != Multiplicity::Repeated {
             if r.arena[parent].unique.iter().any(|(k, _)| *k == kind) {
@@ -759,7 +791,7 @@ fn inline_include(
             }
             r.arena[parent].unique.push((kind, c));
         }
-        r.arena[parent].children.push(c);
+        push_child(&mut r.arena, parent, c);
     }
     Ok(())
 }
@@ -818,12 +850,11 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     // Bottom-up: children always have larger arena indices than their parent.
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
-    let r_offsets: Vec<usize> = r.arena.iter().map(|p| p.offset).collect();
     // One buffer for every element's children.
     let mut children: Vec<Node> = Vec::new();
     let empty = no_attrs();
     for i in (0..r.arena.len()).rev() {
-        let p = &mut r.arena[i];
+        let p = &r.arena[i];
         children.clear();
         let spec = p.kind.spec();
         if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
@@ -832,7 +863,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             for k in spec.children {
                 if k.multiplicity() == Multiplicity::Singleton {
                     let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
-                    match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
+                    match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
                         Some((n, offset)) => singles.push((n, Some(offset))),
                         None => singles.push((empty_node(*k), None)),
                     }
@@ -843,7 +874,12 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             }
             children.extend(singles.into_iter().map(|(n, _)| n));
         }
-        children.extend(p.children.iter().filter_map(|c| built[*c].take()));
+        let mut c = p.first_child;
+        while c != NONE {
+            children.extend(built[c].take());
+            c = r.arena[c].next_sibling;
+        }
+        let p = &mut r.arena[i];
         let children: Seq<Node> = children.drain(..).collect();
         built[i] = Some(Node::from_sorted(
             p.id,
@@ -880,12 +916,13 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
             })
     };
     // A class `/` beside other classes, at any level (under a named root class too).
-    let composed = arena.iter().any(|p| {
+    let composed = arena.iter().enumerate().any(|(i, p)| {
         p.kind.tag() == "default"
-            && p.children.iter().any(|&c| is_slash(&arena[c]))
-            && p.children.iter().filter(|&&c| arena[c].kind.tag() == "default").count() > 1
+            && children_of(arena, i).any(|c| is_slash(&arena[c]))
+            && children_of(arena, i).filter(|&c| arena[c].kind.tag() == "default").count() > 1
     });
-    let [only] = arena[d].children[..] else { return composed };
+    let kids: Vec<usize> = children_of(arena, d).collect();
+    let [only] = kids[..] else { return composed };
     if !arena[d].attrs.is_empty() || !is_slash(&arena[only]) {
         return composed;
     }
@@ -893,7 +930,12 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
     let mut attrs = std::mem::take(&mut arena[only].attrs).to_vec();
     attrs.retain(|(k, _)| Some(*k as usize) != ident);
     arena[d].attrs = rekind(arena[only].kind, root_default, attrs).into();
-    let children = std::mem::take(&mut arena[only].children);
+    // The class's children become the root class's (its one child, `only`, goes).
+    let children: Vec<usize> = children_of(arena, only).collect();
+    arena[d].first_child = arena[only].first_child;
+    arena[d].last_child = arena[only].last_child;
+    arena[only].first_child = NONE;
+    arena[only].last_child = NONE;
     arena[only].unique.clear();
     // The moved children are now children of the root class, whose child kinds are
     // other schema positions (with the same tags and attribute names).
@@ -910,7 +952,6 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
         .filter(|&&c| arena[c].kind.multiplicity() != Multiplicity::Repeated)
         .map(|&c| (arena[c].kind, c))
         .collect();
-    arena[d].children = children;
     composed
 }
 
