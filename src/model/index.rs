@@ -137,10 +137,15 @@ impl Index {
     /// `root` (the reader collected them, in document order, finding duplicates at
     /// their second occurrence); the elements are added here. A read model has no
     /// attachments, so every name is registered.
-    pub(crate) fn from_read(root: &Node, names: HashMap<(Namespace, SmolStr), ElementId>) -> Index {
+    pub(crate) fn from_read(
+        root: &Node,
+        names: HashMap<(Namespace, SmolStr), ElementId>,
+        elements: usize,
+    ) -> Index {
         // Collected, then built in one pass (in document order the ids mostly
-        // increase: the reader hands them out in that order).
-        let mut entries: Vec<(ElementId, Entry)> = Vec::new();
+        // increase: the reader hands them out in that order). `elements` is the
+        // reader's count, a hint for the list's size.
+        let mut entries: Vec<(ElementId, Entry)> = Vec::with_capacity(elements);
         let mut stack: Vec<(Option<ElementId>, &Node, usize)> = vec![(None, root, 0)];
         while let Some((parent, n, pos)) = stack.pop() {
             let name = n.identifier().map(SmolStr::from);

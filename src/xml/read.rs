@@ -889,7 +889,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         ));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
-    let index = Index::from_read(&root, names);
+    let index = Index::from_read(&root, names, r.arena.len());
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
