@@ -889,7 +889,11 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         ));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
-    let index = Index::from_read(&root, names, r.arena.len());
+    // The arena is spent: freed before the index is built, which can reuse its memory.
+    let elements = r.arena.len();
+    drop(std::mem::take(&mut r.arena));
+    drop(built);
+    let index = Index::from_read(&root, names, elements);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
