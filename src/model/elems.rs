@@ -36,16 +36,36 @@ pub(crate) struct ElemMap {
 
 impl ElemMap {
     /// The map of `entries` (distinct keys), in any order. O(n) for entries in
-    /// increasing order (or nearly: a read model's come in document order, where
-    /// only the empty singletons made at the end have larger ids), O(n log n)
-    /// otherwise.
+    /// increasing order, in a few increasing runs, or with ids from a range at most
+    /// about twice their number (a model read: its ids were handed out together);
+    /// O(n log n) otherwise.
     pub(crate) fn from_entries(mut entries: Vec<(ElementId, Entry)>) -> ElemMap {
-        if !entries.windows(2).all(|w| w[0].0 < w[1].0) {
-            // A stable sort finds the runs (a read model's entries are two or three)
-            // and merges them, where an unstable one sorts afresh.
-            entries.sort_by_key(|(k, _)| *k);
-            // Of equal keys (callers give none) one is kept, so the tree stays sound.
-            entries.dedup_by_key(|(k, _)| *k);
+        // Where the order breaks: a few runs (a read model's empty singletons under
+        // the root) are merged by the stable sort, many are placed by id.
+        let breaks = entries.windows(2).filter(|w| w[0].0 >= w[1].0).count();
+        if breaks > 0 {
+            let (lo, hi) = match breaks > 16 {
+                true => entries
+                    .iter()
+                    .fold((u64::MAX, 0), |(lo, hi), (k, _)| (lo.min(k.get()), hi.max(k.get()))),
+                false => (0, u64::MAX),
+            };
+            let span = usize::try_from(hi - lo).unwrap_or(usize::MAX);
+            if span < entries.len().saturating_mul(2).saturating_add(1024) {
+                // Dense ids (a read model's: in document order they are not sorted,
+                // its empty singletons being made last): each put in its place.
+                let mut slots: Vec<Option<(ElementId, Entry)>> = Vec::new();
+                slots.resize_with(span + 1, || None);
+                for e in entries.drain(..) {
+                    let k = (e.0.get() - lo) as usize;
+                    slots[k] = Some(e);
+                }
+                entries.extend(slots.into_iter().flatten());
+            } else {
+                entries.sort_by_key(|(k, _)| *k);
+                // Of equal keys (callers give none) one is kept: the tree stays sound.
+                entries.dedup_by_key(|(k, _)| *k);
+            }
         }
         let len = entries.len();
         let mut level: Vec<(ElementId, Arc<Node>)> = Vec::with_capacity(len.div_ceil(MAX));
@@ -278,6 +298,18 @@ mod tests {
             model.insert(1, 99);
             same(&m, &model);
         }
+    }
+
+    #[test]
+    fn built_from_sparse_entries_in_any_order() {
+        // Keys spread over a range far larger than their number: sorted, not placed.
+        let keys: Vec<u64> = (0..40).map(|k| (k * 211) % 9973).collect();
+        let mut entries: Vec<(ElementId, Entry)> =
+            keys.iter().map(|&k| (id(k), entry(k))).collect();
+        entries.reverse();
+        let m = ElemMap::from_entries(entries);
+        let model: BTreeMap<u64, u64> = keys.iter().map(|&k| (k, k)).collect();
+        same(&m, &model);
     }
 
     #[test]
