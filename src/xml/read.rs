@@ -853,6 +853,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // One buffer for every element's children.
     let mut children: Vec<Node> = Vec::new();
     let empty = no_attrs();
+    // The nodes made here (empty singletons), for the size of the index's list.
+    let mut made = 0;
     for i in (0..r.arena.len()).rev() {
         let p = &r.arena[i];
         children.clear();
@@ -865,7 +867,11 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                     let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
                     match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
                         Some((n, offset)) => singles.push((n, Some(offset))),
-                        None => singles.push((empty_node(*k), None)),
+                        None => {
+                            let empty = empty_node(*k);
+                            made += empty_size(*k);
+                            singles.push((empty, None));
+                        }
                     }
                 }
             }
@@ -890,11 +896,19 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
     // The arena is spent: freed before the index is built, which can reuse its memory.
-    let elements = r.arena.len();
+    let elements = r.arena.len() + made;
     drop(std::mem::take(&mut r.arena));
     drop(built);
     let index = Index::from_read(&root, names, elements);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
+}
+
+/// The number of nodes of an empty singleton of kind `k` (its own empty singletons
+/// included, as `empty_node` makes them), from the schema: singletons do not nest
+/// deeper than a few levels, so the recursion is shallow.
+fn empty_size(k: ElementKind) -> usize {
+    let singles = k.spec().children.iter().filter(|c| c.multiplicity() == Multiplicity::Singleton);
+    1 + singles.map(|c| empty_size(*c)).sum::<usize>()
 }
 
 /// `<default><default class="/">…</default></default>`, the shape this crate and
