@@ -25,7 +25,8 @@
 //!   recursive elements list themselves as a child, and an element may be the child
 //!   of several (`<frame>` is a child of the worldbody, of bodies, of frames and of
 //!   `<replicate>`);
-//! - per element, its attributes (schema order) and a name-sorted index into them.
+//! - per element, its attributes (schema order) and a perfect hash table of their names
+//!   (a seed and a table of attribute indices, see `perfect_table`).
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -260,6 +261,7 @@ fn main() {
     .unwrap();
 
     // Per-element attribute tables.
+    let mut seeds: Vec<u32> = Vec::with_capacity(elems.len());
     for (i, e) in elems.iter().enumerate() {
         writeln!(out, "static ATTRS_{i}: [AttrSpec; {}] = [", e.attrs.len()).unwrap();
         for a in &e.attrs {
@@ -344,11 +346,10 @@ fn main() {
             .unwrap();
         }
         writeln!(out, "];").unwrap();
-        let mut by_name: Vec<usize> = (0..e.attrs.len()).collect();
-        by_name.sort_by(|x, y| e.attrs[*x].name.cmp(&e.attrs[*y].name));
-        by_name.dedup_by(|x, y| e.attrs[*x].name == e.attrs[*y].name);
-        writeln!(out, "static ATTRS_BY_NAME_{i}: [u16; {}] = {:?};", by_name.len(), by_name)
-            .unwrap();
+        let names: Vec<&str> = e.attrs.iter().map(|a| a.name.as_str()).collect();
+        let (seed, table) = perfect_table(&names);
+        seeds.push(seed);
+        writeln!(out, "static ATTRS_BY_HASH_{i}: [u16; {}] = {:?};", table.len(), table).unwrap();
     }
 
     writeln!(out, "\npub(crate) static ELEMENTS: [ElementSpec; {}] = [", elems.len()).unwrap();
@@ -376,8 +377,9 @@ fn main() {
             e.children.iter().map(|c| format!("ElementKind({c})")).collect();
         writeln!(
             out,
-            "    ElementSpec {{ tag: {:?}, multiplicity: {multiplicity}, namespace: {ns}, identifier: {ident}, parent: {parent}, attrs: &ATTRS_{i}, attrs_by_name: &ATTRS_BY_NAME_{i}, children: &[{}] }},",
+            "    ElementSpec {{ tag: {:?}, multiplicity: {multiplicity}, namespace: {ns}, identifier: {ident}, parent: {parent}, attrs: &ATTRS_{i}, attr_seed: {}, attrs_by_hash: &ATTRS_BY_HASH_{i}, children: &[{}] }},",
             e.name,
+            seeds[i],
             children.join(", ")
         )
         .unwrap();
@@ -386,6 +388,45 @@ fn main() {
 
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("schema_tables.rs");
     std::fs::write(dest, out).expect("write schema tables");
+}
+
+/// The hash of an attribute name that `src/schema.rs` (`attr_hash`) computes: both
+/// must stay the same function.
+fn attr_hash(name: &[u8], seed: u32) -> u32 {
+    let mut h = seed ^ (name.len() as u32).wrapping_mul(0x9E37_79B9);
+    for &b in name {
+        h = (h ^ u32::from(b)).wrapping_mul(0x0100_0193);
+    }
+    h ^ (h >> 15)
+}
+
+/// A collision-free table of attribute names (a perfect hash): the seed and the table,
+/// whose slot `attr_hash(name, seed) & (len - 1)` holds the attribute's index (the
+/// first attribute of that name) or `u16::MAX`. The smallest power-of-two size for
+/// which some seed below 4,000 works.
+fn perfect_table(names: &[&str]) -> (u32, Vec<u16>) {
+    let mut unique: Vec<(usize, &str)> = Vec::new();
+    for (i, n) in names.iter().enumerate() {
+        if !unique.iter().any(|(_, u)| u == n) {
+            unique.push((i, n));
+        }
+    }
+    let mut size = unique.len().max(1).next_power_of_two();
+    loop {
+        for seed in 0..4000u32 {
+            let mut table = vec![u16::MAX; size];
+            let fits = unique.iter().all(|&(i, n)| {
+                let slot = attr_hash(n.as_bytes(), seed) as usize & (size - 1);
+                let free = table[slot] == u16::MAX;
+                table[slot] = i as u16;
+                free
+            });
+            if fits {
+                return (seed, table);
+            }
+        }
+        size *= 2;
+    }
 }
 
 fn path_ns(p: Option<&str>) -> &'static str {

@@ -586,7 +586,12 @@ impl<T: Clone + Keyed> FromIterator<T> for Seq<T> {
             let ords = (len..len + items.len()).map(fresh_ord).collect();
             let n = items.len();
             len += n;
-            level.push((Tree::Leaf(Arc::new(Leaf { ords, items })), n));
+            let leaf = Tree::Leaf(Arc::new(Leaf { ords, items }));
+            if level.is_empty() && iter.peek().is_none() {
+                // One leaf (most children lists): no list of subtrees to build.
+                return Seq { root: Some(leaf), len };
+            }
+            level.push((leaf, n));
         }
         while level.len() > 1 {
             let mut up = Vec::with_capacity(level.len().div_ceil(FANOUT));

@@ -301,8 +301,19 @@ impl ValueCtx<'_> {
         let name = if name == "dclass" { "class" } else { name };
         let index =
             kind.attr_index(name).ok_or_else(|| ErrorKind::unknown_attribute(kind, name))?;
+        self.assign_at(kind, index, input).map(|v| (index, v))
+    }
+
+    /// [`ValueCtx::assign`] to the attribute at `index` of `kind` (the reader finds the
+    /// index itself, once).
+    pub(crate) fn assign_at(
+        &self,
+        kind: ElementKind,
+        index: usize,
+        input: Option<Input<'_>>,
+    ) -> Result<Option<Value>, ErrorKind> {
         let spec = kind.attr(index);
-        let Some(input) = input else { return Ok((index, None)) };
+        let Some(input) = input else { return Ok(None) };
         let invalid = |error: ValueError| ErrorKind::InvalidValue {
             tag: kind.tag(),
             attribute: spec.name,
@@ -324,7 +335,7 @@ impl ValueCtx<'_> {
                         | AttrType::File { .. }
                 );
             if clears {
-                return Ok((index, None));
+                return Ok(None);
             }
             if let AttrType::File { path_namespace } = spec.ty {
                 let base = self.basepaths.for_namespace(path_namespace);
@@ -344,14 +355,14 @@ impl ValueCtx<'_> {
                 {
                     return Err(invalid(ValueError::MeshExtension));
                 }
-                return Ok((index, Some(Value::File(asset))));
+                return Ok(Some(Value::File(asset)));
             }
         }
         let value = match input {
             Input::Text(t) => value::parse_text(spec, kind.namespace(), t).map(Some),
             Input::Given(i) => value::from_input(spec, kind.namespace(), i),
         };
-        Ok((index, value.map_err(invalid)?))
+        value.map_err(invalid)
     }
 }
 

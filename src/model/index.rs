@@ -1,13 +1,14 @@
 //! The identifier index of one model: a persistent map kept exact by every edit.
 //!
-//! Two maps, both `imbl` (so a model clone shares them, and an edit copies
+//! Two persistent maps (so a model clone shares them, and an edit copies
 //! O(log n) of them):
 //! - `names`: (namespace, identifier) → element, for `find` and duplicate checks;
 //! - `elems`: element → (parent, kind, identifier), for locating an element by its id
-//!   and for writing references to it. A B-tree (`OrdMap`): ids are handed out in
-//!   increasing order, so a model read or built in order fills its nodes, where a
-//!   hash trie holding every element left most slots of its 32-slot nodes empty
-//!   (about twice the memory, and as many cache misses, for large models).
+//!   and for writing references to it. A B-tree (`ElemMap`, `super::elems`): ids are
+//!   handed out in increasing order, so a model read or built in order fills its
+//!   nodes (a read model's is built in one pass), where a hash trie holding every
+//!   element left most slots of its 32-slot nodes empty (about twice the memory, and
+//!   as many cache misses, for large models).
 //! - `runs`: the singleton children an element is created with (a default class's 21
 //!   `geom`, `joint`, `position`, ...; `visual`'s `global`, `quality`, ...), which
 //!   have consecutive ids, kinds without identifiers and their schema places, indexed
@@ -25,6 +26,7 @@ use std::sync::{Arc, OnceLock};
 use imbl::{HashMap, OrdMap};
 use smol_str::SmolStr;
 
+use super::elems::ElemMap;
 use super::tree::{ElementId, Node};
 use crate::schema::{ElementKind, Multiplicity, Namespace};
 use crate::seq::fresh_ord;
@@ -48,7 +50,7 @@ pub(crate) struct Entry {
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
     /// Read through [`Index::entry`], which also knows the members of `runs`.
-    pub(crate) elems: OrdMap<ElementId, Entry>,
+    pub(crate) elems: ElemMap,
     /// Runs of singleton children without an entry of their own (module docs): the
     /// first child's id → (the parent, the run's length).
     pub(crate) runs: OrdMap<ElementId, (ElementId, u8)>,
@@ -211,6 +213,44 @@ impl Index {
         self.elems.len() + self.runs.values().map(|(_, n)| usize::from(*n)).sum::<usize>()
     }
 
+    /// The index of a model just read: `names` holds every identifier of the tree
+    /// `root` (the reader collected them, in document order, finding duplicates at
+    /// their second occurrence); the elements are added here. A read model has no
+    /// attachments, so every name is registered.
+    pub(crate) fn from_read(
+        root: &Node,
+        names: HashMap<(Namespace, SmolStr), ElementId>,
+        elements: usize,
+    ) -> Index {
+        // Collected, then built in one pass (in document order the ids mostly
+        // increase: the reader hands them out in that order). `elements` is the
+        // reader's count, a hint for the list's size.
+        // Runs of singletons (module docs) as in `insert_subtree_at`.
+        let mut entries: Vec<(ElementId, Entry)> = Vec::with_capacity(elements);
+        let mut runs = OrdMap::new();
+        let mut stack: Vec<(Option<ElementId>, &Node, usize, bool)> = vec![(None, root, 0, false)];
+        while let Some((parent, n, pos, in_run)) = stack.pop() {
+            if !in_run {
+                let name = n.identifier().map(SmolStr::from);
+                let entry = Entry { parent, kind: n.kind(), name, pos, ord: fresh_ord(pos) };
+                entries.push((n.id(), entry));
+            }
+            let run = singleton_run(n);
+            if let (Some(first), true) = (n.children().get(0), run > 0) {
+                runs.insert(first.id(), (n.id(), run as u8));
+            }
+            stack.extend(
+                n.children()
+                    .iter()
+                    .enumerate()
+                    .rev()
+                    .filter(|(i, c)| *i >= run || !c.children().is_empty())
+                    .map(|(i, c)| (Some(n.id()), c, i, i < run)),
+            );
+        }
+        Index { names, elems: ElemMap::from_entries(entries), runs, ..Index::default() }
+    }
+
     fn insert_one(
         &mut self,
         parent: Option<ElementId>,
@@ -221,11 +261,13 @@ impl Index {
     ) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
+            // One hash of the name: insert, and put the earlier element back if the
+            // name was taken.
             let key = (ns, name.clone());
-            if self.names.contains_key(&key) {
+            if let Some(earlier) = self.names.insert(key.clone(), n.id()) {
+                self.names.insert(key, earlier);
                 return Err(Duplicate { id: n.id(), namespace: ns, name: name.clone() });
             }
-            self.names.insert(key, n.id());
         }
         self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos, ord });
         Ok(())

@@ -9,6 +9,7 @@ pub(crate) mod check;
 mod cursor;
 pub(crate) mod diff;
 mod edit;
+mod elems;
 mod eq;
 pub(crate) mod frame;
 mod index;
@@ -37,6 +38,7 @@ pub(crate) use build::{
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
+pub(crate) use elems::ElemMap;
 pub(crate) use index::{Entry, Index, MergedCache};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};

@@ -35,10 +35,24 @@ impl crate::seq::Keyed for Node {
 /// default class, and every empty singleton, have none).
 fn shared_attrs(attrs: Vec<Attr>) -> Arc<[Attr]> {
     if attrs.is_empty() {
-        static EMPTY: std::sync::OnceLock<Arc<[Attr]>> = std::sync::OnceLock::new();
-        return EMPTY.get_or_init(|| Arc::from(Vec::new())).clone();
+        return no_attrs();
     }
     attrs.into()
+}
+
+/// The one shared empty attribute list.
+pub(crate) fn no_attrs() -> Arc<[Attr]> {
+    static EMPTY: std::sync::OnceLock<Arc<[Attr]>> = std::sync::OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from(Vec::new())).clone()
+}
+
+/// The attributes of `buf` (sorted by index) moved into their stored form, in one
+/// allocation of their final size; `buf` is left empty, with its capacity, for reuse.
+pub(crate) fn take_attrs(buf: &mut Vec<Attr>) -> Arc<[Attr]> {
+    if buf.is_empty() {
+        return no_attrs();
+    }
+    buf.drain(..).collect()
 }
 
 /// An immutable element node.
@@ -74,6 +88,18 @@ impl Node {
         let mut attrs = attrs;
         attrs.sort_by_key(|(i, _)| *i);
         Node(Arc::new(NodeData { id, kind, attrs: shared_attrs(attrs), children, attached: None }))
+    }
+
+    /// A node whose attributes are already stored (sorted by index, no duplicates):
+    /// the reader builds them in their final form.
+    pub(crate) fn from_sorted(
+        id: ElementId,
+        kind: ElementKind,
+        attrs: Arc<[Attr]>,
+        children: Seq<Node>,
+    ) -> Node {
+        debug_assert!(attrs.windows(2).all(|w| w[0].0 < w[1].0));
+        Node(Arc::new(NodeData { id, kind, attrs, children, attached: None }))
     }
 
     /// An attachment frame.

@@ -5,6 +5,7 @@
 
 mod file;
 pub(crate) mod number;
+mod scan;
 
 use std::fmt;
 use std::sync::Arc;
@@ -188,14 +189,13 @@ pub(crate) fn parse_text(
             .map(|v| Value::Keyword(v))
             .ok_or(ValueError::NotKeyword { valid }),
         AttrType::Array { elem, max_len } => {
-            let parts = text.split_ascii_whitespace();
             let value = match elem {
-                ArrayType::Float => Value::Floats(
-                    parse_array(parts, number::parse_float).ok_or(ValueError::NotFloatArray)?,
-                ),
-                ArrayType::Int => Value::Ints(
-                    parse_array(parts, number::parse_int).ok_or(ValueError::NotIntArray)?,
-                ),
+                ArrayType::Float => {
+                    Value::Floats(scan::parse_array(text).ok_or(ValueError::NotFloatArray)?)
+                }
+                ArrayType::Int => {
+                    Value::Ints(scan::parse_array(text).ok_or(ValueError::NotIntArray)?)
+                }
             };
             check_len(&value, max_len)?;
             Ok(value)
@@ -205,30 +205,6 @@ pub(crate) fn parse_text(
         AttrType::Basepath { .. } => Ok(Value::Basepath(text.into())),
         AttrType::File { .. } => Err(ValueError::FileNeedsLoading),
     }
-}
-
-/// Parses each part; the numbers go straight into their one shared allocation (the
-/// first 16 through a buffer on the stack, as arrays are short).
-fn parse_array<'t, T: Copy + Default>(
-    parts: impl Iterator<Item = &'t str>,
-    parse: impl Fn(&str) -> Option<T>,
-) -> Option<Arc<[T]>> {
-    let mut buf = [T::default(); 16];
-    let mut n = 0;
-    let mut more: Vec<T> = Vec::new();
-    for p in parts {
-        let x = parse(p)?;
-        if n < buf.len() {
-            buf[n] = x;
-            n += 1;
-        } else {
-            if more.is_empty() {
-                more.extend_from_slice(&buf);
-            }
-            more.push(x);
-        }
-    }
-    Some(if more.is_empty() { Arc::from(&buf[..n]) } else { more.into() })
 }
 
 fn check_len(value: &Value, max_len: Option<u32>) -> Result<(), ValueError> {
@@ -250,6 +226,11 @@ pub(crate) fn is_xml_char(c: char) -> bool {
 
 /// Refuses text that XML cannot hold, so that every value can be written and read back.
 fn check_xml_text(text: &str) -> Result<(), ValueError> {
+    // ASCII text (names, mostly) is checked by byte: only control characters other
+    // than tab, newline and carriage return are refused.
+    if text.bytes().all(|b| (0x20..0x80).contains(&b) || matches!(b, b'\t' | b'\n' | b'\r')) {
+        return Ok(());
+    }
     match text.chars().find(|c| !is_xml_char(*c)) {
         Some(c) => Err(ValueError::InvalidCharacter(c)),
         None => Ok(()),

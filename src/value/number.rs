@@ -29,6 +29,9 @@ impl Default for FloatStyle {
 
 /// Parses a float the way Python's `float()` does for the inputs MJCF uses.
 pub(crate) fn parse_float(text: &str) -> Option<f64> {
+    if let Some(x) = super::scan::plain_float(text.as_bytes()) {
+        return Some(x);
+    }
     let t = text.trim();
     if t.is_empty() {
         return None;
@@ -40,6 +43,9 @@ pub(crate) fn parse_float(text: &str) -> Option<f64> {
 
 /// Parses an integer as `int(float(text))`, rejecting non-integral values.
 pub(crate) fn parse_int(text: &str) -> Option<i64> {
+    if let Some(v) = super::scan::plain_int(text.as_bytes()) {
+        return Some(v);
+    }
     let t = text.trim();
     if let Ok(v) = t.parse::<i64>() {
         return Some(v);

@@ -29,7 +29,7 @@ use smol_str::SmolStr;
 
 use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
-use crate::model::tree::{Attr, ElementId, Node};
+use crate::model::tree::{Attr, ElementId, Node, no_attrs, take_attrs};
 use crate::model::{
     Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
     empty_node_with_id, name_from_file,
@@ -290,12 +290,51 @@ fn utf8<'b>(bytes: &'b [u8], file: Option<&Path>) -> Result<&'b str, ReadError> 
 struct Pending {
     kind: ElementKind,
     id: ElementId,
-    attrs: Vec<Attr>,
-    children: Vec<usize>,
+    /// In their final form (sorted, one allocation), as the node will hold them.
+    attrs: Arc<[Attr]>,
+    /// The children, in document order, as a list through the arena (no allocation
+    /// per element): the first and last child, and the next sibling (or [`NONE`]).
+    first_child: usize,
+    last_child: usize,
+    next_sibling: usize,
     /// The singleton and on-demand children read so far (few), found without
-    /// scanning `children`, which may be long.
+    /// scanning the children, which may be many.
     unique: Vec<(ElementKind, usize)>,
     offset: usize,
+}
+
+/// No arena entry (the end of a children list).
+const NONE: usize = usize::MAX;
+
+impl Pending {
+    fn new(kind: ElementKind, attrs: Arc<[Attr]>, offset: usize) -> Pending {
+        Pending {
+            kind,
+            id: ElementId::fresh(),
+            attrs,
+            first_child: NONE,
+            last_child: NONE,
+            next_sibling: NONE,
+            unique: Vec::new(),
+            offset,
+        }
+    }
+}
+
+/// Appends the entry `c` to the children of `parent`.
+fn push_child(arena: &mut [Pending], parent: usize, c: usize) {
+    arena[c].next_sibling = NONE;
+    match arena[parent].last_child {
+        NONE => arena[parent].first_child = c,
+        last => arena[last].next_sibling = c,
+    }
+    arena[parent].last_child = c;
+}
+
+/// The children of the entry `i`, in document order.
+fn children_of(arena: &[Pending], i: usize) -> impl Iterator<Item = usize> + '_ {
+    let first = Some(arena[i].first_child).filter(|&c| c != NONE);
+    std::iter::successors(first, move |&c| Some(arena[c].next_sibling).filter(|&n| n != NONE))
 }
 
 struct Reader<'t> {
@@ -309,6 +348,9 @@ struct Reader<'t> {
     /// element kind and attribute index: an `<include>` that sets it too is merged
     /// as MuJoCo reads includes, the later one in the document winning.
     settings_set_at: HashMap<(ElementKind, u16), usize>,
+    /// The attributes of the tag being read: one buffer for all, so that each
+    /// element allocates its attributes once, at their final size.
+    scratch: Vec<Attr>,
 }
 
 impl Reader<'_> {
@@ -316,7 +358,7 @@ impl Reader<'_> {
         ReadError::new(kind, self.file.clone(), Some(TextPos::of_offset(self.text, offset)))
     }
 
-    /// Reads the attributes of a tag into `attrs` (later values win).
+    /// Reads the attributes of a tag into `attrs` (later values win), sorted by index.
     fn read_attrs(
         &mut self,
         kind: ElementKind,
@@ -324,22 +366,47 @@ impl Reader<'_> {
         attrs: &mut Vec<Attr>,
         offset: usize,
     ) -> Result<(), ReadError> {
-        for a in tag.attributes() {
-            let a = a.map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
-            let name = a.key.as_ref();
+        let settings = in_settings(kind);
+        // Duplicate names are found by attribute index here (a bit per index below
+        // 256), not by quick-xml's check, which compares every name with every earlier
+        // one and allocates a list of them per tag. Two names with one index are
+        // `class` and `dclass`, or a duplicate: for those (and any syntax error) the
+        // tag's attributes are iterated again with quick-xml's checks, which report the
+        // error exactly as they always did (or none, for `class` and `dclass`).
+        let mut seen = [0u64; 4];
+        let mut attributes = tag.attributes();
+        attributes.with_checks(false);
+        for (n, a) in attributes.enumerate() {
+            let Ok(a) = a else { return Err(self.checked_attrs_error(tag, n + 1, offset)) };
+            let name: &str = a.key.as_ref();
+            let name = if name == "dclass" { "class" } else { name };
+            let found = kind.attr_index(name);
+            if let Some(index) = found {
+                let (word, bit) = (index / 64, 1u64 << (index % 64));
+                if seen.get(word).is_none_or(|w| w & bit != 0) {
+                    self.check_attrs(tag, n + 1, offset)?;
+                }
+                if let Some(w) = seen.get_mut(word) {
+                    *w |= bit;
+                }
+            }
             let raw = a
                 .normalized_value(quick_xml::XmlVersion::default())
                 .map_err(|e| self.err(ErrorKind::Syntax(e.to_string()), offset))?;
+            let Some(index) = found else {
+                return Err(self.err(ErrorKind::unknown_attribute(kind, name), offset));
+            };
             let ctx = ValueCtx { files: &self.ctx, basepaths: &self.basepaths };
-            let (index, value) =
-                ctx.assign(kind, name, Some(Input::Text(&raw))).map_err(|k| self.err(k, offset))?;
+            let value = ctx
+                .assign_at(kind, index, Some(Input::Text(&raw)))
+                .map_err(|k| self.err(k, offset))?;
             let spec = kind.attr(index);
             if let AttrType::Basepath { path_namespace } = spec.ty {
                 self.basepaths
                     .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
             let i = index as u16;
-            if in_settings(kind) {
+            if settings {
                 self.settings_set_at.insert((kind, i), offset);
             }
             let pos = attrs.iter().position(|(k, _)| *k == i);
@@ -352,8 +419,35 @@ impl Reader<'_> {
                 (None, None) => {}
             }
         }
-        attrs.sort_by_key(|(k, _)| *k);
+        // Indices are unique here: an unstable sort orders them alike, in place.
+        attrs.sort_unstable_by_key(|(k, _)| *k);
         Ok(())
+    }
+
+    /// The first error quick-xml's checked iteration of the tag's first `upto`
+    /// attributes finds (a syntax error or a duplicate name), as reading always
+    /// reported it.
+    fn check_attrs(
+        &self,
+        tag: &BytesStart<'_>,
+        upto: usize,
+        offset: usize,
+    ) -> Result<(), ReadError> {
+        match tag.attributes().take(upto).find_map(Result::err) {
+            Some(e) => Err(self.err(ErrorKind::Syntax(e.to_string()), offset)),
+            None => Ok(()),
+        }
+    }
+
+    /// The error of a tag whose unchecked attribute iteration failed at attribute
+    /// `upto - 1`: the checked one fails there too (with a duplicate name there, it
+    /// reports that first).
+    fn checked_attrs_error(&self, tag: &BytesStart<'_>, upto: usize, offset: usize) -> ReadError {
+        match self.check_attrs(tag, upto, offset) {
+            Err(e) => e,
+            // Cannot happen: both iterations parse alike.
+            Ok(()) => self.err(ErrorKind::Syntax("malformed attributes".into()), offset),
+        }
     }
 }
 
@@ -426,14 +520,7 @@ fn parse(
                     model_name = Some(SmolStr::from(v.as_ref()));
                 }
             }
-            r.arena.push(Pending {
-                kind: root_kind,
-                id: ElementId::fresh(),
-                attrs: Vec::new(),
-                children: Vec::new(),
-                unique: Vec::new(),
-                offset,
-            });
+            r.arena.push(Pending::new(root_kind, no_attrs(), offset));
             if !empty {
                 stack.push(0);
             }
@@ -492,9 +579,12 @@ fn parse(
         };
         let index = match (kind.multiplicity(), existing) {
             (Multiplicity::Singleton, Some(e)) => {
-                let mut attrs = std::mem::take(&mut r.arena[e].attrs);
+                let mut attrs = std::mem::take(&mut r.scratch);
+                attrs.clear();
+                attrs.extend(r.arena[e].attrs.iter().cloned());
                 let res = r.read_attrs(kind, &tag, &mut attrs, offset);
-                r.arena[e].attrs = attrs;
+                r.arena[e].attrs = take_attrs(&mut attrs);
+                r.scratch = attrs;
                 res?;
                 e
             }
@@ -502,23 +592,20 @@ fn parse(
                 return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
             }
             (m, _) => {
-                let mut attrs = Vec::new();
+                let mut attrs = std::mem::take(&mut r.scratch);
+                attrs.clear();
                 r.read_attrs(kind, &tag, &mut attrs, offset)?;
                 if m != Multiplicity::Singleton {
                     name_from_file(kind, &mut attrs);
                     check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
                     check_class_named(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
                 }
+                let stored = take_attrs(&mut attrs);
+                r.scratch = attrs;
+                let attrs = stored;
                 let i = r.arena.len();
-                r.arena.push(Pending {
-                    kind,
-                    id: ElementId::fresh(),
-                    attrs,
-                    children: Vec::new(),
-                    unique: Vec::new(),
-                    offset,
-                });
-                r.arena[parent].children.push(i);
+                r.arena.push(Pending::new(kind, attrs, offset));
+                push_child(&mut r.arena, parent, i);
                 if m != Multiplicity::Repeated {
                     r.arena[parent].unique.push((kind, i));
                 }
@@ -552,6 +639,7 @@ fn read_document(
         arena: Vec::new(),
         basepaths: Basepaths::default(),
         settings_set_at: HashMap::new(),
+        scratch: Vec::new(),
     };
     let Parsed { includes, model_name } =
         parse(&mut r, ElementKind::ROOT, max_depth, include_stack)?;
@@ -665,6 +753,7 @@ fn inline_include(
         arena: Vec::new(),
         basepaths: r.basepaths.clone(),
         settings_set_at: HashMap::new(),
+        scratch: Vec::new(),
     };
     include_stack.push(key);
     let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, include_stack);
@@ -677,16 +766,24 @@ fn inline_include(
     }
     // Graft: the sub-arena's root is `parent`; its other entries follow ours.
     let base = r.arena.len() - 1;
-    let shift = |i: usize| if i == 0 { parent } else { i + base };
+    let shift = |i: usize| match i {
+        NONE => NONE,
+        0 => parent,
+        i => i + base,
+    };
+    let root_children: Vec<usize> = children_of(&sub.arena, 0).map(shift).collect();
     let mut entries = sub.arena.into_iter();
-    let Some(root) = entries.next() else { return Ok(()) };
+    if entries.next().is_none() {
+        return Ok(());
+    }
     for mut p in entries {
-        p.children.iter_mut().for_each(|c| *c = shift(*c));
+        p.first_child = shift(p.first_child);
+        p.last_child = shift(p.last_child);
+        p.next_sibling = shift(p.next_sibling);
         p.unique.iter_mut().for_each(|(_, c)| *c = shift(*c));
         r.arena.push(p);
     }
-    for c in root.children {
-        let c = shift(c);
+    for c in root_children {
         let kind = r.arena[c].kind;
         if kind.multiplicity() != Multiplicity::Repeated {
             if r.arena[parent].unique.iter().any(|(k, _)| *k == kind) {
@@ -694,7 +791,7 @@ fn inline_include(
             }
             r.arena[parent].unique.push((kind, c));
         }
-        r.arena[parent].children.push(c);
+        push_child(&mut r.arena, parent, c);
     }
     Ok(())
 }
@@ -704,9 +801,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     if !hoist_root_class(&mut r.arena) {
         forget_auto_names(&mut r.arena);
     }
-    // Index names first (document order), so references can be resolved in the arena.
-    let mut names: HashMap<(crate::Namespace, SmolStr), ElementId> =
-        HashMap::with_capacity(r.arena.len());
+    // The index's names first (document order, so that a duplicate is reported at its
+    // second occurrence), so that references can be resolved in the arena.
+    let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
     for p in &r.arena {
         if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
             if let Some(Value::Identifier(n)) =
@@ -721,62 +818,100 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             }
         }
     }
-    if let Some(d) = r
+    // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name) both
+    // name the root class, unless a class has that name.
+    let root_class = r
         .arena
         .iter()
         .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
-    {
-        // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name)
-        // both name the root class, unless a class has that name.
-        names.entry((crate::Namespace::Default, SmolStr::from("/"))).or_insert(d.id);
-        names.entry((crate::Namespace::Default, SmolStr::from("main"))).or_insert(d.id);
-    }
+        .map(|d| d.id);
+    let lookup = |ns: crate::Namespace, n: &str| {
+        names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
+            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
+                .then_some(root_class)
+                .flatten()
+        })
+    };
     for p in &mut r.arena {
-        resolve_attrs(p.kind, &mut p.attrs, |ns, n| names.get(&(ns, SmolStr::from(n))).copied());
+        // Only lists with a named reference change (and are uniquely owned here).
+        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
+            resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
+        }
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
         let name =
             model_name.filter(|n| !n.is_empty()).unwrap_or_else(|| crate::model::UNNAMED.into());
-        r.arena[0].attrs.push((i as u16, Value::String(name)));
+        let mut attrs = r.arena[0].attrs.to_vec();
+        attrs.retain(|(k, _)| *k as usize != i);
+        attrs.push((i as u16, Value::String(name)));
+        attrs.sort_by_key(|(k, _)| *k);
+        r.arena[0].attrs = attrs.into();
     }
     // Bottom-up: children always have larger arena indices than their parent.
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
-    let r_offsets: Vec<usize> = r.arena.iter().map(|p| p.offset).collect();
+    // One buffer for every element's children.
+    let mut children: Vec<Node> = Vec::new();
+    let empty = no_attrs();
+    // The nodes made here (empty singletons), for the size of the index's list.
+    let mut made = 0;
     for i in (0..r.arena.len()).rev() {
-        let p = &mut r.arena[i];
-        // Singletons in schema order, each with where it was read (if it was).
-        // The ones not read take one block of ids, so that a class read without any
-        // is indexed as one run (`model::index`).
-        let kinds =
-            p.kind.spec().children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton);
-        let first = ElementId::fresh_block(kinds.clone().count());
-        let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
-        for (i, k) in kinds.enumerate() {
-            let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
-            match found.and_then(|c| Some((built[c].take()?, r_offsets[c]))) {
-                Some((n, offset)) => singles.push((n, Some(offset))),
-                None => singles.push((empty_node_with_id(first.nth(i), *k), None)),
+        let p = &r.arena[i];
+        children.clear();
+        let spec = p.kind.spec();
+        if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
+            // Singletons in schema order, each with where it was read (if it was).
+            // The ones not read take one block of ids, so that a class read without
+            // any is indexed as one run (`model::index`).
+            let kinds =
+                spec.children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton);
+            let first = ElementId::fresh_block(kinds.clone().count());
+            let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
+            for (i, k) in kinds.enumerate() {
+                let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
+                match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
+                    Some((n, offset)) => singles.push((n, Some(offset))),
+                    None => {
+                        let empty = empty_node_with_id(first.nth(i), *k);
+                        made += empty_size(*k);
+                        singles.push((empty, None));
+                    }
+                }
             }
+            if p.kind.tag() == "default" {
+                keep_actuator_default_order(&mut singles);
+            }
+            children.extend(singles.into_iter().map(|(n, _)| n));
         }
-        if p.kind.tag() == "default" {
-            keep_actuator_default_order(&mut singles);
+        let mut c = p.first_child;
+        while c != NONE {
+            children.extend(built[c].take());
+            c = r.arena[c].next_sibling;
         }
-        let mut children: Vec<Node> = Vec::with_capacity(singles.len() + p.children.len());
-        children.extend(singles.into_iter().map(|(n, _)| n));
-        children.extend(p.children.iter().filter_map(|c| built[*c].take()));
-        let children: Seq<Node> = children.into_iter().collect();
-        built[i] = Some(Node::new(p.id, p.kind, std::mem::take(&mut p.attrs), children));
+        let p = &mut r.arena[i];
+        let children: Seq<Node> = children.drain(..).collect();
+        built[i] = Some(Node::from_sorted(
+            p.id,
+            p.kind,
+            std::mem::replace(&mut p.attrs, empty.clone()),
+            children,
+        ));
     }
     let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
-    let mut index = Index::default();
-    if let Err(d) = index.insert_subtree(None, &root, 0) {
-        let offset = r.arena.iter().find(|p| p.id == d.id).map_or(0, |p| p.offset);
-        return Err(
-            r.err(ErrorKind::DuplicateIdentifier { namespace: d.namespace, name: d.name }, offset)
-        );
-    }
+    // The arena is spent: freed before the index is built, which can reuse its memory.
+    let elements = r.arena.len() + made;
+    drop(std::mem::take(&mut r.arena));
+    drop(built);
+    let index = Index::from_read(&root, names, elements);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
+}
+
+/// The number of nodes of an empty singleton of kind `k` (its own empty singletons
+/// included, as `empty_node` makes them), from the schema: singletons do not nest
+/// deeper than a few levels, so the recursion is shallow.
+fn empty_size(k: ElementKind) -> usize {
+    let singles = k.spec().children.iter().filter(|c| c.multiplicity() == Multiplicity::Singleton);
+    1 + singles.map(|c| empty_size(*c)).sum::<usize>()
 }
 
 /// `<default><default class="/">…</default></default>`, the shape this crate and
@@ -802,28 +937,34 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
             })
     };
     // A class `/` beside other classes, at any level (under a named root class too).
-    let composed = arena.iter().any(|p| {
+    let composed = arena.iter().enumerate().any(|(i, p)| {
         p.kind.tag() == "default"
-            && p.children.iter().any(|&c| is_slash(&arena[c]))
-            && p.children.iter().filter(|&&c| arena[c].kind.tag() == "default").count() > 1
+            && children_of(arena, i).any(|c| is_slash(&arena[c]))
+            && children_of(arena, i).filter(|&c| arena[c].kind.tag() == "default").count() > 1
     });
-    let [only] = arena[d].children[..] else { return composed };
+    let kids: Vec<usize> = children_of(arena, d).collect();
+    let [only] = kids[..] else { return composed };
     if !arena[d].attrs.is_empty() || !is_slash(&arena[only]) {
         return composed;
     }
     let ident = arena[only].kind.identifier();
-    let mut attrs = std::mem::take(&mut arena[only].attrs);
+    let mut attrs = std::mem::take(&mut arena[only].attrs).to_vec();
     attrs.retain(|(k, _)| Some(*k as usize) != ident);
-    arena[d].attrs = rekind(arena[only].kind, root_default, attrs);
-    let children = std::mem::take(&mut arena[only].children);
+    arena[d].attrs = rekind(arena[only].kind, root_default, attrs).into();
+    // The class's children become the root class's (its one child, `only`, goes).
+    let children: Vec<usize> = children_of(arena, only).collect();
+    arena[d].first_child = arena[only].first_child;
+    arena[d].last_child = arena[only].last_child;
+    arena[only].first_child = NONE;
+    arena[only].last_child = NONE;
     arena[only].unique.clear();
     // The moved children are now children of the root class, whose child kinds are
     // other schema positions (with the same tags and attribute names).
     for &c in &children {
         let old = arena[c].kind;
         if let Some(new) = root_default.child(old.tag()) {
-            let attrs = std::mem::take(&mut arena[c].attrs);
-            arena[c].attrs = rekind(old, new, attrs);
+            let attrs = std::mem::take(&mut arena[c].attrs).to_vec();
+            arena[c].attrs = rekind(old, new, attrs).into();
             arena[c].kind = new;
         }
     }
@@ -832,7 +973,6 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
         .filter(|&&c| arena[c].kind.multiplicity() != Multiplicity::Repeated)
         .map(|&c| (arena[c].kind, c))
         .collect();
-    arena[d].children = children;
     composed
 }
 
@@ -900,9 +1040,14 @@ fn settings_in_document_order(
 fn forget_auto_names(arena: &mut [Pending]) {
     for p in arena.iter_mut() {
         let Some(ident) = p.kind.identifier() else { continue };
-        p.attrs.retain(|(k, v)| {
-            !(*k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_")))
-        });
+        let auto = |(k, v): &Attr| {
+            *k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_"))
+        };
+        if p.attrs.iter().any(auto) {
+            let mut attrs = p.attrs.to_vec();
+            attrs.retain(|a| !auto(a));
+            p.attrs = attrs.into();
+        }
     }
 }
 

@@ -21,7 +21,7 @@ use crate::error::WriteError;
 use crate::id::IdHash;
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
-use crate::model::{Entry, Item, Model, Step, Walk};
+use crate::model::{ElemMap, Entry, Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
 use crate::value::{FloatStyle, Reference, Value};
 
@@ -160,9 +160,6 @@ impl Model {
         Ok(out)
     }
 }
-
-/// A model's index entries by id.
-type ElemMap = imbl::OrdMap<ElementId, Entry>;
 
 /// What the writer keeps per model of the composition (per instance of the walk).
 struct Inst<'a> {

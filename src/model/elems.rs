@@ -1,0 +1,372 @@
+//! `ElemMap`: the index's persistent map from element ids to their entries.
+//!
+//! A B+tree of small nodes behind `Arc`s, like `imbl::OrdMap`, with two differences
+//! that matter for reading large models: it is built in one pass from sorted entries
+//! (full leaves, no per-entry descent; a model read has tens of thousands), and an
+//! entry added after the largest key (a new element: ids are handed out in increasing
+//! order) leaves the full leaf it overflows full instead of splitting it in halves.
+//! A clone is one pointer copy; an insert or removal copies the nodes on one
+//! root-to-leaf path (at most 16 entries each). Removals do not rebalance (an empty
+//! node is dropped, a root with one child is replaced by it), so the depth stays
+//! O(log of the largest size the map had).
+
+use std::sync::Arc;
+
+use super::index::Entry;
+use crate::id::ElementId;
+
+/// Entries per leaf and children per branch, at most.
+const MAX: usize = 16;
+
+#[derive(Clone)]
+enum Node {
+    /// Entries in increasing key order.
+    Leaf(Vec<(ElementId, Entry)>),
+    /// Children in key order, each with a lower bound of its keys (its smallest key
+    /// when it was built or last lowered; removals leave it as it was).
+    Branch(Vec<(ElementId, Arc<Node>)>),
+}
+
+/// A persistent map from element ids to index entries.
+#[derive(Clone, Default)]
+pub(crate) struct ElemMap {
+    root: Option<Arc<Node>>,
+    len: usize,
+}
+
+impl ElemMap {
+    /// The map of `entries` (distinct keys), in any order. O(n) for entries in
+    /// increasing order, in a few increasing runs, or with ids from a range at most
+    /// about twice their number (a model read: its ids were handed out together);
+    /// O(n log n) otherwise.
+    pub(crate) fn from_entries(mut entries: Vec<(ElementId, Entry)>) -> ElemMap {
+        // Where the order breaks: a few runs (a read model's empty singletons under
+        // the root) are merged by the stable sort, many are placed by id.
+        let breaks = entries.windows(2).filter(|w| w[0].0 >= w[1].0).count();
+        if breaks > 0 {
+            let (lo, hi) = match breaks > 16 {
+                true => entries
+                    .iter()
+                    .fold((u64::MAX, 0), |(lo, hi), (k, _)| (lo.min(k.get()), hi.max(k.get()))),
+                false => (0, u64::MAX),
+            };
+            let span = usize::try_from(hi - lo).unwrap_or(usize::MAX);
+            if span < entries.len().saturating_mul(2).saturating_add(1024) {
+                // Dense ids (a read model's: in document order they are not sorted,
+                // its empty singletons being made last): each put in its place.
+                let mut slots: Vec<Option<(ElementId, Entry)>> = Vec::new();
+                slots.resize_with(span + 1, || None);
+                for e in entries.drain(..) {
+                    let k = (e.0.get() - lo) as usize;
+                    slots[k] = Some(e);
+                }
+                entries.extend(slots.into_iter().flatten());
+            } else {
+                entries.sort_by_key(|(k, _)| *k);
+                // Of equal keys (callers give none) one is kept: the tree stays sound.
+                entries.dedup_by_key(|(k, _)| *k);
+            }
+        }
+        let len = entries.len();
+        let mut level: Vec<(ElementId, Arc<Node>)> = Vec::with_capacity(len.div_ceil(MAX));
+        let mut rest = entries.into_iter().peekable();
+        while let Some(&(first, _)) = rest.peek() {
+            let leaf: Vec<(ElementId, Entry)> = rest.by_ref().take(MAX).collect();
+            level.push((first, Arc::new(Node::Leaf(leaf))));
+        }
+        while level.len() > 1 {
+            let mut up = Vec::with_capacity(level.len().div_ceil(MAX));
+            let mut rest = level.into_iter().peekable();
+            while let Some(&(first, _)) = rest.peek() {
+                let kids: Vec<(ElementId, Arc<Node>)> = rest.by_ref().take(MAX).collect();
+                up.push((first, Arc::new(Node::Branch(kids))));
+            }
+            level = up;
+        }
+        ElemMap { root: level.pop().map(|(_, n)| n), len }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether both are one map (the same root, or both empty): O(1).
+    pub(crate) fn ptr_eq(&self, other: &ElemMap) -> bool {
+        match (&self.root, &other.root) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        }
+    }
+
+    pub(crate) fn get(&self, id: &ElementId) -> Option<&Entry> {
+        let mut node = self.root.as_deref()?;
+        loop {
+            match node {
+                Node::Leaf(v) => {
+                    return v.binary_search_by_key(id, |(k, _)| *k).ok().map(|i| &v[i].1);
+                }
+                Node::Branch(v) => {
+                    let i = v.partition_point(|(k, _)| k <= id).checked_sub(1)?;
+                    node = &v[i].1;
+                }
+            }
+        }
+    }
+
+    #[cfg(test)]
+    pub(crate) fn contains_key(&self, id: &ElementId) -> bool {
+        self.get(id).is_some()
+    }
+
+    /// Sets the entry of `id`; returns the one it replaces.
+    pub(crate) fn insert(&mut self, id: ElementId, entry: Entry) -> Option<Entry> {
+        let Some(root) = self.root.as_mut() else {
+            self.root = Some(Arc::new(Node::Leaf(vec![(id, entry)])));
+            self.len = 1;
+            return None;
+        };
+        let (old, split) = insert_into(Arc::make_mut(root), id, entry);
+        if let Some(right) = split {
+            let left = self.root.take().unwrap_or_else(|| Arc::new(Node::Leaf(Vec::new())));
+            let left_key = first_key(&left).unwrap_or(id);
+            self.root = Some(Arc::new(Node::Branch(vec![(left_key, left), right])));
+        }
+        if old.is_none() {
+            self.len += 1;
+        }
+        old
+    }
+
+    /// Removes the entry of `id`, if any, and returns it.
+    pub(crate) fn remove(&mut self, id: &ElementId) -> Option<Entry> {
+        // Not there: nothing is copied.
+        self.get(id)?;
+        let root = self.root.as_mut()?;
+        let old = remove_from(Arc::make_mut(root), id);
+        if old.is_some() {
+            self.len -= 1;
+        }
+        // An emptied root goes; a branch root with one child is replaced by it.
+        loop {
+            let next = match self.root.as_deref() {
+                Some(Node::Leaf(v)) if v.is_empty() => None,
+                Some(Node::Branch(v)) if v.len() <= 1 => v.first().map(|(_, c)| c.clone()),
+                _ => break,
+            };
+            self.root = next;
+        }
+        old
+    }
+
+    /// Every entry in key order (for `Debug` and tests).
+    fn entries(&self) -> Vec<(&ElementId, &Entry)> {
+        let mut out = Vec::with_capacity(self.len);
+        let mut stack: Vec<&Node> = self.root.as_deref().into_iter().collect();
+        while let Some(n) = stack.pop() {
+            match n {
+                Node::Leaf(v) => out.extend(v.iter().map(|(k, e)| (k, e))),
+                Node::Branch(v) => stack.extend(v.iter().rev().map(|(_, c)| &**c)),
+            }
+        }
+        out
+    }
+}
+
+fn first_key(n: &Node) -> Option<ElementId> {
+    match n {
+        Node::Leaf(v) => v.first().map(|(k, _)| *k),
+        Node::Branch(v) => v.first().map(|(k, _)| *k),
+    }
+}
+
+/// Splits an overfull node (`MAX + 1` items): after an item added at its end, the
+/// full left part stays full and the new item starts the right one (keys arrive in
+/// increasing order); elsewhere, in halves.
+fn split_at<T>(v: &mut Vec<T>, added_at_end: bool) -> Vec<T> {
+    let at = if added_at_end { MAX } else { v.len() / 2 };
+    v.split_off(at)
+}
+
+/// Inserts into the subtree `node`; returns the replaced entry and, if the node
+/// split, its new right sibling with its first key.
+fn insert_into(
+    node: &mut Node,
+    id: ElementId,
+    entry: Entry,
+) -> (Option<Entry>, Option<(ElementId, Arc<Node>)>) {
+    match node {
+        Node::Leaf(v) => match v.binary_search_by_key(&id, |(k, _)| *k) {
+            Ok(i) => (Some(std::mem::replace(&mut v[i].1, entry)), None),
+            Err(i) => {
+                v.insert(i, (id, entry));
+                if v.len() <= MAX {
+                    return (None, None);
+                }
+                let right = split_at(v, i == MAX);
+                let key = right[0].0;
+                (None, Some((key, Arc::new(Node::Leaf(right)))))
+            }
+        },
+        Node::Branch(v) => {
+            // The child whose range holds `id`; below every bound, the first child,
+            // whose bound is lowered to `id`.
+            let i = v.partition_point(|(k, _)| *k <= id).saturating_sub(1);
+            if id < v[i].0 {
+                v[i].0 = id;
+            }
+            let (old, split) = insert_into(Arc::make_mut(&mut v[i].1), id, entry);
+            let Some(sibling) = split else { return (old, None) };
+            v.insert(i + 1, sibling);
+            if v.len() <= MAX {
+                return (old, None);
+            }
+            let right = split_at(v, i + 1 == MAX);
+            let key = right[0].0;
+            (old, Some((key, Arc::new(Node::Branch(right)))))
+        }
+    }
+}
+
+/// Removes `id` from the subtree `node` (known to hold it); an emptied child is
+/// dropped from its parent.
+fn remove_from(node: &mut Node, id: &ElementId) -> Option<Entry> {
+    match node {
+        Node::Leaf(v) => {
+            let i = v.binary_search_by_key(id, |(k, _)| *k).ok()?;
+            Some(v.remove(i).1)
+        }
+        Node::Branch(v) => {
+            let i = v.partition_point(|(k, _)| k <= id).checked_sub(1)?;
+            let child = Arc::make_mut(&mut v[i].1);
+            let old = remove_from(child, id);
+            let empty = match &*v[i].1 {
+                Node::Leaf(l) => l.is_empty(),
+                Node::Branch(b) => b.is_empty(),
+            };
+            if empty {
+                v.remove(i);
+            }
+            old
+        }
+    }
+}
+
+impl std::fmt::Debug for ElemMap {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_map().entries(self.entries()).finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schema::ElementKind;
+    use std::collections::BTreeMap;
+
+    /// Ids in increasing order (fresh ones are), indexed by `n`.
+    fn id(n: u64) -> ElementId {
+        use std::sync::OnceLock;
+        static IDS: OnceLock<Vec<ElementId>> = OnceLock::new();
+        IDS.get_or_init(|| (0..10_000).map(|_| ElementId::fresh()).collect())[n as usize]
+    }
+
+    fn entry(n: u64) -> Entry {
+        Entry { parent: None, kind: ElementKind::ROOT, name: None, pos: n as usize, ord: n }
+    }
+
+    fn same(m: &ElemMap, model: &BTreeMap<u64, u64>) {
+        assert_eq!(m.len(), model.len());
+        let got: Vec<(ElementId, u64)> = m.entries().iter().map(|(k, e)| (**k, e.ord)).collect();
+        let want: Vec<(ElementId, u64)> = model.iter().map(|(k, v)| (id(*k), *v)).collect();
+        assert_eq!(got, want);
+        for (k, v) in model {
+            assert_eq!(m.get(&id(*k)).map(|e| e.ord), Some(*v));
+        }
+    }
+
+    /// A small deterministic generator (xorshift), so failures repeat.
+    fn rng(state: &mut u64) -> u64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        *state
+    }
+
+    #[test]
+    fn built_from_entries_in_any_order() {
+        for n in [0u64, 1, 15, 16, 17, 255, 256, 257, 4097] {
+            let sorted = ElemMap::from_entries((0..n).map(|k| (id(k * 2), entry(k))).collect());
+            let model: BTreeMap<u64, u64> = (0..n).map(|k| (k * 2, k)).collect();
+            same(&sorted, &model);
+            assert!(!sorted.contains_key(&id(1)));
+            let mut shuffled: Vec<(ElementId, Entry)> =
+                (0..n).rev().map(|k| (id(k * 2), entry(k))).collect();
+            shuffled.push((id(1), entry(99)));
+            let m = ElemMap::from_entries(shuffled);
+            let mut model = model;
+            model.insert(1, 99);
+            same(&m, &model);
+        }
+    }
+
+    #[test]
+    fn built_from_sparse_entries_in_any_order() {
+        // Keys spread over a range far larger than their number: sorted, not placed.
+        let keys: Vec<u64> = (0..40).map(|k| (k * 211) % 9973).collect();
+        let mut entries: Vec<(ElementId, Entry)> =
+            keys.iter().map(|&k| (id(k), entry(k))).collect();
+        entries.reverse();
+        let m = ElemMap::from_entries(entries);
+        let model: BTreeMap<u64, u64> = keys.iter().map(|&k| (k, k)).collect();
+        same(&m, &model);
+    }
+
+    #[test]
+    fn inserts_and_removals_agree_with_a_btreemap_and_keep_old_versions() {
+        let mut state = 0x2545_F491_4F6C_DD1D;
+        let mut m = ElemMap::from_entries((0..500).map(|k| (id(k * 3), entry(k))).collect());
+        let mut model: BTreeMap<u64, u64> = (0..500).map(|k| (k * 3, k)).collect();
+        let mut versions: Vec<(ElemMap, BTreeMap<u64, u64>)> = Vec::new();
+        for step in 0..20_000u64 {
+            let r = rng(&mut state);
+            let k = match r % 4 {
+                // Appends after the largest key, as new elements are.
+                0 => model.keys().next_back().map_or(0, |k| k + 1),
+                _ => (r >> 8) % 2000,
+            };
+            if (r >> 40) % 3 == 0 {
+                assert_eq!(m.remove(&id(k)).map(|e| e.ord), model.remove(&k));
+            } else {
+                assert_eq!(m.insert(id(k), entry(step)).map(|e| e.ord), model.insert(k, step));
+            }
+            if step % 2000 == 0 {
+                same(&m, &model);
+                versions.push((m.clone(), model.clone()));
+            }
+        }
+        same(&m, &model);
+        for (v, model) in &versions {
+            same(v, model);
+        }
+        // Emptied completely, then reused.
+        for k in model.keys().copied().collect::<Vec<_>>() {
+            assert!(m.remove(&id(k)).is_some());
+        }
+        assert_eq!(m.len(), 0);
+        assert!(m.root.is_none());
+        assert!(m.insert(id(7), entry(1)).is_none());
+        assert_eq!(m.get(&id(7)).map(|e| e.ord), Some(1));
+    }
+
+    #[test]
+    fn appended_keys_fill_their_leaves() {
+        let mut m = ElemMap::default();
+        for k in 0..(MAX as u64 * MAX as u64) {
+            m.insert(id(k), entry(k));
+        }
+        let Some(Node::Branch(kids)) = m.root.as_deref() else { panic!("a branch root") };
+        assert_eq!(kids.len(), MAX);
+        assert!(kids.iter().all(|(_, c)| matches!(&**c, Node::Leaf(v) if v.len() == MAX)));
+    }
+}
