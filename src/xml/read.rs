@@ -298,8 +298,11 @@ struct Pending {
     last_child: usize,
     next_sibling: usize,
     /// The singleton and on-demand children read so far (few), found without
-    /// scanning the children, which may be many.
-    unique: Vec<(ElementKind, usize)>,
+    /// scanning the children, which may be many: a second list through the arena
+    /// (its first entry here, the next one in each child), so that an element
+    /// allocates nothing for it.
+    first_unique: usize,
+    next_unique: usize,
     offset: usize,
 }
 
@@ -315,7 +318,8 @@ impl Pending {
             first_child: NONE,
             last_child: NONE,
             next_sibling: NONE,
-            unique: Vec::new(),
+            first_unique: NONE,
+            next_unique: NONE,
             offset,
         }
     }
@@ -329,6 +333,25 @@ fn push_child(arena: &mut [Pending], parent: usize, c: usize) {
         last => arena[last].next_sibling = c,
     }
     arena[parent].last_child = c;
+}
+
+/// The singleton or on-demand child of kind `kind` of the entry `parent`, if read.
+fn unique_child(arena: &[Pending], parent: usize, kind: ElementKind) -> Option<usize> {
+    let mut c = arena[parent].first_unique;
+    while c != NONE {
+        if arena[c].kind == kind {
+            return Some(c);
+        }
+        c = arena[c].next_unique;
+    }
+    None
+}
+
+/// Adds the entry `c` (a singleton or on-demand child) to the unique children of
+/// `parent` (at the front: they are found by kind, in no order).
+fn push_unique(arena: &mut [Pending], parent: usize, c: usize) {
+    arena[c].next_unique = arena[parent].first_unique;
+    arena[parent].first_unique = c;
 }
 
 /// The children of the entry `i`, in document order.
@@ -575,7 +598,7 @@ fn parse(
         }
         let existing = match kind.multiplicity() {
             Multiplicity::Repeated => None,
-            _ => r.arena[parent].unique.iter().find(|(k, _)| *k == kind).map(|(_, i)| *i),
+            _ => unique_child(&r.arena, parent, kind),
         };
         let index = match (kind.multiplicity(), existing) {
             (Multiplicity::Singleton, Some(e)) => {
@@ -607,7 +630,7 @@ fn parse(
                 r.arena.push(Pending::new(kind, attrs, offset));
                 push_child(&mut r.arena, parent, i);
                 if m != Multiplicity::Repeated {
-                    r.arena[parent].unique.push((kind, i));
+                    push_unique(&mut r.arena, parent, i);
                 }
                 i
             }
@@ -780,16 +803,17 @@ fn inline_include(
         p.first_child = shift(p.first_child);
         p.last_child = shift(p.last_child);
         p.next_sibling = shift(p.next_sibling);
-        p.unique.iter_mut().for_each(|(_, c)| *c = shift(*c));
+        p.first_unique = shift(p.first_unique);
+        p.next_unique = shift(p.next_unique);
         r.arena.push(p);
     }
     for c in root_children {
         let kind = r.arena[c].kind;
         if kind.multiplicity() != Multiplicity::Repeated {
-            if r.arena[parent].unique.iter().any(|(k, _)| *k == kind) {
+            if unique_child(&r.arena, parent, kind).is_some() {
                 return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
             }
-            r.arena[parent].unique.push((kind, c));
+            push_unique(&mut r.arena, parent, c);
         }
         push_child(&mut r.arena, parent, c);
     }
@@ -856,7 +880,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // The nodes made here (empty singletons), for the size of the index's list.
     let mut made = 0;
     for i in (0..r.arena.len()).rev() {
-        let p = &r.arena[i];
+        let (p, at) = (&r.arena[i], i);
         children.clear();
         let spec = p.kind.spec();
         if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
@@ -868,7 +892,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             let first = ElementId::fresh_block(kinds.clone().count());
             let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
             for (i, k) in kinds.enumerate() {
-                let found = p.unique.iter().find(|(u, _)| u == k).map(|(_, c)| *c);
+                let found = unique_child(&r.arena, at, *k);
                 match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
                     Some((n, offset)) => singles.push((n, Some(offset))),
                     None => {
@@ -925,9 +949,10 @@ fn empty_size(k: ElementKind) -> usize {
 /// other classes).
 fn hoist_root_class(arena: &mut [Pending]) -> bool {
     let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
-    let Some(&(_, d)) =
-        arena.first().and_then(|root| root.unique.iter().find(|(k, _)| *k == root_default))
-    else {
+    if arena.is_empty() {
+        return false;
+    }
+    let Some(d) = unique_child(arena, 0, root_default) else {
         return false;
     };
     let is_slash = |p: &Pending| {
@@ -957,7 +982,7 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
     arena[d].last_child = arena[only].last_child;
     arena[only].first_child = NONE;
     arena[only].last_child = NONE;
-    arena[only].unique.clear();
+    arena[only].first_unique = NONE;
     // The moved children are now children of the root class, whose child kinds are
     // other schema positions (with the same tags and attribute names).
     for &c in &children {
@@ -968,11 +993,12 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
             arena[c].kind = new;
         }
     }
-    arena[d].unique = children
-        .iter()
-        .filter(|&&c| arena[c].kind.multiplicity() != Multiplicity::Repeated)
-        .map(|&c| (arena[c].kind, c))
-        .collect();
+    arena[d].first_unique = NONE;
+    for &c in &children {
+        if arena[c].kind.multiplicity() != Multiplicity::Repeated {
+            push_unique(arena, d, c);
+        }
+    }
     composed
 }
 
