@@ -43,9 +43,65 @@ pub(crate) trait Keyed {
 /// that the edits between them did not copy (`Arc::ptr_eq`).
 #[derive(Clone)]
 pub(crate) struct Leaf<T> {
-    /// The items' slots, non-decreasing (increasing below 2^32 items).
+    /// The items' slots, non-decreasing (increasing below 2^32 items); or empty
+    /// when they are `fresh_ord(first + j)`: a leaf of a collected sequence (every
+    /// model read) numbers its items as added at the end, which needs no list (one
+    /// allocation less per leaf, 8 bytes less per item). The first edit of the leaf
+    /// makes the list.
     ords: Vec<u64>,
+    first: usize,
     items: Vec<T>,
+}
+
+impl<T> Leaf<T> {
+    /// A leaf of items numbered as added at the end, the first at position `first`.
+    fn fresh(first: usize, items: Vec<T>) -> Leaf<T> {
+        Leaf { ords: Vec::new(), first, items }
+    }
+
+    /// A leaf with these slots (as many as items).
+    fn listed(ords: Vec<u64>, items: Vec<T>) -> Leaf<T> {
+        Leaf { ords, first: 0, items }
+    }
+
+    fn is_fresh(&self) -> bool {
+        self.ords.len() != self.items.len()
+    }
+
+    /// The slot of the item at `j`.
+    fn ord(&self, j: usize) -> Option<u64> {
+        if self.is_fresh() {
+            (j < self.items.len()).then(|| fresh_ord(self.first + j))
+        } else {
+            self.ords.get(j).copied()
+        }
+    }
+
+    /// The number of items whose slot is below `ord` (slots are sorted).
+    fn below(&self, ord: u64) -> usize {
+        if !self.is_fresh() {
+            return self.ords.partition_point(|o| *o < ord);
+        }
+        let (mut lo, mut hi) = (0, self.items.len());
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if self.ord(mid).is_some_and(|o| o < ord) {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+
+    /// The slots as a list, to edit (made from the items' count if not yet a list:
+    /// call before changing `items`).
+    fn ords_mut(&mut self) -> &mut Vec<u64> {
+        if self.is_fresh() {
+            self.ords = (self.first..self.first + self.items.len()).map(fresh_ord).collect();
+        }
+        &mut self.ords
+    }
 }
 
 impl<T> std::ops::Deref for Leaf<T> {
@@ -81,7 +137,7 @@ impl<T> Kid<T> {
 /// The slot of the last item of a non-empty subtree.
 fn max_ord<T>(t: &Tree<T>) -> u64 {
     match t {
-        Tree::Leaf(l) => l.ords.last().copied().unwrap_or(0),
+        Tree::Leaf(l) => l.items.len().checked_sub(1).and_then(|j| l.ord(j)).unwrap_or(0),
         Tree::Branch(b) => b.kids.last().map_or(0, |k| k.max),
     }
 }
@@ -283,7 +339,7 @@ impl<T: Clone + Keyed> Seq<T> {
     /// The slot of the item at position `i`.
     fn ord_at(&self, i: usize) -> Option<u64> {
         let (leaf, j) = self.locate(i)?;
-        leaf.ords.get(j).copied()
+        leaf.ord(j)
     }
 
     /// A slot for an item inserted at position `i`, between its neighbours' (`None`
@@ -324,7 +380,7 @@ impl<T: Clone + Keyed> Seq<T> {
             *self = self.iter().cloned().collect();
         }
         let Some(root) = self.root.as_mut() else {
-            let leaf = Leaf { ords: vec![ord], items: vec![value] };
+            let leaf = Leaf::listed(vec![ord], vec![value]);
             self.root = Some(Tree::Leaf(Arc::new(leaf)));
             self.len = 1;
             return ord;
@@ -362,7 +418,7 @@ impl<T: Clone + Keyed> Seq<T> {
         let mut at = 0;
         loop {
             match t {
-                Tree::Leaf(l) => return Some(at + l.ords.partition_point(|o| *o < ord)),
+                Tree::Leaf(l) => return Some(at + l.below(ord)),
                 Tree::Branch(b) => {
                     let k = b.kids.partition_point(|c| c.max < ord);
                     if k >= b.kids.len() {
@@ -451,13 +507,14 @@ fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split
     match t {
         Tree::Leaf(l) => {
             let l = Arc::make_mut(l);
-            l.ords.insert(i, ord);
+            l.ords_mut().insert(i, ord);
             l.items.insert(i, value);
             if l.items.len() <= LEAF {
                 return None;
             }
             let half = l.items.len() / 2;
-            let right = Leaf { ords: l.ords.split_off(half), items: l.items.split_off(half) };
+            let ords = l.ords_mut().split_off(half);
+            let right = Leaf::listed(ords, l.items.split_off(half));
             let n = right.items.len();
             Some((Tree::Leaf(Arc::new(right)), n))
         }
@@ -489,7 +546,7 @@ fn remove_from<T: Clone>(t: &mut Tree<T>, i: usize) -> T {
     match t {
         Tree::Leaf(l) => {
             let l = Arc::make_mut(l);
-            l.ords.remove(i);
+            l.ords_mut().remove(i);
             l.items.remove(i)
         }
         Tree::Branch(b) => {
@@ -583,10 +640,9 @@ impl<T: Clone + Keyed> FromIterator<T> for Seq<T> {
         let mut iter = iter.into_iter().peekable();
         while iter.peek().is_some() {
             let items: Vec<T> = iter.by_ref().take(LEAF).collect();
-            let ords = (len..len + items.len()).map(fresh_ord).collect();
             let n = items.len();
+            let leaf = Tree::Leaf(Arc::new(Leaf::fresh(len, items)));
             len += n;
-            let leaf = Tree::Leaf(Arc::new(Leaf { ords, items }));
             if level.is_empty() && iter.peek().is_none() {
                 // One leaf (most children lists): no list of subtrees to build.
                 return Seq { root: Some(leaf), len };
@@ -727,6 +783,34 @@ mod tests {
             (0..5000usize, any::<u32>()).prop_map(|(i, v)| Op::Set(i, v)),
             any::<u32>().prop_map(Op::Push),
         ]
+    }
+
+    /// A collected sequence keeps no slot lists (its leaves number their items as
+    /// added at the end) and answers as if it did, before and after edits.
+    #[test]
+    fn collected_leaves_number_items_as_pushed() {
+        for n in [0usize, 1, 31, 32, 33, 100, 1000] {
+            let seq: Seq<u32> = (0..n as u32).collect();
+            let mut pushed: Seq<u32> = Seq::new();
+            (0..n as u32).for_each(|v| pushed.push_back(v));
+            for i in 0..n {
+                assert_eq!(seq.ord_at(i), Some(fresh_ord(i)));
+                assert_eq!(seq.ord_at(i), pushed.ord_at(i));
+                assert_eq!(seq.position_of(i as u64, fresh_ord(i), 0), Some(i));
+            }
+            assert_eq!(seq.ord_at(n), None);
+            let mut edited = seq.clone();
+            edited.insert(n / 2, 7777);
+            edited.remove(0);
+            let ords: Vec<u64> = (0..edited.len()).filter_map(|i| edited.ord_at(i)).collect();
+            assert!(ords.len() == edited.len() && ords.windows(2).all(|w| w[0] < w[1]));
+            for i in 1..n {
+                let at = edited.position_of(i as u64, fresh_ord(i), 0);
+                assert_eq!(at.and_then(|p| edited.get(p)).copied(), Some(i as u32));
+            }
+            // The original is unchanged.
+            assert!(seq.iter().copied().eq(0..n as u32));
+        }
     }
 
     proptest! {
