@@ -213,44 +213,6 @@ impl Index {
         self.elems.len() + self.runs.values().map(|(_, n)| usize::from(*n)).sum::<usize>()
     }
 
-    /// The index of a model just read: `names` holds every identifier of the tree
-    /// `root` (the reader collected them, in document order, finding duplicates at
-    /// their second occurrence); the elements are added here. A read model has no
-    /// attachments, so every name is registered.
-    pub(crate) fn from_read(
-        root: &Node,
-        names: HashMap<(Namespace, SmolStr), ElementId>,
-        elements: usize,
-    ) -> Index {
-        // Collected, then built in one pass (in document order the ids mostly
-        // increase: the reader hands them out in that order). `elements` is the
-        // reader's count, a hint for the list's size.
-        // Runs of singletons (module docs) as in `insert_subtree_at`.
-        let mut entries: Vec<(ElementId, Entry)> = Vec::with_capacity(elements);
-        let mut runs = OrdMap::new();
-        let mut stack: Vec<(Option<ElementId>, &Node, usize, bool)> = vec![(None, root, 0, false)];
-        while let Some((parent, n, pos, in_run)) = stack.pop() {
-            if !in_run {
-                let name = n.identifier().map(SmolStr::from);
-                let entry = Entry { parent, kind: n.kind(), name, pos, ord: fresh_ord(pos) };
-                entries.push((n.id(), entry));
-            }
-            let run = singleton_run(n);
-            if let (Some(first), true) = (n.children().get(0), run > 0) {
-                runs.insert(first.id(), (n.id(), run as u8));
-            }
-            stack.extend(
-                n.children()
-                    .iter()
-                    .enumerate()
-                    .rev()
-                    .filter(|(i, c)| *i >= run || !c.children().is_empty())
-                    .map(|(i, c)| (Some(n.id()), c, i, i < run)),
-            );
-        }
-        Index { names, elems: ElemMap::from_entries(entries), runs, ..Index::default() }
-    }
-
     fn insert_one(
         &mut self,
         parent: Option<ElementId>,
@@ -436,6 +398,89 @@ impl Scopes {
 /// The singleton kinds of `kind`'s children, in schema order.
 fn singleton_kinds(kind: ElementKind) -> impl Iterator<Item = ElementKind> {
     kind.spec().children.iter().copied().filter(|c| c.multiplicity() == Multiplicity::Singleton)
+}
+
+/// The index of a model being read, built a node at a time as the reader makes the
+/// nodes (bottom-up), while they are still in cache: a walk of the finished tree
+/// would read every node again, cold. The entries and runs are those the tree's
+/// walk from the root would make (runs of singletons as in `insert_subtree_at`);
+/// their order does not matter (`ElemMap::from_entries` places them by id).
+pub(crate) struct ReadIndex {
+    entries: Vec<(ElementId, Entry)>,
+    runs: OrdMap<ElementId, (ElementId, u8)>,
+}
+
+impl ReadIndex {
+    /// For `elements` nodes (the reader's count, so that the list is not grown by
+    /// copying).
+    pub(crate) fn with_capacity(elements: usize) -> ReadIndex {
+        ReadIndex { entries: Vec::with_capacity(elements), runs: OrdMap::new() }
+    }
+
+    /// The entries of the children of `n` (not of their children), and the run of
+    /// `n`'s singletons; `name` gives the identifier of the child at a position;
+    /// `visit` is called with each child whose own children the walk of the tree
+    /// would index.
+    fn level<'n>(
+        &mut self,
+        n: &'n Node,
+        name: impl Fn(usize, &Node) -> Option<SmolStr>,
+        mut visit: impl FnMut(&'n Node),
+    ) {
+        let run = singleton_run(n);
+        if let (Some(first), true) = (n.children().get(0), run > 0) {
+            self.runs.insert(first.id(), (n.id(), run as u8));
+        }
+        for (i, c) in n.children().iter().enumerate() {
+            let in_run = i < run;
+            if in_run && c.children().is_empty() {
+                continue;
+            }
+            if !in_run {
+                let name = name(i, c);
+                let entry =
+                    Entry { parent: Some(n.id()), kind: c.kind(), name, pos: i, ord: fresh_ord(i) };
+                self.entries.push((c.id(), entry));
+            }
+            visit(c);
+        }
+    }
+
+    /// Indexes the children of `n`, a node just made from children already indexed;
+    /// `names` holds their identifiers (`Node::identifier`), in order: the reader
+    /// knows them without reading the children's attributes again, cold.
+    pub(crate) fn children(&mut self, n: &Node, names: &[Option<SmolStr>]) {
+        self.level(n, |i, _| names.get(i).cloned().flatten(), |_| ());
+    }
+
+    /// Indexes every descendant of `n` (a node made whole, whose children were not
+    /// indexed: an empty singleton with singletons of its own).
+    pub(crate) fn descendants(&mut self, n: &Node) {
+        let mut stack = vec![n];
+        while let Some(n) = stack.pop() {
+            self.level(n, |_, c| c.identifier().map(SmolStr::from), |c| stack.push(c));
+        }
+    }
+
+    /// The index, with the entry of `root` (whose descendants are indexed) and
+    /// `names`, every identifier of the tree (the reader collected them, in document
+    /// order, finding duplicates at their second occurrence). A read model has no
+    /// attachments, so every name is registered.
+    pub(crate) fn finish(
+        mut self,
+        root: &Node,
+        names: HashMap<(Namespace, SmolStr), ElementId>,
+    ) -> Index {
+        let name = root.identifier().map(SmolStr::from);
+        let entry = Entry { parent: None, kind: root.kind(), name, pos: 0, ord: fresh_ord(0) };
+        self.entries.push((root.id(), entry));
+        Index {
+            names,
+            elems: ElemMap::from_entries(self.entries),
+            runs: self.runs,
+            ..Index::default()
+        }
+    }
 }
 
 /// How many of `n`'s first children form a run (module docs): all its singleton

@@ -39,7 +39,7 @@ pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
 pub(crate) use elems::ElemMap;
-pub(crate) use index::{Entry, Index, MergedCache};
+pub(crate) use index::{Entry, Index, MergedCache, ReadIndex};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 

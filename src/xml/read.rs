@@ -31,7 +31,7 @@ use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, Node, no_attrs, take_attrs};
 use crate::model::{
-    Basepaths, Index, Input, Model, ValueCtx, check_class_named, check_required, empty_node,
+    Basepaths, Input, Model, ReadIndex, ValueCtx, check_class_named, check_required, empty_node,
     empty_node_with_id, name_from_file,
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
@@ -822,25 +822,36 @@ fn inline_include(
 
 /// Turns the arena into nodes, indexes them and resolves references.
 fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
-    if !hoist_root_class(&mut r.arena) {
-        forget_auto_names(&mut r.arena);
-    }
-    // The index's names first (document order, so that a duplicate is reported at its
-    // second occurrence), so that references can be resolved in the arena.
+    let forget = !hoist_root_class(&mut r.arena);
+    // One pass over the elements' attributes (cold since they were read): auto names
+    // forgotten, the index's names (document order, so that a duplicate is reported at
+    // its second occurrence, and first, so that references can be resolved in the
+    // arena), each element's identifier kept for its index entry, and which elements
+    // hold named references.
     let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
-    for p in &r.arena {
-        if let (Some(ns), Some(ident)) = (p.kind.namespace(), p.kind.identifier()) {
-            if let Some(Value::Identifier(n)) =
-                p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v)
-            {
-                if names.insert((ns, n.clone()), p.id).is_some() {
-                    return Err(r.err(
-                        ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() },
-                        p.offset,
-                    ));
-                }
+    let mut idents: Vec<Option<SmolStr>> = Vec::with_capacity(r.arena.len());
+    let mut with_refs: Vec<usize> = Vec::new();
+    for (i, p) in r.arena.iter_mut().enumerate() {
+        if forget {
+            forget_auto_name(p);
+        }
+        let ident = p.kind.identifier().and_then(|ident| {
+            match p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v) {
+                Some(Value::Identifier(n)) => Some(n.clone()),
+                _ => None,
+            }
+        });
+        if let (Some(ns), Some(n)) = (p.kind.namespace(), &ident) {
+            if names.insert((ns, n.clone()), p.id).is_some() {
+                let (kind, offset) =
+                    (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
+                return Err(r.err(kind, offset));
             }
         }
+        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
+            with_refs.push(i);
+        }
+        idents.push(ident);
     }
     // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name) both
     // name the root class, unless a class has that name.
@@ -856,11 +867,10 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                 .flatten()
         })
     };
-    for p in &mut r.arena {
+    for i in with_refs {
         // Only lists with a named reference change (and are uniquely owned here).
-        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
-            resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
-        }
+        let p = &mut r.arena[i];
+        resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
     }
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
@@ -876,12 +886,26 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let mut built: Vec<Option<Node>> = (0..r.arena.len()).map(|_| None).collect();
     // One buffer for every element's children.
     let mut children: Vec<Node> = Vec::new();
+    // And for their identifiers, for the index.
+    let mut child_idents: Vec<Option<SmolStr>> = Vec::new();
     let empty = no_attrs();
     // The nodes made here (empty singletons), for the size of the index's list.
     let mut made = 0;
+    for (i, p) in r.arena.iter().enumerate() {
+        for k in
+            p.kind.spec().children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton)
+        {
+            if unique_child(&r.arena, i, *k).is_none() {
+                made += empty_size(*k);
+            }
+        }
+    }
+    // Indexed as the nodes are made, while they are in cache.
+    let mut index = ReadIndex::with_capacity(r.arena.len() + made);
     for i in (0..r.arena.len()).rev() {
         let (p, at) = (&r.arena[i], i);
         children.clear();
+        child_idents.clear();
         let spec = p.kind.spec();
         if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
             // Singletons in schema order, each with where it was read (if it was).
@@ -897,7 +921,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                     Some((n, offset)) => singles.push((n, Some(offset))),
                     None => {
                         let empty = empty_node_with_id(first.nth(i), *k);
-                        made += empty_size(*k);
+                        if !empty.children().is_empty() {
+                            index.descendants(&empty);
+                        }
                         singles.push((empty, None));
                     }
                 }
@@ -905,28 +931,41 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
             if p.kind.tag() == "default" {
                 keep_actuator_default_order(&mut singles);
             }
+            // Singletons are few: their identifiers (if any) read from the nodes.
+            child_idents.extend(singles.iter().map(|(n, _)| n.identifier().map(SmolStr::from)));
             children.extend(singles.into_iter().map(|(n, _)| n));
         }
         let mut c = p.first_child;
         while c != NONE {
-            children.extend(built[c].take());
+            if let Some(n) = built[c].take() {
+                children.push(n);
+                child_idents.push(idents[c].take());
+            }
             c = r.arena[c].next_sibling;
         }
         let p = &mut r.arena[i];
         let children: Seq<Node> = children.drain(..).collect();
-        built[i] = Some(Node::from_sorted(
+        let node = Node::from_sorted(
             p.id,
             p.kind,
             std::mem::replace(&mut p.attrs, empty.clone()),
             children,
-        ));
+        );
+        index.children(&node, &child_idents);
+        built[i] = Some(node);
     }
-    let root = built.swap_remove(0).unwrap_or_else(|| empty_node(ElementKind::ROOT));
+    let root = match built.swap_remove(0) {
+        Some(root) => root,
+        None => {
+            let root = empty_node(ElementKind::ROOT);
+            index.descendants(&root);
+            root
+        }
+    };
     // The arena is spent: freed before the index is built, which can reuse its memory.
-    let elements = r.arena.len() + made;
     drop(std::mem::take(&mut r.arena));
     drop(built);
-    let index = Index::from_read(&root, names, elements);
+    let index = index.finish(&root, names);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
@@ -1063,17 +1102,15 @@ fn settings_in_document_order(
 /// "unnamed": they are derived again when the model is written. (In a composed model
 /// written out they are kept: there they were counted over the outer model's own
 /// elements, which the flat model read back no longer tells apart.)
-fn forget_auto_names(arena: &mut [Pending]) {
-    for p in arena.iter_mut() {
-        let Some(ident) = p.kind.identifier() else { continue };
-        let auto = |(k, v): &Attr| {
-            *k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_"))
-        };
-        if p.attrs.iter().any(auto) {
-            let mut attrs = p.attrs.to_vec();
-            attrs.retain(|a| !auto(a));
-            p.attrs = attrs.into();
-        }
+fn forget_auto_name(p: &mut Pending) {
+    let Some(ident) = p.kind.identifier() else { return };
+    let auto = |(k, v): &Attr| {
+        *k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_"))
+    };
+    if p.attrs.iter().any(auto) {
+        let mut attrs = p.attrs.to_vec();
+        attrs.retain(|a| !auto(a));
+        p.attrs = attrs.into();
     }
 }
 
