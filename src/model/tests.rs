@@ -68,3 +68,33 @@ fn singletons_indexed_as_runs_are_found_like_any_element_through_edits() {
     assert_index_exact(&m);
     assert!(m.find(Namespace::Default, "f").is_some());
 }
+
+/// The reader indexes the nodes as it makes them (`ReadIndex`): every model of the
+/// conformance cases that reads (without its includes, which are merged by edits)
+/// is indexed exactly as the tree says.
+#[test]
+fn read_models_are_indexed_exactly() {
+    let cases = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/conformance/cases");
+    let mut read = 0;
+    for case in std::fs::read_dir(cases).unwrap() {
+        for file in std::fs::read_dir(case.unwrap().path()).unwrap() {
+            let path = file.unwrap().path();
+            if path.extension().is_some_and(|e| e == "xml") {
+                if let Ok(m) = Model::from_path(&path) {
+                    assert_index_exact(&m);
+                    read += 1;
+                }
+            }
+        }
+    }
+    assert!(read > 100, "{read} models read");
+    let xml = r#"<mujoco model="m">
+      <default><default class="/"><geom size="1"/><default class="x"/></default></default>
+      <worldbody>
+        <body name="//unnamed_body_0"><geom name="g" class="x" size="0.1"/></body>
+        <body name="b"><joint name="j"/><geom size="0.1"/></body>
+      </worldbody>
+      <actuator><motor joint="j"/></actuator>
+    </mujoco>"#;
+    assert_index_exact(&Model::from_xml_str(xml).unwrap());
+}

@@ -822,7 +822,8 @@ fn inline_include(
 
 /// Turns the arena into nodes, indexes them and resolves references.
 fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
-    let forget = !hoist_root_class(&mut r.arena);
+    let (composed, hoisted) = hoist_root_class(&mut r.arena);
+    let forget = !composed;
     // One pass over the elements' attributes (cold since they were read): auto names
     // forgotten, the index's names (document order, so that a duplicate is reported at
     // its second occurrence, and first, so that references can be resolved in the
@@ -891,7 +892,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let empty = no_attrs();
     // The nodes made here (empty singletons), for the size of the index's list.
     let mut made = 0;
-    for (i, p) in r.arena.iter().enumerate() {
+    for (i, p) in r.arena.iter().enumerate().filter(|(i, _)| Some(*i) != hoisted) {
         for k in
             p.kind.spec().children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton)
         {
@@ -903,6 +904,10 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // Indexed as the nodes are made, while they are in cache.
     let mut index = ReadIndex::with_capacity(r.arena.len() + made);
     for i in (0..r.arena.len()).rev() {
+        if Some(i) == hoisted {
+            // Out of the tree: its content is the root class's now.
+            continue;
+        }
         let (p, at) = (&r.arena[i], i);
         children.clear();
         child_idents.clear();
@@ -985,14 +990,14 @@ fn empty_size(k: ElementKind) -> usize {
 /// kept as a class of that name, so that the siblings keep inheriting nothing from it.
 ///
 /// Returns whether the file is a composed model written out (a class `/` beside
-/// other classes).
-fn hoist_root_class(arena: &mut [Pending]) -> bool {
+/// other classes), and the arena entry of the class hoisted (no longer in the tree).
+fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
     let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
     if arena.is_empty() {
-        return false;
+        return (false, None);
     }
     let Some(d) = unique_child(arena, 0, root_default) else {
-        return false;
+        return (false, None);
     };
     let is_slash = |p: &Pending| {
         p.kind.tag() == "default"
@@ -1007,9 +1012,9 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
             && children_of(arena, i).filter(|&c| arena[c].kind.tag() == "default").count() > 1
     });
     let kids: Vec<usize> = children_of(arena, d).collect();
-    let [only] = kids[..] else { return composed };
+    let [only] = kids[..] else { return (composed, None) };
     if !arena[d].attrs.is_empty() || !is_slash(&arena[only]) {
-        return composed;
+        return (composed, None);
     }
     let ident = arena[only].kind.identifier();
     let mut attrs = std::mem::take(&mut arena[only].attrs).to_vec();
@@ -1038,7 +1043,7 @@ fn hoist_root_class(arena: &mut [Pending]) -> bool {
             push_unique(arena, d, c);
         }
     }
-    composed
+    (composed, Some(only))
 }
 
 /// Whether elements of `kind` hold global settings (they sit in `compiler`, `option`,
