@@ -7,6 +7,26 @@ mod file;
 pub(crate) mod number;
 mod scan;
 
+/// A small deterministic generator (xorshift) for the randomised comparisons of the
+/// number tests, so that failures repeat.
+#[cfg(test)]
+mod test_rng {
+    pub(crate) struct Rng(pub(crate) u64);
+
+    impl Rng {
+        pub(crate) fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+
+        pub(crate) fn below(&mut self, n: u64) -> u64 {
+            self.next() % n
+        }
+    }
+}
+
 use std::fmt;
 use std::sync::Arc;
 

@@ -453,17 +453,7 @@ mod tests {
         }
     }
 
-    /// A xorshift generator for the comparisons below.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-    }
+    use crate::value::test_rng::Rng;
 
     fn same_as_rust(x: f64) {
         assert_eq!(short(x), old_shortest(x), "{:#x}", x.to_bits());

@@ -164,19 +164,7 @@ pub(crate) fn parse_array<T: Number>(text: &str) -> Option<Arc<[T]>> {
 mod tests {
     use super::*;
 
-    /// A small deterministic generator (xorshift), so failures repeat.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-        fn below(&mut self, n: u64) -> u64 {
-            self.next() % n
-        }
-    }
+    use crate::value::test_rng::Rng;
 
     fn check_float(s: &str) {
         let want = s.parse::<f64>().ok();
