@@ -308,7 +308,7 @@ impl Model {
             }
             let path = m.path_of(*frame).ok_or_else(|| not_attached(m, &text))?;
             let mut index = m.index.clone();
-            index.scopes.rename(*frame, to.into());
+            index.rename_scope(*frame, to.into());
             let root = m.root.update_path(&path, |n| {
                 let a = n.attached().ok_or_else(|| not_attached(m, &text))?;
                 Ok::<_, EditError>(

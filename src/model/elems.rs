@@ -272,7 +272,14 @@ mod tests {
     }
 
     fn entry(n: u64) -> Entry {
-        Entry { parent: None, kind: ElementKind::ROOT, name: None, pos: n as usize, ord: n }
+        Entry {
+            parent: None,
+            kind: ElementKind::ROOT,
+            text: None,
+            frame: false,
+            pos: n as usize,
+            ord: n,
+        }
     }
 
     fn same(m: &ElemMap, model: &BTreeMap<u64, u64>) {

@@ -36,7 +36,13 @@ use crate::seq::fresh_ord;
 pub(crate) struct Entry {
     pub(crate) parent: Option<ElementId>,
     pub(crate) kind: ElementKind,
-    pub(crate) name: Option<SmolStr>,
+    /// The identifier; for an attachment frame (`frame`), which has none, the scope
+    /// name of its attachment: so the frame's own entry answers `scope_of`, and no
+    /// map of its own (one more persistent map to copy a path of per attach) is
+    /// needed. Read through [`Entry::name`] and [`Entry::scope`].
+    pub(crate) text: Option<SmolStr>,
+    /// Whether the element is an attachment frame (in the entry's padding: no size).
+    pub(crate) frame: bool,
     /// The element's position among its parent's children when it was indexed: a
     /// hint, checked before use (later inserts and removals before it shift it).
     pub(crate) pos: usize,
@@ -113,6 +119,18 @@ impl std::fmt::Debug for MergedCache {
     }
 }
 
+impl Entry {
+    /// The element's identifier (an attachment frame has none).
+    pub(crate) fn name(&self) -> Option<&SmolStr> {
+        if self.frame { None } else { self.text.as_ref() }
+    }
+
+    /// The scope name of the attachment, if the element is an attachment frame.
+    pub(crate) fn scope(&self) -> Option<&SmolStr> {
+        if self.frame { self.text.as_ref() } else { None }
+    }
+}
+
 /// An element waiting to be indexed: its parent, itself, whether its parent is an
 /// attachment frame, its position and slot, and whether it is indexed through a run
 /// (`runs`) rather than by an entry of its own.
@@ -186,7 +204,8 @@ impl Index {
         Some(Cow::Owned(Entry {
             parent: Some(parent),
             kind,
-            name: None,
+            text: None,
+            frame: false,
             pos: i,
             ord: fresh_ord(i),
         }))
@@ -205,7 +224,7 @@ impl Index {
     /// The identifier of `id`, if it is an element of this model with one.
     pub(crate) fn name(&self, id: ElementId) -> Option<&SmolStr> {
         // Members of runs have no identifier.
-        self.elems.get(&id)?.name.as_ref()
+        self.elems.get(&id)?.name()
     }
 
     /// The number of elements indexed.
@@ -231,8 +250,10 @@ impl Index {
         let mut stack: Vec<(Option<ElementId>, &Node, usize, bool)> = vec![(None, root, 0, false)];
         while let Some((parent, n, pos, in_run)) = stack.pop() {
             if !in_run {
-                let name = n.identifier().map(SmolStr::from);
-                let entry = Entry { parent, kind: n.kind(), name, pos, ord: fresh_ord(pos) };
+                // A read model has no attachments (no frames).
+                let text = n.identifier().map(SmolStr::from);
+                let entry =
+                    Entry { parent, kind: n.kind(), text, frame: false, pos, ord: fresh_ord(pos) };
                 entries.push((n.id(), entry));
             }
             let run = singleton_run(n);
@@ -269,7 +290,13 @@ impl Index {
                 return Err(Duplicate { id: n.id(), namespace: ns, name: name.clone() });
             }
         }
-        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos, ord });
+        // A frame's entry holds its scope name (the node's own, which attach and
+        // scope renames keep equal to the one in `scopes`).
+        let (text, frame) = match n.attached() {
+            Some(a) => (Some(a.scope.clone()), true),
+            None => (name, false),
+        };
+        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), text, frame, pos, ord });
         Ok(())
     }
 
@@ -282,14 +309,13 @@ impl Index {
                 }
             }
             if let Some(e) = self.elems.remove(&n.id()) {
-                if let (Some(ns), Some(name)) = (e.kind.namespace(), e.name) {
+                if let Some(scope) = e.scope() {
+                    self.scopes.remove(scope, n.id());
+                } else if let (Some(ns), Some(name)) = (e.kind.namespace(), e.text) {
                     if self.names.get(&(ns, name.clone())) == Some(&n.id()) {
                         self.names.remove(&(ns, name));
                     }
                 }
-            }
-            if n.attached().is_some() {
-                self.scopes.remove(n.id());
             }
         }
     }
@@ -297,21 +323,36 @@ impl Index {
     /// Changes the identifier of `id` (already checked to be free).
     pub(crate) fn rename(&mut self, id: ElementId, new: Option<SmolStr>) {
         let Some(entry) = self.entry(id).map(Cow::into_owned) else { return };
+        if entry.frame {
+            // A frame has no identifier (its attributes are the frame's own few).
+            return;
+        }
         let in_frame = entry.parent.is_some_and(|p| self.scope_of(p).is_some());
         if let (Some(ns), false) = (entry.kind.namespace(), in_frame) {
-            if let Some(old) = &entry.name {
+            if let Some(old) = &entry.text {
                 self.names.remove(&(ns, old.clone()));
             }
             if let Some(new) = &new {
                 self.names.insert((ns, new.clone()), id);
             }
         }
-        self.elems.insert(id, Entry { name: new, ..entry });
+        self.elems.insert(id, Entry { text: new, ..entry });
     }
 
-    /// The scope name of the attachment whose frame is `frame`.
+    /// The scope name of the attachment whose frame is `frame`: the frame's entry
+    /// holds it (a frame is never a member of a run: it has no consecutive siblings
+    /// made with it).
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.scopes.scope_of(frame)
+        self.elems.get(&frame)?.scope()
+    }
+
+    /// Renames the attachment whose frame is `frame` (to a free name).
+    pub(crate) fn rename_scope(&mut self, frame: ElementId, to: SmolStr) {
+        let Some(entry) = self.elems.get(&frame).filter(|e| e.frame) else { return };
+        let old = entry.text.clone();
+        let entry = Entry { text: Some(to.clone()), ..entry.clone() };
+        self.elems.insert(frame, entry);
+        self.scopes.rename(old.as_ref(), frame, to);
     }
 
     /// The frame of the attachment named `scope`.
@@ -335,20 +376,21 @@ impl Index {
     }
 }
 
-/// A model's own attachments: (scope name, frame) in attach order, found by name and
-/// by frame in O(log n). Persistent, like the rest of the index.
+/// A model's own attachments: (scope name, frame), found by name in O(log n) (by
+/// frame: the frame's index entry holds its scope name, [`Index::scope_of`]), listed
+/// in attach order. Persistent, like the rest of the index.
 ///
 /// Attach order is frame-id order: a frame gets a fresh id when it is attached
 /// (`ElementId::fresh`, one atomic counter), every attach of a model's history comes
 /// after the attaches it builds on, and a frame keeps its id for life (renames and
-/// edits inside the attachment keep it). So one map keyed by frame serves both the
-/// order and the lookup by frame: two persistent maps to update per attach, not three.
+/// edits inside the attachment keep it). So the attach order is that of the frames
+/// of `by_name`, sorted, on the rare calls that list the attachments, and an attach
+/// updates one persistent map of names (and the small `free_from`), not two or three.
+/// (An edit inside an attachment that changes its merged settings resets the outer
+/// model's memo itself: `Model::in_scope`.)
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Frame → scope. (An edit inside an attachment that changes its merged settings
-    /// resets the outer model's memo itself: `Model::in_scope`.)
-    order: OrdMap<ElementId, SmolStr>,
-    /// B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
+    /// Scope → frame. B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
     /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
     by_name: OrdMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
@@ -358,16 +400,16 @@ pub(crate) struct Scopes {
 
 impl Scopes {
     pub(crate) fn is_empty(&self) -> bool {
-        self.order.is_empty()
+        self.by_name.is_empty()
     }
 
-    /// (scope, frame) in attach order.
+    /// (scope, frame) in attach order (frame-id order: see the type's docs).
+    /// O(a log a) for `a` attachments.
     pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.iter().map(|(f, s)| (s, *f))
-    }
-
-    pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.order.get(&frame)
+        let mut all: Vec<(&SmolStr, ElementId)> =
+            self.by_name.iter().map(|(s, f)| (s, *f)).collect();
+        all.sort_unstable_by_key(|(_, f)| *f);
+        all.into_iter()
     }
 
     pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
@@ -376,7 +418,7 @@ impl Scopes {
 
     /// Whether both hold the same attachments (O(1): the maps are shared or not).
     pub(crate) fn same(&self, other: &Scopes) -> bool {
-        self.order.ptr_eq(&other.order)
+        self.by_name.ptr_eq(&other.by_name)
     }
 
     /// Adds an attachment under `name` (from [`Scopes::free_name`]: free, and chosen
@@ -385,25 +427,21 @@ impl Scopes {
         if name.suffix > 0 {
             self.free_from.insert(base.into(), name.suffix + 1);
         }
-        self.order.insert(frame, name.name.clone());
         self.by_name.insert(name.name, frame);
     }
 
-    /// Removes the attachment whose frame is `frame`, if any.
-    pub(crate) fn remove(&mut self, frame: ElementId) {
-        if let Some(scope) = self.order.remove(&frame) {
-            self.by_name.remove(&scope);
+    /// Removes the attachment `scope`, if its frame is `frame`.
+    fn remove(&mut self, scope: &SmolStr, frame: ElementId) {
+        if self.by_name.get(scope) == Some(&frame) {
+            self.by_name.remove(scope);
             self.free_from = OrdMap::new();
         }
     }
 
-    /// Renames the attachment whose frame is `frame` (to a free name).
-    pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
-        if !self.order.contains_key(&frame) {
-            return;
-        }
-        if let Some(old) = self.order.insert(frame, to.clone()) {
-            self.by_name.remove(&old);
+    /// Renames the attachment `old` whose frame is `frame` (to a free name).
+    fn rename(&mut self, old: Option<&SmolStr>, frame: ElementId, to: SmolStr) {
+        if let Some(old) = old.filter(|o| self.by_name.get(*o) == Some(&frame)) {
+            self.by_name.remove(old);
         }
         self.by_name.insert(to, frame);
         self.free_from = OrdMap::new();

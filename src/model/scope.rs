@@ -262,7 +262,8 @@ impl Model {
 
     /// The scope names of this model's own attachments, in attach order.
     ///
-    /// Time: O(a) for all `a` attachments of this model (O(log a) to start).
+    /// Time: O(a log a) for all `a` attachments of this model, to start (they are
+    /// listed in attach order, their frames' order); O(1) per scope name after that.
     pub fn scopes(&self) -> impl Iterator<Item = &str> {
         self.index.scopes.iter().map(|(s, _)| s.as_str())
     }
