@@ -289,7 +289,12 @@ impl<T: Clone + Keyed> Seq<T> {
     /// A slot for an item inserted at position `i`, between its neighbours' (`None`
     /// if they are too close).
     fn slot_for(&self, i: usize) -> Option<u64> {
-        let prev = if i == 0 { 0 } else { self.ord_at(i - 1)? };
+        let prev = match i {
+            0 => 0,
+            // The last item's slot is the root's largest: no descent to find it.
+            _ if i >= self.len => self.root.as_ref().map_or(0, max_ord),
+            _ => self.ord_at(i - 1)?,
+        };
         if i >= self.len {
             return prev.checked_add(GAP);
         }
@@ -348,21 +353,25 @@ impl<T: Clone + Keyed> Seq<T> {
     /// is the item's; else (a slot from before the sequence was numbered afresh) as
     /// [`Seq::position_near`] from `hint`.
     pub(crate) fn position_of(&self, key: u64, ord: u64, hint: usize) -> Option<usize> {
-        if let Some(p) = self.first_at_or_after(ord) {
-            if self.get(p).is_some_and(|x| x.key() == key) {
+        if let Some((p, x)) = self.first_at_or_after(ord) {
+            if x.key() == key {
                 return Some(p);
             }
         }
         self.position_near(key, hint)
     }
 
-    /// The first position whose slot is at least `ord`.
-    fn first_at_or_after(&self, ord: u64) -> Option<usize> {
+    /// The first position whose slot is at least `ord`, and its item (found in the
+    /// same descent).
+    fn first_at_or_after(&self, ord: u64) -> Option<(usize, &T)> {
         let mut t = self.root.as_ref()?;
         let mut at = 0;
         loop {
             match t {
-                Tree::Leaf(l) => return Some(at + l.ords.partition_point(|o| *o < ord)),
+                Tree::Leaf(l) => {
+                    let j = l.ords.partition_point(|o| *o < ord);
+                    return l.items.get(j).map(|x| (at + j, x));
+                }
                 Tree::Branch(b) => {
                     let k = b.kids.partition_point(|c| c.max < ord);
                     if k >= b.kids.len() {
