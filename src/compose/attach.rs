@@ -166,7 +166,7 @@ impl Model {
         // Folding `theirs` changed nothing: the next attach of the same model (its
         // merged sections the same `Arc`) skips the fold.
         let absorbed = Arc::ptr_eq(&sections, &ours).then_some(theirs);
-        let scope = self.index.scopes.free_name(base);
+        let scope = self.index.free_scope_name(base);
         let id = ElementId::fresh();
         let frame = Node::frame(
             id,

@@ -355,11 +355,6 @@ impl Index {
         self.scopes.rename(old.as_ref(), frame, to);
     }
 
-    /// The frame of the attachment named `scope`.
-    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.scopes.frame_of(scope)
-    }
-
     /// The ids from the root down to `id`, inclusive, each with its position hint
     /// and slot.
     pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
@@ -383,88 +378,151 @@ impl Index {
 /// Attach order is frame-id order: a frame gets a fresh id when it is attached
 /// (`ElementId::fresh`, one atomic counter), every attach of a model's history comes
 /// after the attaches it builds on, and a frame keeps its id for life (renames and
-/// edits inside the attachment keep it). So the attach order is that of the frames
-/// of `by_name`, sorted, on the rare calls that list the attachments, and an attach
-/// updates one persistent map of names (and the small `free_from`), not two or three.
+/// edits inside the attachment keep it). So the attach order is that of the frames,
+/// sorted, on the rare calls that list the attachments, and an attach updates one
+/// persistent map of names (and the small `free_from`), not two or three.
 /// (An edit inside an attachment that changes its merged settings resets the outer
 /// model's memo itself: `Model::in_scope`.)
+///
+/// The names themselves are in the frames' index entries: the map is keyed by a hash
+/// of the name (SipHash, once per call), its entries two words (a node copied on an
+/// attach's path is a plain copy of 16 of them, where names cost a clone each, and a
+/// step down compares integers, not strings), and a name found is checked against
+/// its frame's entry. Two names of one hash (hardly ever) put the later in
+/// `collided`, by name.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Scope → frame. B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
-    /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
-    by_name: OrdMap<SmolStr, ElementId>,
+    /// Hash of the scope name → frame. B-trees, not hash tries: an edit copies a few
+    /// 16-entry nodes where a hash trie copies 32-slot ones.
+    by_hash: OrdMap<u64, ElementId>,
+    /// Scope → frame, for a name whose hash another name has in `by_hash`.
+    collided: OrdMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).
     free_from: OrdMap<SmolStr, u64>,
 }
 
+/// The hash of a scope name that keys [`Scopes`] (SipHash: names are the user's).
+fn name_hash(name: &str) -> u64 {
+    use std::hash::Hasher;
+    let mut h = std::hash::DefaultHasher::new();
+    h.write(name.as_bytes());
+    h.finish()
+}
+
 impl Scopes {
     pub(crate) fn is_empty(&self) -> bool {
-        self.by_name.is_empty()
+        self.by_hash.is_empty() && self.collided.is_empty()
     }
 
-    /// (scope, frame) in attach order (frame-id order: see the type's docs).
-    /// O(a log a) for `a` attachments.
-    pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        let mut all: Vec<(&SmolStr, ElementId)> =
-            self.by_name.iter().map(|(s, f)| (s, *f)).collect();
-        all.sort_unstable_by_key(|(_, f)| *f);
-        all.into_iter()
+    /// (scope, frame) in attach order (frame-id order: see the type's docs), the
+    /// names from the frames' entries in `elems`. O(a log a) for `a` attachments.
+    fn iter<'a>(
+        &'a self,
+        elems: &'a ElemMap,
+    ) -> impl DoubleEndedIterator<Item = (&'a SmolStr, ElementId)> + 'a {
+        let mut frames: Vec<ElementId> =
+            self.by_hash.values().chain(self.collided.values()).copied().collect();
+        frames.sort_unstable();
+        frames.into_iter().filter_map(|f| Some((elems.get(&f)?.scope()?, f)))
     }
 
-    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.by_name.get(scope).copied()
+    /// The frame of the attachment named `scope` (`elems` holds the frames' names).
+    fn frame_of(&self, scope: &str, hash: u64, elems: &ElemMap) -> Option<ElementId> {
+        if let Some(&f) = self.by_hash.get(&hash) {
+            if elems.get(&f).and_then(Entry::scope).is_some_and(|s| s == scope) {
+                return Some(f);
+            }
+        }
+        self.collided.get(scope).copied()
     }
 
     /// Whether both hold the same attachments (O(1): the maps are shared or not).
     pub(crate) fn same(&self, other: &Scopes) -> bool {
-        self.by_name.ptr_eq(&other.by_name)
+        self.by_hash.ptr_eq(&other.by_hash) && self.collided.ptr_eq(&other.collided)
     }
 
-    /// Adds an attachment under `name` (from [`Scopes::free_name`]: free, and chosen
-    /// for `base`).
+    /// Adds an attachment under `name` (from [`Index::free_scope_name`]: free, and
+    /// chosen for `base`).
     pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId) {
         if name.suffix > 0 {
             self.free_from.insert(base.into(), name.suffix + 1);
         }
-        self.by_name.insert(name.name, frame);
+        self.add(name.name, name.hash, frame);
+    }
+
+    /// Adds `name` (free) for `frame`: by its hash, or, if another name has that
+    /// hash, by name.
+    fn add(&mut self, name: SmolStr, hash: u64, frame: ElementId) {
+        if let Some(other) = self.by_hash.insert(hash, frame) {
+            self.by_hash.insert(hash, other);
+            self.collided.insert(name, frame);
+        }
     }
 
     /// Removes the attachment `scope`, if its frame is `frame`.
     fn remove(&mut self, scope: &SmolStr, frame: ElementId) {
-        if self.by_name.get(scope) == Some(&frame) {
-            self.by_name.remove(scope);
-            self.free_from = OrdMap::new();
+        self.remove_hashed(scope, name_hash(scope), frame);
+    }
+
+    /// [`Scopes::remove`] of `scope`, whose hash is `hash`.
+    fn remove_hashed(&mut self, scope: &SmolStr, hash: u64, frame: ElementId) {
+        if self.by_hash.get(&hash) == Some(&frame) {
+            self.by_hash.remove(&hash);
+        } else if self.collided.get(scope) == Some(&frame) {
+            self.collided.remove(scope);
+        } else {
+            return;
         }
+        self.free_from = OrdMap::new();
     }
 
     /// Renames the attachment `old` whose frame is `frame` (to a free name).
     fn rename(&mut self, old: Option<&SmolStr>, frame: ElementId, to: SmolStr) {
-        if let Some(old) = old.filter(|o| self.by_name.get(*o) == Some(&frame)) {
-            self.by_name.remove(old);
+        if let Some(old) = old {
+            self.remove(old, frame);
         }
-        self.by_name.insert(to, frame);
+        let hash = name_hash(&to);
+        self.add(to, hash, frame);
         self.free_from = OrdMap::new();
+    }
+}
+
+impl Index {
+    /// The frame of the attachment named `scope`.
+    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
+        self.scopes.frame_of(scope, name_hash(scope), &self.elems)
+    }
+
+    /// This model's own attachments, (scope, frame) in attach order. O(a log a) for
+    /// `a` attachments.
+    pub(crate) fn attachments(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
+        self.scopes.iter(&self.elems)
     }
 
     /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
     /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
     /// are only added. Changes nothing: [`Scopes::push`] records the hint.
-    pub(crate) fn free_name(&self, base: &str) -> FreeName {
+    pub(crate) fn free_scope_name(&self, base: &str) -> FreeName {
+        let taken = |name: &str, hash: u64| self.scopes.frame_of(name, hash, &self.elems).is_some();
         // A hint for `base` means `base` was taken when it was noted, and no name was
         // freed since (that clears the hints): taken still.
-        let mut n = match self.free_from.get(base) {
+        let mut n = match self.scopes.free_from.get(base) {
             Some(n) => *n,
-            None if !self.by_name.contains_key(base) => {
-                return FreeName { name: base.into(), suffix: 0 };
+            None => {
+                let hash = name_hash(base);
+                if !taken(base, hash) {
+                    return FreeName { name: base.into(), suffix: 0, hash };
+                }
+                1
             }
-            None => 1,
         };
         loop {
             // Built in place (no `String` for names of up to 23 bytes).
             let name = smol_str::format_smolstr!("{base}_{n}");
-            if !self.by_name.contains_key(&name) {
-                return FreeName { name, suffix: n };
+            let hash = name_hash(&name);
+            if !taken(&name, hash) {
+                return FreeName { name, suffix: n, hash };
             }
             n += 1;
         }
@@ -506,4 +564,54 @@ fn singleton_run(n: &Node) -> usize {
 pub(crate) struct FreeName {
     pub(crate) name: SmolStr,
     suffix: u64,
+    /// The name's hash (computed once: it keys [`Scopes`]).
+    hash: u64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Names of one hash: the later by name, each found, listed and removed.
+    #[test]
+    fn scope_names_of_one_hash() {
+        let frames: Vec<ElementId> = (0..3).map(|_| ElementId::fresh()).collect();
+        let names = ["a", "b", "c"];
+        let mut elems = ElemMap::default();
+        for (f, n) in frames.iter().zip(names) {
+            let entry = Entry {
+                parent: None,
+                kind: crate::schema::ElementKind::ROOT,
+                text: Some(n.into()),
+                frame: true,
+                pos: 0,
+                ord: 0,
+            };
+            elems.insert(*f, entry);
+        }
+        let mut s = Scopes::default();
+        for (f, n) in frames.iter().zip(names) {
+            s.add(n.into(), 7, *f);
+        }
+        for (f, n) in frames.iter().zip(names) {
+            assert_eq!(s.frame_of(n, 7, &elems), Some(*f));
+        }
+        assert_eq!(s.frame_of("d", 7, &elems), None);
+        let listed: Vec<(&str, ElementId)> = s.iter(&elems).map(|(n, f)| (n.as_str(), f)).collect();
+        assert_eq!(listed, names.iter().copied().zip(frames.iter().copied()).collect::<Vec<_>>());
+        let before = s.clone();
+        // Removing the one keyed by hash leaves the others found.
+        s.remove_hashed(&"a".into(), 7, frames[0]);
+        assert_eq!(s.frame_of("a", 7, &elems), None);
+        assert_eq!(s.frame_of("b", 7, &elems), Some(frames[1]));
+        assert_eq!(s.frame_of("c", 7, &elems), Some(frames[2]));
+        // Not its frame: nothing removed.
+        s.remove_hashed(&"c".into(), 7, frames[1]);
+        assert_eq!(s.frame_of("c", 7, &elems), Some(frames[2]));
+        s.remove_hashed(&"b".into(), 7, frames[1]);
+        s.remove_hashed(&"c".into(), 7, frames[2]);
+        assert!(s.is_empty());
+        assert!(!before.same(&s) && before.same(&before.clone()));
+        assert_eq!(before.frame_of("b", 7, &elems), Some(frames[1]));
+    }
 }
