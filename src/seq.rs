@@ -459,7 +459,7 @@ impl<T: Clone + Keyed> Seq<T> {
 fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split<T> {
     match t {
         Tree::Leaf(l) => {
-            let l = Arc::make_mut(l);
+            let l = leaf_to_grow(l);
             l.ords.insert(i, ord);
             l.items.insert(i, value);
             if l.items.len() <= LEAF {
@@ -490,6 +490,19 @@ fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split
             Some((Tree::Branch(Arc::new(right)), n))
         }
     }
+}
+
+/// `Arc::make_mut` for a leaf about to take one more item: a copy (of a shared leaf)
+/// is made with room for it, so the insert does not allocate again to grow it.
+fn leaf_to_grow<T: Clone>(l: &mut Arc<Leaf<T>>) -> &mut Leaf<T> {
+    if Arc::get_mut(l).is_none() {
+        let mut ords = Vec::with_capacity(l.ords.len() + 1);
+        ords.extend_from_slice(&l.ords);
+        let mut items = Vec::with_capacity(l.items.len() + 1);
+        items.extend(l.items.iter().cloned());
+        *l = Arc::new(Leaf { ords, items });
+    }
+    Arc::make_mut(l)
 }
 
 /// Removes position `i` (`<` its length) of the subtree `t`; subtrees left empty are

@@ -170,7 +170,7 @@ impl ElemMap {
             self.len += 1;
             return None;
         };
-        let (old, split) = insert_into(Arc::make_mut(root), id, entry);
+        let (old, split) = insert_into(for_insert(root), id, entry);
         if let Some(right) = split {
             let left = self.root.take().unwrap_or_else(|| Arc::new(Node::Leaf(Vec::new())));
             let left_key = first_key(&left).unwrap_or(id);
@@ -197,7 +197,7 @@ impl ElemMap {
             self.len += 1;
             return None;
         }
-        let Node::Leaf(tail) = Arc::make_mut(self.tail.as_mut()?) else { return None };
+        let Node::Leaf(tail) = node_to_grow(self.tail.as_mut()?) else { return None };
         match tail.binary_search_by_key(&id, |(k, _)| *k) {
             Ok(i) => return Some(std::mem::replace(&mut tail[i].1, entry)),
             Err(i) => tail.insert(i, (id, entry)),
@@ -223,7 +223,7 @@ impl ElemMap {
         };
         let split = match &**root {
             Node::Leaf(_) => Some((key, leaf)),
-            Node::Branch(_) => match Arc::make_mut(root) {
+            Node::Branch(_) => match node_to_grow(root) {
                 Node::Branch(v) => push_right(v, key, leaf),
                 Node::Leaf(_) => None,
             },
@@ -281,6 +281,35 @@ impl ElemMap {
     }
 }
 
+/// `Arc::make_mut` for a node about to take one more entry or child: a copy (of a
+/// shared node) is made with room for it, so adding does not allocate again.
+fn node_to_grow(n: &mut Arc<Node>) -> &mut Node {
+    if Arc::get_mut(n).is_none() {
+        let copy = match &**n {
+            Node::Leaf(v) => Node::Leaf(with_room(v)),
+            Node::Branch(v) => Node::Branch(with_room(v)),
+        };
+        *n = Arc::new(copy);
+    }
+    Arc::make_mut(n)
+}
+
+/// The node an insert goes down to: a leaf takes one more entry (a copy made has room
+/// for it), a branch only on a split below.
+fn for_insert(n: &mut Arc<Node>) -> &mut Node {
+    match &**n {
+        Node::Leaf(_) => node_to_grow(n),
+        Node::Branch(_) => Arc::make_mut(n),
+    }
+}
+
+/// A copy of `v` with room for one more.
+fn with_room<T: Clone>(v: &[T]) -> Vec<T> {
+    let mut out = Vec::with_capacity(v.len() + 1);
+    out.extend_from_slice(v);
+    out
+}
+
 /// The largest key of the subtree `n` (the last entry of its last leaf).
 fn last_key(mut n: &Node) -> Option<ElementId> {
     loop {
@@ -302,7 +331,7 @@ fn push_right(
 ) -> Option<(ElementId, Arc<Node>)> {
     let split = match v.last_mut() {
         // The children are branches: down the right edge (copied if shared).
-        Some((_, last)) if matches!(&**last, Node::Branch(_)) => match Arc::make_mut(last) {
+        Some((_, last)) if matches!(&**last, Node::Branch(_)) => match node_to_grow(last) {
             Node::Branch(kids) => push_right(kids, key, leaf),
             Node::Leaf(_) => None,
         },
@@ -359,7 +388,7 @@ fn insert_into(
             if id < v[i].0 {
                 v[i].0 = id;
             }
-            let (old, split) = insert_into(Arc::make_mut(&mut v[i].1), id, entry);
+            let (old, split) = insert_into(for_insert(&mut v[i].1), id, entry);
             let Some(sibling) = split else { return (old, None) };
             v.insert(i + 1, sibling);
             if v.len() <= MAX {
