@@ -343,6 +343,11 @@ impl Index {
     /// holds it (a frame is never a member of a run: it has no consecutive siblings
     /// made with it).
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
+        // A model without attachments has no frames (most models, and every robot of
+        // a fleet, whose references the writer asks this about): no lookup.
+        if self.scopes.is_empty() {
+            return None;
+        }
         self.elems.get(&frame)?.scope()
     }
 
