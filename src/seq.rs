@@ -345,7 +345,12 @@ impl<T: Clone + Keyed> Seq<T> {
     /// A slot for an item inserted at position `i`, between its neighbours' (`None`
     /// if they are too close).
     fn slot_for(&self, i: usize) -> Option<u64> {
-        let prev = if i == 0 { 0 } else { self.ord_at(i - 1)? };
+        let prev = match i {
+            0 => 0,
+            // The last item's slot is the root's largest: no descent to find it.
+            _ if i >= self.len => self.root.as_ref().map_or(0, max_ord),
+            _ => self.ord_at(i - 1)?,
+        };
         if i >= self.len {
             return prev.checked_add(GAP);
         }
@@ -404,21 +409,25 @@ impl<T: Clone + Keyed> Seq<T> {
     /// is the item's; else (a slot from before the sequence was numbered afresh) as
     /// [`Seq::position_near`] from `hint`.
     pub(crate) fn position_of(&self, key: u64, ord: u64, hint: usize) -> Option<usize> {
-        if let Some(p) = self.first_at_or_after(ord) {
-            if self.get(p).is_some_and(|x| x.key() == key) {
+        if let Some((p, x)) = self.first_at_or_after(ord) {
+            if x.key() == key {
                 return Some(p);
             }
         }
         self.position_near(key, hint)
     }
 
-    /// The first position whose slot is at least `ord`.
-    fn first_at_or_after(&self, ord: u64) -> Option<usize> {
+    /// The first position whose slot is at least `ord`, and its item (found in the
+    /// same descent).
+    fn first_at_or_after(&self, ord: u64) -> Option<(usize, &T)> {
         let mut t = self.root.as_ref()?;
         let mut at = 0;
         loop {
             match t {
-                Tree::Leaf(l) => return Some(at + l.below(ord)),
+                Tree::Leaf(l) => {
+                    let j = l.below(ord);
+                    return l.items.get(j).map(|x| (at + j, x));
+                }
                 Tree::Branch(b) => {
                     let k = b.kids.partition_point(|c| c.max < ord);
                     if k >= b.kids.len() {
@@ -506,7 +515,7 @@ impl<T: Clone + Keyed> Seq<T> {
 fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split<T> {
     match t {
         Tree::Leaf(l) => {
-            let l = Arc::make_mut(l);
+            let l = leaf_to_grow(l);
             l.ords_mut().insert(i, ord);
             l.items.insert(i, value);
             if l.items.len() <= LEAF {
@@ -538,6 +547,20 @@ fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split
             Some((Tree::Branch(Arc::new(right)), n))
         }
     }
+}
+
+/// `Arc::make_mut` for a leaf about to take one more item: a copy (of a shared leaf)
+/// is made with room for it, so the insert does not allocate again to grow it.
+fn leaf_to_grow<T: Clone>(l: &mut Arc<Leaf<T>>) -> &mut Leaf<T> {
+    if Arc::get_mut(l).is_none() {
+        // The copy is listed (an edit follows, which needs the slots).
+        let mut ords = Vec::with_capacity(l.items.len() + 1);
+        ords.extend((0..l.items.len()).filter_map(|j| l.ord(j)));
+        let mut items = Vec::with_capacity(l.items.len() + 1);
+        items.extend(l.items.iter().cloned());
+        *l = Arc::new(Leaf::listed(ords, items));
+    }
+    Arc::make_mut(l)
 }
 
 /// Removes position `i` (`<` its length) of the subtree `t`; subtrees left empty are

@@ -166,7 +166,7 @@ impl Model {
         // Folding `theirs` changed nothing: the next attach of the same model (its
         // merged sections the same `Arc`) skips the fold.
         let absorbed = Arc::ptr_eq(&sections, &ours).then_some(theirs);
-        let scope = self.index.scopes.free_name(base);
+        let scope = self.index.free_scope_name(base);
         let id = ElementId::fresh();
         let frame = Node::frame(
             id,
@@ -308,7 +308,7 @@ impl Model {
             }
             let path = m.path_of(*frame).ok_or_else(|| not_attached(m, &text))?;
             let mut index = m.index.clone();
-            index.scopes.rename(*frame, to.into());
+            index.rename_scope(*frame, to.into());
             let root = m.root.update_path(&path, |n| {
                 let a = n.attached().ok_or_else(|| not_attached(m, &text))?;
                 Ok::<_, EditError>(

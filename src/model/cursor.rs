@@ -96,8 +96,7 @@ impl<'a> Insts<'a> {
             let m = self.list[i].model;
             let mut children: Vec<usize> = m
                 .index
-                .scopes
-                .iter()
+                .attachments()
                 .filter_map(|(_, f)| self.attached(i, m.node_by_id(f)?))
                 .collect();
             children.reverse();

@@ -5,10 +5,18 @@
 //! (full leaves, no per-entry descent; a model read has tens of thousands), and an
 //! entry added after the largest key (a new element: ids are handed out in increasing
 //! order) leaves the full leaf it overflows full instead of splitting it in halves.
-//! A clone is one pointer copy; an insert or removal copies the nodes on one
+//! A clone is two pointer copies; an insert or removal copies the nodes on one
 //! root-to-leaf path (at most 16 entries each). Removals do not rebalance (an empty
 //! node is dropped, a root with one child is replaced by it), so the depth stays
 //! O(log of the largest size the map had).
+//!
+//! The newest entries (at most 16, with keys above every key of the tree) are kept
+//! apart, in a tail, like a persistent vector's: an element added to a model (a
+//! fresh id, the largest) copies the tail alone, not the tree's right edge (a path
+//! of three or four nodes in a model of tens of thousands of elements), so adding is
+//! O(1) whatever the model's size, and the new element is found again at once. A
+//! full tail goes into the tree as it is, a full leaf, shared with the versions
+//! that hold it as their tail (one path copy per 16 appends).
 
 use std::sync::Arc;
 
@@ -31,6 +39,10 @@ enum Node {
 #[derive(Clone, Default)]
 pub(crate) struct ElemMap {
     root: Option<Arc<Node>>,
+    /// A leaf of entries above every key of `root`, at most `MAX` (module docs);
+    /// `None` rather than empty.
+    tail: Option<Arc<Node>>,
+    /// Entries in `root` and `tail`.
     len: usize,
 }
 
@@ -83,7 +95,7 @@ impl ElemMap {
             }
             level = up;
         }
-        ElemMap { root: level.pop().map(|(_, n)| n), len }
+        ElemMap { root: level.pop().map(|(_, n)| n), tail: None, len }
     }
 
     pub(crate) fn len(&self) -> usize {
@@ -92,14 +104,36 @@ impl ElemMap {
 
     /// Whether both are one map (the same root, or both empty): O(1).
     pub(crate) fn ptr_eq(&self, other: &ElemMap) -> bool {
-        match (&self.root, &other.root) {
+        let roots = match (&self.root, &other.root) {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),
             (None, None) => true,
             _ => false,
+        };
+        roots
+            && match (&self.tail, &other.tail) {
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                (None, None) => true,
+                _ => false,
+            }
+    }
+
+    /// The tail's entries.
+    fn tail_entries(&self) -> Option<&[(ElementId, Entry)]> {
+        match self.tail.as_deref()? {
+            Node::Leaf(v) => Some(v),
+            Node::Branch(_) => None,
         }
     }
 
+    /// The tail's entries, if `id` belongs there (it is at least the tail's first key).
+    fn tail_for(&self, id: &ElementId) -> Option<&[(ElementId, Entry)]> {
+        self.tail_entries().filter(|t| t.first().is_some_and(|(k, _)| k <= id))
+    }
+
     pub(crate) fn get(&self, id: &ElementId) -> Option<&Entry> {
+        if let Some(t) = self.tail_for(id) {
+            return t.binary_search_by_key(id, |(k, _)| *k).ok().map(|i| &t[i].1);
+        }
         let mut node = self.root.as_deref()?;
         loop {
             match node {
@@ -121,12 +155,22 @@ impl ElemMap {
 
     /// Sets the entry of `id`; returns the one it replaces.
     pub(crate) fn insert(&mut self, id: ElementId, entry: Entry) -> Option<Entry> {
+        if self.tail_for(&id).is_some() {
+            return self.insert_in_tail(id, entry);
+        }
+        // Above every key (a new element): a tail of its own.
+        if self.tail.is_none() && self.root.as_deref().is_none_or(|r| last_key(r) < Some(id)) {
+            self.tail = Some(Arc::new(Node::Leaf(vec![(id, entry)])));
+            self.len += 1;
+            return None;
+        }
         let Some(root) = self.root.as_mut() else {
+            // Unreachable: an empty tree with a tail takes every key in the tail.
             self.root = Some(Arc::new(Node::Leaf(vec![(id, entry)])));
-            self.len = 1;
+            self.len += 1;
             return None;
         };
-        let (old, split) = insert_into(Arc::make_mut(root), id, entry);
+        let (old, split) = insert_into(for_insert(root), id, entry);
         if let Some(right) = split {
             let left = self.root.take().unwrap_or_else(|| Arc::new(Node::Leaf(Vec::new())));
             let left_key = first_key(&left).unwrap_or(id);
@@ -138,10 +182,73 @@ impl ElemMap {
         old
     }
 
+    /// [`ElemMap::insert`] of a key at least the tail's first. A key after a full
+    /// tail sends the tail into the tree as it is (not copied: other versions may
+    /// share it) and starts a new one; a tail grown past `MAX` otherwise gives its
+    /// first `MAX` entries to the tree, as its new last leaf.
+    fn insert_in_tail(&mut self, id: ElementId, entry: Entry) -> Option<Entry> {
+        let full = self
+            .tail_entries()
+            .is_some_and(|t| t.len() >= MAX && t.last().is_some_and(|(k, _)| *k < id));
+        if full {
+            let tail = self.tail.take()?;
+            self.push_leaf(tail);
+            self.tail = Some(Arc::new(Node::Leaf(vec![(id, entry)])));
+            self.len += 1;
+            return None;
+        }
+        let Node::Leaf(tail) = node_to_grow(self.tail.as_mut()?) else { return None };
+        match tail.binary_search_by_key(&id, |(k, _)| *k) {
+            Ok(i) => return Some(std::mem::replace(&mut tail[i].1, entry)),
+            Err(i) => tail.insert(i, (id, entry)),
+        }
+        let over = (tail.len() > MAX).then(|| {
+            let rest = tail.split_off(MAX);
+            std::mem::replace(tail, rest)
+        });
+        self.len += 1;
+        if let Some(over) = over {
+            self.push_leaf(Arc::new(Node::Leaf(over)));
+        }
+        None
+    }
+
+    /// Adds `leaf` (a non-empty leaf, its keys above every key of the tree) as the
+    /// tree's last leaf.
+    fn push_leaf(&mut self, leaf: Arc<Node>) {
+        let Some(key) = first_key(&leaf) else { return };
+        let Some(root) = self.root.as_mut() else {
+            self.root = Some(leaf);
+            return;
+        };
+        let split = match &**root {
+            Node::Leaf(_) => Some((key, leaf)),
+            Node::Branch(_) => match node_to_grow(root) {
+                Node::Branch(v) => push_right(v, key, leaf),
+                Node::Leaf(_) => None,
+            },
+        };
+        if let Some(right) = split {
+            let left = self.root.take().unwrap_or_else(|| Arc::new(Node::Leaf(Vec::new())));
+            let left_key = first_key(&left).unwrap_or(key);
+            self.root = Some(Arc::new(Node::Branch(vec![(left_key, left), right])));
+        }
+    }
+
     /// Removes the entry of `id`, if any, and returns it.
     pub(crate) fn remove(&mut self, id: &ElementId) -> Option<Entry> {
         // Not there: nothing is copied.
         self.get(id)?;
+        if self.tail_for(id).is_some() {
+            let Node::Leaf(tail) = Arc::make_mut(self.tail.as_mut()?) else { return None };
+            let i = tail.binary_search_by_key(id, |(k, _)| *k).ok()?;
+            let (_, old) = tail.remove(i);
+            if tail.is_empty() {
+                self.tail = None;
+            }
+            self.len -= 1;
+            return Some(old);
+        }
         let root = self.root.as_mut()?;
         let old = remove_from(Arc::make_mut(root), id);
         if old.is_some() {
@@ -169,8 +276,74 @@ impl ElemMap {
                 Node::Branch(v) => stack.extend(v.iter().rev().map(|(_, c)| &**c)),
             }
         }
+        out.extend(self.tail_entries().unwrap_or_default().iter().map(|(k, e)| (k, e)));
         out
     }
+}
+
+/// `Arc::make_mut` for a node about to take one more entry or child: a copy (of a
+/// shared node) is made with room for it, so adding does not allocate again.
+fn node_to_grow(n: &mut Arc<Node>) -> &mut Node {
+    if Arc::get_mut(n).is_none() {
+        let copy = match &**n {
+            Node::Leaf(v) => Node::Leaf(with_room(v)),
+            Node::Branch(v) => Node::Branch(with_room(v)),
+        };
+        *n = Arc::new(copy);
+    }
+    Arc::make_mut(n)
+}
+
+/// The node an insert goes down to: a leaf takes one more entry (a copy made has room
+/// for it), a branch only on a split below.
+fn for_insert(n: &mut Arc<Node>) -> &mut Node {
+    match &**n {
+        Node::Leaf(_) => node_to_grow(n),
+        Node::Branch(_) => Arc::make_mut(n),
+    }
+}
+
+/// A copy of `v` with room for one more.
+fn with_room<T: Clone>(v: &[T]) -> Vec<T> {
+    let mut out = Vec::with_capacity(v.len() + 1);
+    out.extend_from_slice(v);
+    out
+}
+
+/// The largest key of the subtree `n` (the last entry of its last leaf).
+fn last_key(mut n: &Node) -> Option<ElementId> {
+    loop {
+        match n {
+            Node::Leaf(v) => return v.last().map(|(k, _)| *k),
+            Node::Branch(v) => n = &v.last()?.1,
+        }
+    }
+}
+
+/// Adds `leaf` (keys above every key of the branch `v`, the first `key`) at the
+/// right edge of the branch, at the depth of its leaves; returns the branch's new
+/// right sibling if it split. A full branch stays full (keys only arrive at the
+/// end here).
+fn push_right(
+    v: &mut Vec<(ElementId, Arc<Node>)>,
+    key: ElementId,
+    leaf: Arc<Node>,
+) -> Option<(ElementId, Arc<Node>)> {
+    let split = match v.last_mut() {
+        // The children are branches: down the right edge (copied if shared).
+        Some((_, last)) if matches!(&**last, Node::Branch(_)) => match node_to_grow(last) {
+            Node::Branch(kids) => push_right(kids, key, leaf),
+            Node::Leaf(_) => None,
+        },
+        // The children are leaves (none copied): the new one is a sibling.
+        _ => Some((key, leaf)),
+    };
+    v.push(split?);
+    if v.len() <= MAX {
+        return None;
+    }
+    let right = split_at(v, true);
+    Some((right[0].0, Arc::new(Node::Branch(right))))
 }
 
 fn first_key(n: &Node) -> Option<ElementId> {
@@ -215,7 +388,7 @@ fn insert_into(
             if id < v[i].0 {
                 v[i].0 = id;
             }
-            let (old, split) = insert_into(Arc::make_mut(&mut v[i].1), id, entry);
+            let (old, split) = insert_into(for_insert(&mut v[i].1), id, entry);
             let Some(sibling) = split else { return (old, None) };
             v.insert(i + 1, sibling);
             if v.len() <= MAX {
@@ -272,7 +445,14 @@ mod tests {
     }
 
     fn entry(n: u64) -> Entry {
-        Entry { parent: None, kind: ElementKind::ROOT, name: None, pos: n as usize, ord: n }
+        Entry {
+            parent: None,
+            kind: ElementKind::ROOT,
+            text: None,
+            frame: false,
+            pos: n as usize,
+            ord: n,
+        }
     }
 
     fn same(m: &ElemMap, model: &BTreeMap<u64, u64>) {
@@ -362,11 +542,87 @@ mod tests {
     #[test]
     fn appended_keys_fill_their_leaves() {
         let mut m = ElemMap::default();
-        for k in 0..(MAX as u64 * MAX as u64) {
+        // One more than the tree's full leaves hold: that one is in the tail.
+        for k in 0..=(MAX as u64 * MAX as u64) {
             m.insert(id(k), entry(k));
         }
         let Some(Node::Branch(kids)) = m.root.as_deref() else { panic!("a branch root") };
         assert_eq!(kids.len(), MAX);
         assert!(kids.iter().all(|(_, c)| matches!(&**c, Node::Leaf(v) if v.len() == MAX)));
+        assert_eq!(m.tail_entries().map(<[_]>::len), Some(1));
+    }
+
+    /// Leaves at one depth, keys in order within and across nodes, every bound at
+    /// most its subtree's keys, the tail above the tree.
+    fn sound(m: &ElemMap) {
+        fn walk(n: &Node, depth: usize, leaves: &mut Vec<usize>, keys: &mut Vec<ElementId>) {
+            match n {
+                Node::Leaf(v) => {
+                    assert!(!v.is_empty() && v.len() <= MAX);
+                    leaves.push(depth);
+                    keys.extend(v.iter().map(|(k, _)| *k));
+                }
+                Node::Branch(v) => {
+                    assert!(!v.is_empty() && v.len() <= MAX);
+                    for (bound, c) in v {
+                        let at = keys.len();
+                        walk(c, depth + 1, leaves, keys);
+                        assert!(keys[at..].iter().all(|k| k >= bound));
+                    }
+                }
+            }
+        }
+        let (mut leaves, mut keys) = (Vec::new(), Vec::new());
+        if let Some(r) = m.root.as_deref() {
+            walk(r, 0, &mut leaves, &mut keys);
+        }
+        assert!(leaves.windows(2).all(|w| w[0] == w[1]), "leaves at one depth");
+        if let Some(t) = m.tail_entries() {
+            assert!(!t.is_empty() && t.len() <= MAX);
+            keys.extend(t.iter().map(|(k, _)| *k));
+        }
+        assert!(keys.windows(2).all(|w| w[0] < w[1]), "keys in order");
+        assert_eq!(keys.len(), m.len());
+    }
+
+    #[test]
+    fn appends_go_through_the_tail_and_keep_old_versions() {
+        // Built from entries (no tail), then appended to, with removals and
+        // replacements near the end (in the tail) and before it (in the tree).
+        let mut m = ElemMap::from_entries((0..40).map(|k| (id(k), entry(k))).collect());
+        let mut model: BTreeMap<u64, u64> = (0..40).map(|k| (k, k)).collect();
+        let mut versions = Vec::new();
+        let mut state = 0x9E37_79B9_7F4A_7C15;
+        for k in 40..6000u64 {
+            assert!(m.insert(id(k), entry(k)).is_none());
+            model.insert(k, k);
+            let r = rng(&mut state);
+            if r % 5 == 0 {
+                // A recent key (often in the tail) or an older one.
+                let back = (r >> 8) % if r % 2 == 0 { 20 } else { 400 };
+                let old = k.saturating_sub(back);
+                assert_eq!(m.remove(&id(old)).map(|e| e.ord), model.remove(&old));
+            }
+            if r % 7 == 0 {
+                let old = k.saturating_sub((r >> 16) % 30);
+                assert_eq!(m.insert(id(old), entry(k)).map(|e| e.ord), model.insert(old, k));
+            }
+            if k % 97 == 0 {
+                sound(&m);
+                versions.push((m.clone(), model.clone()));
+            }
+        }
+        sound(&m);
+        same(&m, &model);
+        for (v, model) in &versions {
+            sound(v);
+            same(v, model);
+        }
+        // A clone shares its tail until either changes; then they differ.
+        let mut c = m.clone();
+        assert!(c.ptr_eq(&m));
+        c.insert(id(6000), entry(1));
+        assert!(!c.ptr_eq(&m));
+        assert!(m.get(&id(6000)).is_none());
     }
 }

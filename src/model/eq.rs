@@ -103,7 +103,7 @@ fn same_tree<'m>(
     }
     // The attach order (it orders the attachments' sections when written).
     if !a.index.scopes.same(&b.index.scopes) {
-        let (mut i, mut j) = (a.index.scopes.iter(), b.index.scopes.iter());
+        let (mut i, mut j) = (a.index.attachments(), b.index.attachments());
         loop {
             match (i.next(), j.next()) {
                 (None, None) => break,

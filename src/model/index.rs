@@ -36,7 +36,13 @@ use crate::seq::fresh_ord;
 pub(crate) struct Entry {
     pub(crate) parent: Option<ElementId>,
     pub(crate) kind: ElementKind,
-    pub(crate) name: Option<SmolStr>,
+    /// The identifier; for an attachment frame (`frame`), which has none, the scope
+    /// name of its attachment: so the frame's own entry answers `scope_of`, and no
+    /// map of its own (one more persistent map to copy a path of per attach) is
+    /// needed. Read through [`Entry::name`] and [`Entry::scope`].
+    pub(crate) text: Option<SmolStr>,
+    /// Whether the element is an attachment frame (in the entry's padding: no size).
+    pub(crate) frame: bool,
     /// The element's position among its parent's children when it was indexed: a
     /// hint, checked before use (later inserts and removals before it shift it).
     pub(crate) pos: usize,
@@ -113,6 +119,18 @@ impl std::fmt::Debug for MergedCache {
     }
 }
 
+impl Entry {
+    /// The element's identifier (an attachment frame has none).
+    pub(crate) fn name(&self) -> Option<&SmolStr> {
+        if self.frame { None } else { self.text.as_ref() }
+    }
+
+    /// The scope name of the attachment, if the element is an attachment frame.
+    pub(crate) fn scope(&self) -> Option<&SmolStr> {
+        if self.frame { self.text.as_ref() } else { None }
+    }
+}
+
 /// An element waiting to be indexed: its parent, itself, whether its parent is an
 /// attachment frame, its position and slot, and whether it is indexed through a run
 /// (`runs`) rather than by an entry of its own.
@@ -186,7 +204,8 @@ impl Index {
         Some(Cow::Owned(Entry {
             parent: Some(parent),
             kind,
-            name: None,
+            text: None,
+            frame: false,
             pos: i,
             ord: fresh_ord(i),
         }))
@@ -205,7 +224,7 @@ impl Index {
     /// The identifier of `id`, if it is an element of this model with one.
     pub(crate) fn name(&self, id: ElementId) -> Option<&SmolStr> {
         // Members of runs have no identifier.
-        self.elems.get(&id)?.name.as_ref()
+        self.elems.get(&id)?.name()
     }
 
     /// The number of elements indexed.
@@ -231,7 +250,13 @@ impl Index {
                 return Err(Duplicate { id: n.id(), namespace: ns, name: name.clone() });
             }
         }
-        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), name, pos, ord });
+        // A frame's entry holds its scope name (the node's own, which attach and
+        // scope renames keep equal to the one in `scopes`).
+        let (text, frame) = match n.attached() {
+            Some(a) => (Some(a.scope.clone()), true),
+            None => (name, false),
+        };
+        self.elems.insert(n.id(), Entry { parent, kind: n.kind(), text, frame, pos, ord });
         Ok(())
     }
 
@@ -244,14 +269,13 @@ impl Index {
                 }
             }
             if let Some(e) = self.elems.remove(&n.id()) {
-                if let (Some(ns), Some(name)) = (e.kind.namespace(), e.name) {
+                if let Some(scope) = e.scope() {
+                    self.scopes.remove(scope, n.id());
+                } else if let (Some(ns), Some(name)) = (e.kind.namespace(), e.text) {
                     if self.names.get(&(ns, name.clone())) == Some(&n.id()) {
                         self.names.remove(&(ns, name));
                     }
                 }
-            }
-            if n.attached().is_some() {
-                self.scopes.remove(n.id());
             }
         }
     }
@@ -259,26 +283,41 @@ impl Index {
     /// Changes the identifier of `id` (already checked to be free).
     pub(crate) fn rename(&mut self, id: ElementId, new: Option<SmolStr>) {
         let Some(entry) = self.entry(id).map(Cow::into_owned) else { return };
+        if entry.frame {
+            // A frame has no identifier (its attributes are the frame's own few).
+            return;
+        }
         let in_frame = entry.parent.is_some_and(|p| self.scope_of(p).is_some());
         if let (Some(ns), false) = (entry.kind.namespace(), in_frame) {
-            if let Some(old) = &entry.name {
+            if let Some(old) = &entry.text {
                 self.names.remove(&(ns, old.clone()));
             }
             if let Some(new) = &new {
                 self.names.insert((ns, new.clone()), id);
             }
         }
-        self.elems.insert(id, Entry { name: new, ..entry });
+        self.elems.insert(id, Entry { text: new, ..entry });
     }
 
-    /// The scope name of the attachment whose frame is `frame`.
+    /// The scope name of the attachment whose frame is `frame`: the frame's entry
+    /// holds it (a frame is never a member of a run: it has no consecutive siblings
+    /// made with it).
     pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.scopes.scope_of(frame)
+        // A model without attachments has no frames (most models, and every robot of
+        // a fleet, whose references the writer asks this about): no lookup.
+        if self.scopes.is_empty() {
+            return None;
+        }
+        self.elems.get(&frame)?.scope()
     }
 
-    /// The frame of the attachment named `scope`.
-    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.scopes.frame_of(scope)
+    /// Renames the attachment whose frame is `frame` (to a free name).
+    pub(crate) fn rename_scope(&mut self, frame: ElementId, to: SmolStr) {
+        let Some(entry) = self.elems.get(&frame).filter(|e| e.frame) else { return };
+        let old = entry.text.clone();
+        let entry = Entry { text: Some(to.clone()), ..entry.clone() };
+        self.elems.insert(frame, entry);
+        self.scopes.rename(old.as_ref(), frame, to);
     }
 
     /// The ids from the root down to `id`, inclusive, each with its position hint
@@ -297,98 +336,158 @@ impl Index {
     }
 }
 
-/// A model's own attachments: (scope name, frame) in attach order, found by name and
-/// by frame in O(log n). Persistent, like the rest of the index.
+/// A model's own attachments: (scope name, frame), found by name in O(log n) (by
+/// frame: the frame's index entry holds its scope name, [`Index::scope_of`]), listed
+/// in attach order. Persistent, like the rest of the index.
 ///
 /// Attach order is frame-id order: a frame gets a fresh id when it is attached
 /// (`ElementId::fresh`, one atomic counter), every attach of a model's history comes
 /// after the attaches it builds on, and a frame keeps its id for life (renames and
-/// edits inside the attachment keep it). So one map keyed by frame serves both the
-/// order and the lookup by frame: two persistent maps to update per attach, not three.
+/// edits inside the attachment keep it). So the attach order is that of the frames,
+/// sorted, on the rare calls that list the attachments, and an attach updates one
+/// persistent map of names (and the small `free_from`), not two or three.
+/// (An edit inside an attachment that changes its merged settings resets the outer
+/// model's memo itself: `Model::in_scope`.)
+///
+/// The names themselves are in the frames' index entries: the map is keyed by a hash
+/// of the name (SipHash, once per call), its entries two words (a node copied on an
+/// attach's path is a plain copy of 16 of them, where names cost a clone each, and a
+/// step down compares integers, not strings), and a name found is checked against
+/// its frame's entry. Two names of one hash (hardly ever) put the later in
+/// `collided`, by name.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scopes {
-    /// Frame → scope. (An edit inside an attachment that changes its merged settings
-    /// resets the outer model's memo itself: `Model::in_scope`.)
-    order: OrdMap<ElementId, SmolStr>,
-    /// B-trees, not hash tries: an edit copies a few 16-entry nodes where a hash
-    /// trie copies 32-slot ones (and hashes the name with SipHash at every call).
-    by_name: OrdMap<SmolStr, ElementId>,
+    /// Hash of the scope name → frame. B-trees, not hash tries: an edit copies a few
+    /// 16-entry nodes where a hash trie copies 32-slot ones.
+    by_hash: OrdMap<u64, ElementId>,
+    /// Scope → frame, for a name whose hash another name has in `by_hash`.
+    collided: OrdMap<SmolStr, ElementId>,
     /// Per base name, a suffix below which every `base_n` is taken (a hint for the
     /// suffix rule; cleared whenever a scope name is freed).
     free_from: OrdMap<SmolStr, u64>,
 }
 
+/// The hash of a scope name that keys [`Scopes`] (SipHash: names are the user's).
+fn name_hash(name: &str) -> u64 {
+    use std::hash::Hasher;
+    let mut h = std::hash::DefaultHasher::new();
+    h.write(name.as_bytes());
+    h.finish()
+}
+
 impl Scopes {
     pub(crate) fn is_empty(&self) -> bool {
-        self.order.is_empty()
+        self.by_hash.is_empty() && self.collided.is_empty()
     }
 
-    /// (scope, frame) in attach order.
-    pub(crate) fn iter(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
-        self.order.iter().map(|(f, s)| (s, *f))
+    /// (scope, frame) in attach order (frame-id order: see the type's docs), the
+    /// names from the frames' entries in `elems`. O(a log a) for `a` attachments.
+    fn iter<'a>(
+        &'a self,
+        elems: &'a ElemMap,
+    ) -> impl DoubleEndedIterator<Item = (&'a SmolStr, ElementId)> + 'a {
+        let mut frames: Vec<ElementId> =
+            self.by_hash.values().chain(self.collided.values()).copied().collect();
+        frames.sort_unstable();
+        frames.into_iter().filter_map(|f| Some((elems.get(&f)?.scope()?, f)))
     }
 
-    pub(crate) fn scope_of(&self, frame: ElementId) -> Option<&SmolStr> {
-        self.order.get(&frame)
-    }
-
-    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
-        self.by_name.get(scope).copied()
+    /// The frame of the attachment named `scope` (`elems` holds the frames' names).
+    fn frame_of(&self, scope: &str, hash: u64, elems: &ElemMap) -> Option<ElementId> {
+        if let Some(&f) = self.by_hash.get(&hash) {
+            if elems.get(&f).and_then(Entry::scope).is_some_and(|s| s == scope) {
+                return Some(f);
+            }
+        }
+        self.collided.get(scope).copied()
     }
 
     /// Whether both hold the same attachments (O(1): the maps are shared or not).
     pub(crate) fn same(&self, other: &Scopes) -> bool {
-        self.order.ptr_eq(&other.order)
+        self.by_hash.ptr_eq(&other.by_hash) && self.collided.ptr_eq(&other.collided)
     }
 
-    /// Adds an attachment under `name` (from [`Scopes::free_name`]: free, and chosen
-    /// for `base`).
+    /// Adds an attachment under `name` (from [`Index::free_scope_name`]: free, and
+    /// chosen for `base`).
     pub(crate) fn push(&mut self, base: &str, name: FreeName, frame: ElementId) {
         if name.suffix > 0 {
             self.free_from.insert(base.into(), name.suffix + 1);
         }
-        self.order.insert(frame, name.name.clone());
-        self.by_name.insert(name.name, frame);
+        self.add(name.name, name.hash, frame);
     }
 
-    /// Removes the attachment whose frame is `frame`, if any.
-    pub(crate) fn remove(&mut self, frame: ElementId) {
-        if let Some(scope) = self.order.remove(&frame) {
-            self.by_name.remove(&scope);
-            self.free_from = OrdMap::new();
+    /// Adds `name` (free) for `frame`: by its hash, or, if another name has that
+    /// hash, by name.
+    fn add(&mut self, name: SmolStr, hash: u64, frame: ElementId) {
+        if let Some(other) = self.by_hash.insert(hash, frame) {
+            self.by_hash.insert(hash, other);
+            self.collided.insert(name, frame);
         }
     }
 
-    /// Renames the attachment whose frame is `frame` (to a free name).
-    pub(crate) fn rename(&mut self, frame: ElementId, to: SmolStr) {
-        if !self.order.contains_key(&frame) {
+    /// Removes the attachment `scope`, if its frame is `frame`.
+    fn remove(&mut self, scope: &SmolStr, frame: ElementId) {
+        self.remove_hashed(scope, name_hash(scope), frame);
+    }
+
+    /// [`Scopes::remove`] of `scope`, whose hash is `hash`.
+    fn remove_hashed(&mut self, scope: &SmolStr, hash: u64, frame: ElementId) {
+        if self.by_hash.get(&hash) == Some(&frame) {
+            self.by_hash.remove(&hash);
+        } else if self.collided.get(scope) == Some(&frame) {
+            self.collided.remove(scope);
+        } else {
             return;
         }
-        if let Some(old) = self.order.insert(frame, to.clone()) {
-            self.by_name.remove(&old);
-        }
-        self.by_name.insert(to, frame);
         self.free_from = OrdMap::new();
+    }
+
+    /// Renames the attachment `old` whose frame is `frame` (to a free name).
+    fn rename(&mut self, old: Option<&SmolStr>, frame: ElementId, to: SmolStr) {
+        if let Some(old) = old {
+            self.remove(old, frame);
+        }
+        let hash = name_hash(&to);
+        self.add(to, hash, frame);
+        self.free_from = OrdMap::new();
+    }
+}
+
+impl Index {
+    /// The frame of the attachment named `scope`.
+    pub(crate) fn frame_of(&self, scope: &str) -> Option<ElementId> {
+        self.scopes.frame_of(scope, name_hash(scope), &self.elems)
+    }
+
+    /// This model's own attachments, (scope, frame) in attach order. O(a log a) for
+    /// `a` attachments.
+    pub(crate) fn attachments(&self) -> impl DoubleEndedIterator<Item = (&SmolStr, ElementId)> {
+        self.scopes.iter(&self.elems)
     }
 
     /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
     /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
     /// are only added. Changes nothing: [`Scopes::push`] records the hint.
-    pub(crate) fn free_name(&self, base: &str) -> FreeName {
+    pub(crate) fn free_scope_name(&self, base: &str) -> FreeName {
+        let taken = |name: &str, hash: u64| self.scopes.frame_of(name, hash, &self.elems).is_some();
         // A hint for `base` means `base` was taken when it was noted, and no name was
         // freed since (that clears the hints): taken still.
-        let mut n = match self.free_from.get(base) {
+        let mut n = match self.scopes.free_from.get(base) {
             Some(n) => *n,
-            None if !self.by_name.contains_key(base) => {
-                return FreeName { name: base.into(), suffix: 0 };
+            None => {
+                let hash = name_hash(base);
+                if !taken(base, hash) {
+                    return FreeName { name: base.into(), suffix: 0, hash };
+                }
+                1
             }
-            None => 1,
         };
         loop {
             // Built in place (no `String` for names of up to 23 bytes).
             let name = smol_str::format_smolstr!("{base}_{n}");
-            if !self.by_name.contains_key(&name) {
-                return FreeName { name, suffix: n };
+            let hash = name_hash(&name);
+            if !taken(&name, hash) {
+                return FreeName { name, suffix: n, hash };
             }
             n += 1;
         }
@@ -438,8 +537,14 @@ impl ReadIndex {
             }
             if !in_run {
                 let name = name(i, c);
-                let entry =
-                    Entry { parent: Some(n.id()), kind: c.kind(), name, pos: i, ord: fresh_ord(i) };
+                let entry = Entry {
+                    parent: Some(n.id()),
+                    kind: c.kind(),
+                    text: name,
+                    frame: false,
+                    pos: i,
+                    ord: fresh_ord(i),
+                };
                 self.entries.push((c.id(), entry));
             }
             visit(c);
@@ -472,7 +577,14 @@ impl ReadIndex {
         names: HashMap<(Namespace, SmolStr), ElementId>,
     ) -> Index {
         let name = root.identifier().map(SmolStr::from);
-        let entry = Entry { parent: None, kind: root.kind(), name, pos: 0, ord: fresh_ord(0) };
+        let entry = Entry {
+            parent: None,
+            kind: root.kind(),
+            text: name,
+            frame: false,
+            pos: 0,
+            ord: fresh_ord(0),
+        };
         self.entries.push((root.id(), entry));
         Index {
             names,
@@ -513,4 +625,54 @@ fn singleton_run(n: &Node) -> usize {
 pub(crate) struct FreeName {
     pub(crate) name: SmolStr,
     suffix: u64,
+    /// The name's hash (computed once: it keys [`Scopes`]).
+    hash: u64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Names of one hash: the later by name, each found, listed and removed.
+    #[test]
+    fn scope_names_of_one_hash() {
+        let frames: Vec<ElementId> = (0..3).map(|_| ElementId::fresh()).collect();
+        let names = ["a", "b", "c"];
+        let mut elems = ElemMap::default();
+        for (f, n) in frames.iter().zip(names) {
+            let entry = Entry {
+                parent: None,
+                kind: crate::schema::ElementKind::ROOT,
+                text: Some(n.into()),
+                frame: true,
+                pos: 0,
+                ord: 0,
+            };
+            elems.insert(*f, entry);
+        }
+        let mut s = Scopes::default();
+        for (f, n) in frames.iter().zip(names) {
+            s.add(n.into(), 7, *f);
+        }
+        for (f, n) in frames.iter().zip(names) {
+            assert_eq!(s.frame_of(n, 7, &elems), Some(*f));
+        }
+        assert_eq!(s.frame_of("d", 7, &elems), None);
+        let listed: Vec<(&str, ElementId)> = s.iter(&elems).map(|(n, f)| (n.as_str(), f)).collect();
+        assert_eq!(listed, names.iter().copied().zip(frames.iter().copied()).collect::<Vec<_>>());
+        let before = s.clone();
+        // Removing the one keyed by hash leaves the others found.
+        s.remove_hashed(&"a".into(), 7, frames[0]);
+        assert_eq!(s.frame_of("a", 7, &elems), None);
+        assert_eq!(s.frame_of("b", 7, &elems), Some(frames[1]));
+        assert_eq!(s.frame_of("c", 7, &elems), Some(frames[2]));
+        // Not its frame: nothing removed.
+        s.remove_hashed(&"c".into(), 7, frames[1]);
+        assert_eq!(s.frame_of("c", 7, &elems), Some(frames[2]));
+        s.remove_hashed(&"b".into(), 7, frames[1]);
+        s.remove_hashed(&"c".into(), 7, frames[2]);
+        assert!(s.is_empty());
+        assert!(!before.same(&s) && before.same(&before.clone()));
+        assert_eq!(before.frame_of("b", 7, &elems), Some(frames[1]));
+    }
 }

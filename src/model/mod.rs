@@ -419,7 +419,7 @@ impl Model {
             Err(miss) => miss,
         };
         let candidates: Vec<&str> = if namespace == Namespace::AttachmentFrame {
-            m.index.scopes.iter().map(|(s, _)| s.as_str()).collect()
+            m.index.attachments().map(|(s, _)| s.as_str()).collect()
         } else {
             m.index
                 .names

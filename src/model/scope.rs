@@ -146,7 +146,7 @@ pub(crate) fn check_scope_path(path: &str) -> Result<(), EditError> {
 /// search stopped, whose attachments are listed.
 pub(crate) fn not_attached(m: &Model, scope: &str) -> EditError {
     let missing = scope.rsplit('/').next().unwrap_or(scope);
-    let names: Vec<&str> = m.index.scopes.iter().map(|(s, _)| s.as_str()).collect();
+    let names: Vec<&str> = m.index.attachments().map(|(s, _)| s.as_str()).collect();
     let mut attached: Vec<SmolStr> = crate::suggest::nearest(missing, names.iter().copied(), 3)
         .into_iter()
         .map(SmolStr::from)
@@ -262,9 +262,10 @@ impl Model {
 
     /// The scope names of this model's own attachments, in attach order.
     ///
-    /// Time: O(a) for all `a` attachments of this model (O(log a) to start).
+    /// Time: O(a log a) for all `a` attachments of this model, to start (they are
+    /// listed in attach order, their frames' order); O(1) per scope name after that.
     pub fn scopes(&self) -> impl Iterator<Item = &str> {
-        self.index.scopes.iter().map(|(s, _)| s.as_str())
+        self.index.attachments().map(|(s, _)| s.as_str())
     }
 
     /// The scope path of every attachment in the composition, those inside attached

@@ -160,8 +160,7 @@ pub(crate) fn fold_sections(ours: &mut [Node], theirs: &[Node]) -> Result<(), Er
 pub(crate) fn attachments(model: &Model) -> Vec<&Model> {
     model
         .index
-        .scopes
-        .iter()
+        .attachments()
         .filter_map(|(_, frame)| {
             model.node_by_id(frame).and_then(|n| n.attached()).map(|a| &a.model)
         })

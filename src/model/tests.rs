@@ -17,7 +17,10 @@ fn assert_index_exact(m: &Model) {
     let mut count = 0;
     while let Some((parent, n)) = stack.pop() {
         let e = m.index.entry(n.id()).unwrap_or_else(|| panic!("{:?} is indexed", n.id()));
-        assert_eq!((e.parent, e.kind, e.name.as_deref()), (parent, n.kind(), n.identifier()));
+        assert_eq!(
+            (e.parent, e.kind, e.name().map(smol_str::SmolStr::as_str)),
+            (parent, n.kind(), n.identifier())
+        );
         let found = m.path_of(n.id()).and_then(|p| m.node_at(&p).map(Node::id));
         assert_eq!(found, Some(n.id()));
         count += 1;

@@ -832,19 +832,19 @@ impl<'a> Writer<'a> {
             return Ok(());
         };
         if entry.kind.tag() == "default" {
-            self.emit_default_class(inst, tag, attr, entry.name.as_deref());
+            self.emit_default_class(inst, tag, attr, entry.name().map(smol_str::SmolStr::as_str));
             return Ok(());
         }
         // A frame, or a joint of a frame.
-        if let Some(scope) = model.index.scope_of(target) {
+        if let Some(scope) = entry.scope() {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
         } else if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
             let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
-            if let Some(n) = &entry.name {
+            if let Some(n) = entry.name() {
                 let _ = write!(self.value, "{n}/");
             }
         } else {
-            match (&entry.name, entry.kind.namespace()) {
+            match (entry.name(), entry.kind.namespace()) {
                 (Some(n), _) => {
                     let prefix = &self.insts[inst].prefix;
                     let clean = self.insts[inst].prefix_clean;
