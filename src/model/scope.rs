@@ -272,7 +272,8 @@ impl Model {
     /// models included (`robot`, `robot/hand`, `robot_1`, ...), each after the path of
     /// the attachment it is in; this model's own come first, in attach order.
     ///
-    /// Time: O(A · levels · log n) for the `A` attachments at all levels.
+    /// Time: O(A · (levels · log n + log A)) for the `A` attachments at all levels
+    /// (each model's own are listed in attach order, as [`Model::scopes`] does).
     ///
     /// # Examples
     /// ```
