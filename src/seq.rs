@@ -332,7 +332,7 @@ impl<T: Clone + Keyed> Seq<T> {
             if at >= end {
                 return None;
             }
-            items = &next_leaf(&mut stack)?.items;
+            items = &adjacent_leaf(&mut stack, true)?.items;
         }
     }
 
@@ -607,49 +607,35 @@ fn path_to<T>(root: &Tree<T>, mut i: usize) -> (Vec<(&Branch<T>, usize)>, &Leaf<
     }
 }
 
-/// The leaf after the one `stack` leads to (updating `stack`), if any.
-fn next_leaf<'a, T>(stack: &mut Vec<(&'a Branch<T>, usize)>) -> Option<&'a Leaf<T>> {
-    // Up to the first branch with a subtree after the one taken.
+/// The leaf after (`forward`) or before the one `stack` leads to (updating `stack`),
+/// if any.
+fn adjacent_leaf<'a, T>(
+    stack: &mut Vec<(&'a Branch<T>, usize)>,
+    forward: bool,
+) -> Option<&'a Leaf<T>> {
+    // Up to the first branch with a subtree on that side of the one taken.
     loop {
         let (b, k) = stack.last_mut()?;
-        if *k + 1 < b.kids.len() {
+        if forward && *k + 1 < b.kids.len() {
             *k += 1;
             break;
         }
-        stack.pop();
-    }
-    let (b, k) = *stack.last()?;
-    let mut t = &b.kids[k].tree;
-    loop {
-        match t {
-            Tree::Leaf(l) => return Some(l),
-            Tree::Branch(b) => {
-                stack.push((&**b, 0));
-                t = &b.kids[0].tree;
-            }
-        }
-    }
-}
-
-/// The leaf before the one `stack` leads to (updating `stack`), if any.
-fn prev_leaf<'a, T>(stack: &mut Vec<(&'a Branch<T>, usize)>) -> Option<&'a Leaf<T>> {
-    loop {
-        let (_, k) = stack.last_mut()?;
-        if *k > 0 {
+        if !forward && *k > 0 {
             *k -= 1;
             break;
         }
         stack.pop();
     }
+    // Down that subtree's near edge.
     let (b, k) = *stack.last()?;
     let mut t = &b.kids[k].tree;
     loop {
         match t {
             Tree::Leaf(l) => return Some(l),
             Tree::Branch(b) => {
-                let last = b.kids.len() - 1;
-                stack.push((&**b, last));
-                t = &b.kids[last].tree;
+                let edge = if forward { 0 } else { b.kids.len() - 1 };
+                stack.push((&**b, edge));
+                t = &b.kids[edge].tree;
             }
         }
     }
@@ -722,7 +708,7 @@ impl<'a, T> Iterator for Iter<'a, T> {
                 self.left -= 1;
                 return Some(x);
             }
-            self.front_items = next_leaf(&mut self.front)?.items.iter();
+            self.front_items = adjacent_leaf(&mut self.front, true)?.items.iter();
         }
     }
 
@@ -741,7 +727,7 @@ impl<T> DoubleEndedIterator for Iter<'_, T> {
                 self.left -= 1;
                 return Some(x);
             }
-            self.back_items = prev_leaf(&mut self.back)?.items.iter();
+            self.back_items = adjacent_leaf(&mut self.back, false)?.items.iter();
         }
     }
 }

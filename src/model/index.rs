@@ -603,7 +603,13 @@ impl ReadIndex {
 /// fewer than two.
 fn singleton_run(n: &Node) -> usize {
     let children = n.children();
-    let Some(first) = children.get(0) else { return 0 };
+    // Singletons come first: most elements (bodies, geoms, ...) have none, and are
+    // answered here without looking at the schema.
+    let Some(first) =
+        children.get(0).filter(|c| c.kind().multiplicity() == Multiplicity::Singleton)
+    else {
+        return 0;
+    };
     let mut count = 0;
     for (i, kind) in singleton_kinds(n.kind()).enumerate() {
         match children.get(i) {
