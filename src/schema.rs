@@ -207,6 +207,14 @@ impl ElementKind {
         self.spec().children.iter().copied().find(|c| c.tag() == tag)
     }
 
+    /// The child kinds every element of this kind has exactly one of (`option`'s
+    /// `flag`, a default class's `geom`, ...), in schema order.
+    ///
+    /// Time: O(k) for the `k` child kinds of this kind, to iterate.
+    pub(crate) fn singleton_children(self) -> impl Iterator<Item = ElementKind> + Clone {
+        self.spec().children.iter().copied().filter(|c| c.multiplicity() == Multiplicity::Singleton)
+    }
+
     /// The index of the attribute with this XML name.
     ///
     /// Time: O(length of `name`): one slot of a perfect hash table, one comparison.

@@ -218,11 +218,12 @@ pub(crate) fn empty_node(kind: ElementKind) -> Node {
 /// [`empty_node`] with the id `id`. The singleton children take one block of
 /// consecutive ids, so the index keeps them as one run (`model::index`).
 pub(crate) fn empty_node_with_id(id: ElementId, kind: ElementKind) -> Node {
-    let singletons =
-        || kind.spec().children.iter().filter(|c| c.multiplicity() == Multiplicity::Singleton);
-    let first = ElementId::fresh_block(singletons().count());
-    let children: Seq<Node> =
-        singletons().enumerate().map(|(i, c)| empty_node_with_id(first.nth(i), *c)).collect();
+    let first = ElementId::fresh_block(kind.singleton_children().count());
+    let children: Seq<Node> = kind
+        .singleton_children()
+        .enumerate()
+        .map(|(i, c)| empty_node_with_id(first.nth(i), c))
+        .collect();
     Node::new(id, kind, Vec::new(), children)
 }
 

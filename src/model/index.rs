@@ -200,7 +200,7 @@ impl Index {
         }
         let (first, &(parent, len)) = self.runs.get_prev(&id)?;
         let i = usize::try_from(id.get() - first.get()).ok().filter(|i| *i < usize::from(len))?;
-        let kind = singleton_kinds(self.entry(parent)?.kind).nth(i)?;
+        let kind = self.entry(parent)?.kind.singleton_children().nth(i)?;
         Some(Cow::Owned(Entry {
             parent: Some(parent),
             kind,
@@ -494,11 +494,6 @@ impl Index {
     }
 }
 
-/// The singleton kinds of `kind`'s children, in schema order.
-fn singleton_kinds(kind: ElementKind) -> impl Iterator<Item = ElementKind> {
-    kind.spec().children.iter().copied().filter(|c| c.multiplicity() == Multiplicity::Singleton)
-}
-
 /// The index of a model being read, built a node at a time as the reader makes the
 /// nodes (bottom-up), while they are still in cache: a walk of the finished tree
 /// would read every node again, cold. The entries and runs are those the tree's
@@ -611,7 +606,7 @@ fn singleton_run(n: &Node) -> usize {
         return 0;
     };
     let mut count = 0;
-    for (i, kind) in singleton_kinds(n.kind()).enumerate() {
+    for (i, kind) in n.kind().singleton_children().enumerate() {
         match children.get(i) {
             Some(c)
                 if c.kind() == kind

@@ -893,11 +893,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // The nodes made here (empty singletons), for the size of the index's list.
     let mut made = 0;
     for (i, p) in r.arena.iter().enumerate().filter(|(i, _)| Some(*i) != hoisted) {
-        for k in
-            p.kind.spec().children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton)
-        {
-            if unique_child(&r.arena, i, *k).is_none() {
-                made += empty_size(*k);
+        for k in p.kind.singleton_children() {
+            if unique_child(&r.arena, i, k).is_none() {
+                made += empty_size(k);
             }
         }
     }
@@ -911,21 +909,19 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         let (p, at) = (&r.arena[i], i);
         children.clear();
         child_idents.clear();
-        let spec = p.kind.spec();
-        if spec.children.iter().any(|k| k.multiplicity() == Multiplicity::Singleton) {
+        let mut kinds = p.kind.singleton_children().peekable();
+        if kinds.peek().is_some() {
             // Singletons in schema order, each with where it was read (if it was).
             // The ones not read take one block of ids, so that a class read without
             // any is indexed as one run (`model::index`).
-            let kinds =
-                spec.children.iter().filter(|k| k.multiplicity() == Multiplicity::Singleton);
             let first = ElementId::fresh_block(kinds.clone().count());
             let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
             for (i, k) in kinds.enumerate() {
-                let found = unique_child(&r.arena, at, *k);
+                let found = unique_child(&r.arena, at, k);
                 match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
                     Some((n, offset)) => singles.push((n, Some(offset))),
                     None => {
-                        let empty = empty_node_with_id(first.nth(i), *k);
+                        let empty = empty_node_with_id(first.nth(i), k);
                         if !empty.children().is_empty() {
                             index.descendants(&empty);
                         }
@@ -978,8 +974,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
 /// included, as `empty_node` makes them), from the schema: singletons do not nest
 /// deeper than a few levels, so the recursion is shallow.
 fn empty_size(k: ElementKind) -> usize {
-    let singles = k.spec().children.iter().filter(|c| c.multiplicity() == Multiplicity::Singleton);
-    1 + singles.map(|c| empty_size(*c)).sum::<usize>()
+    1 + k.singleton_children().map(empty_size).sum::<usize>()
 }
 
 /// `<default><default class="/">…</default></default>`, the shape this crate and
