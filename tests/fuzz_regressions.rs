@@ -272,3 +272,57 @@ fn read_xml_merged_keys_with_a_short_pos_do_not_panic() {
     let xml = m.to_xml_string_with(&merge).unwrap();
     assert!(xml.contains("<key qpos=\"0 0 0 1 0 0 0\"/>"), "{xml}");
 }
+
+/// `ops` (found by the CI smoke run): a root class written as MuJoCo's main class
+/// (named `main`, or unnamed) whose one class is named `/` was written as
+/// `<default><default class="/">`, which reads back as dm_control's shape: `/` folded
+/// into the root class, so that the references to `main` took `/`'s defaults. The
+/// wrapper now says `class="main"`, and the text is a fixed point.
+#[test]
+fn ops_root_class_whose_one_class_is_slash_keeps_both_classes() {
+    for named in [true, false] {
+        let xml = r#"<mujoco model="inc"><default><default class="/"><geom size="0.2"/></default>
+            <default class="a"/></default></mujoco>"#;
+        let mut m = read(xml);
+        let a = m.find(Namespace::Default, "a").unwrap();
+        m.remove_mut(&a).unwrap();
+        if named {
+            let root = m.default_class();
+            m.set_attr_mut(&root, "class", "main").unwrap();
+        }
+        let world = m.worldbody();
+        let body = Element::new("body").attr("name", "tip").attr("childclass", "main");
+        let body = m.add_mut(&world, body).unwrap();
+        m.add_mut(&body, Element::new("geom").attr("class", "/").attr("size", [0.1])).unwrap();
+        let w1 = write(&m);
+        assert!(w1.contains("<default class=\"main\">"), "{w1}");
+        let back = read(&w1);
+        assert_eq!(write(&back), w1);
+        // `/` is still a class of its own, inside the root class.
+        let slash = back.find(Namespace::Default, "/").unwrap();
+        assert_ne!(slash, back.default_class());
+    }
+}
+
+/// `ops` (found by the CI smoke run): a class reference given as `main` (MuJoCo's
+/// name for the root class) in a model without a class of that name was written as
+/// `main` while the root class was written as `/`; read back, it was `/`. It is now
+/// written as the root class is, in the model's own scope and inside an attachment
+/// (`robot/`, not `robot/main`).
+#[test]
+fn ops_class_reference_named_main_is_written_as_the_root_class() {
+    let mut m = Model::new("inc");
+    let world = m.worldbody();
+    let body = Element::new("body").attr("name", "tip").attr("childclass", "main");
+    let body = m.add_mut(&world, body).unwrap();
+    m.add_mut(&body, Element::new("geom").attr("class", "/").attr("size", [0.1])).unwrap();
+    m.add_mut(&world, Element::new("site").attr("name", "spawn")).unwrap();
+    let w1 = write(&m);
+    assert!(!w1.contains("\"main\""), "{w1}");
+    assert_eq!(write(&read(&w1)), w1);
+    let mut arena = Model::new("arena");
+    arena.attach_mut(&arena.worldbody(), &m).unwrap();
+    let composed = write(&arena);
+    assert!(composed.contains(r#"childclass="inc/""#), "{composed}");
+    assert!(!composed.contains("inc/main"), "{composed}");
+}

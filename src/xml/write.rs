@@ -276,6 +276,14 @@ fn singleton_emits(node: &Node) -> bool {
             .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
 }
 
+/// Whether all the class `node` writes inside it is one class, named `/` (the shape
+/// the reader folds into the root class).
+fn lone_slash_class(node: &Node) -> bool {
+    let (classes, own): (Vec<&Node>, Vec<&Node>) =
+        node.children().iter().partition(|c| c.kind().tag() == "default");
+    matches!(classes[..], [c] if c.identifier() == Some("/")) && !own.into_iter().any(emits)
+}
+
 fn emits(node: &Node) -> bool {
     node.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(node)
 }
@@ -459,7 +467,18 @@ impl<'a> Writer<'a> {
             if is_default && !self.in_default {
                 self.finish_parent()?;
                 self.indent(1);
-                self.out.push_str("<default>");
+                // A root class written as MuJoCo's main class (transparent: named
+                // `main`, or unnamed beside a class `/`) whose one class is named `/`
+                // says so on the wrapper: `<default><default class="/">` alone reads
+                // back as dm_control's shape, `/` folded into the root class
+                // (`xml::read`), and the references to `main` would then take `/`'s
+                // defaults.
+                let main = node.identifier().is_none_or(|n| n.is_empty() || n == "main");
+                if inst == 0 && main && lone_slash_class(node) {
+                    self.out.push_str("<default class=\"main\">");
+                } else {
+                    self.out.push_str("<default>");
+                }
                 self.newline();
                 self.in_default = true;
             } else if !is_default && self.in_default {
@@ -781,9 +800,19 @@ impl<'a> Writer<'a> {
             Value::Identifier(n) => [prefix, n.as_str()],
             Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
             Value::Reference(Reference::Name(n)) => {
+                let ty = kind.attr(i).ty;
+                // `main` and `/` name the root class unless a class has that name
+                // (as the reader resolves them): written as the root class is, so
+                // that the text reads back to the same class, in any scope.
+                let model = self.insts[inst].model;
+                if ty == AttrType::Reference(RefTarget::Fixed(Namespace::Default))
+                    && matches!(n.as_str(), "main" | "/")
+                    && !model.index.names.contains_key(&(Namespace::Default, n.clone()))
+                {
+                    return self.emit_reference(inst, node, i, model.default_class().id());
+                }
                 // The one world body is `world` in every scope; a name in another
                 // model (`RefTarget::Unless`) is not this model's.
-                let ty = kind.attr(i).ty;
                 let to_body = matches!(ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
                 let elsewhere = matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
                 if elsewhere || to_body && n == "world" {
