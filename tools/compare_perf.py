@@ -64,7 +64,8 @@ MODELS_DIR = REPO_ROOT / 'benches' / 'models'
 DEFAULT_VENV = REPO_ROOT / 'target' / 'perf-venv'
 FALLBACK_VENVS = (Path('/tmp/dmc'),)
 WHEELS_DIR = Path('/opt/wheels')
-PIP_PACKAGES = ('dm_control==1.0.50', 'mujoco')
+# MuJoCo pinned to the binding crate's version (mjcf-mujoco/MUJOCO_VERSION).
+PIP_PACKAGES = ('dm_control==1.0.50', 'mujoco==' + (REPO_ROOT / 'mjcf-mujoco' / 'MUJOCO_VERSION').read_text().strip())
 DEFAULT_SIZES = (1, 10, 100, 1000)
 UNDO_ROBOTS = 100
 DETACH_ROBOTS = 1000

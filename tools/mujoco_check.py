@@ -35,7 +35,7 @@ allowed with --allow-missing), 1 otherwise, 2 on a usage or set-up error.
 MuJoCo comes from a virtual environment, target/mujoco-venv under the repo
 root unless the environment variable MJCF_MUJOCO_VENV names another folder.
 When it does not exist or cannot import mujoco, it is created with
-`python3 -m venv` and `pip install mujoco`; the script then re-executes
+`python3 -m venv` and `pip install mujoco==<mjcf-mujoco/MUJOCO_VERSION>`; the script then re-executes
 itself with the venv's python. Only the standard library is used otherwise.
 """
 
@@ -91,11 +91,20 @@ def venv_dir():
   return Path(os.environ.get(VENV_ENV_VAR) or DEFAULT_VENV)
 
 
+# The one MuJoCo version the project is checked against (the binding crate's, whose
+# struct layouts are those of this release): mjcf-mujoco/MUJOCO_VERSION.
+MUJOCO_VERSION = (REPO_ROOT / 'mjcf-mujoco' / 'MUJOCO_VERSION').read_text().strip()
+
+
 def venv_has_mujoco(python):
+  """Whether `python` imports mujoco of exactly the pinned version."""
   if not python.exists():
     return False
-  result = subprocess.run([str(python), '-c', 'import mujoco'],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+  result = subprocess.run(
+      [str(python), '-c',
+       'import mujoco, sys; sys.exit(mujoco.__version__ != sys.argv[1])',
+       MUJOCO_VERSION],
+      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
   return result.returncode == 0
 
 
@@ -106,7 +115,8 @@ def create_venv(venv, python):
   try:
     subprocess.run([sys.executable, '-m', 'venv', str(venv)], check=True,
                    stdout=sys.stderr)
-    subprocess.run([str(python), '-m', 'pip', 'install', 'mujoco'],
+    subprocess.run([str(python), '-m', 'pip', 'install',
+                    'mujoco==' + MUJOCO_VERSION],
                    check=True, stdout=sys.stderr)
     version = subprocess.run(
         [str(python), '-c', 'import mujoco; print(mujoco.__version__)'],

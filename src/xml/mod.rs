@@ -6,4 +6,4 @@ mod read;
 mod write;
 
 pub use read::ReadOptions;
-pub use write::WriteOptions;
+pub use write::{WriteOptions, Written, WrittenElement};

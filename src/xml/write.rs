@@ -129,9 +129,52 @@ impl Model {
     /// # Ok::<(), mjcf::Error>(())
     /// ```
     pub fn to_xml_string_with(&self, options: &WriteOptions) -> Result<String, WriteError> {
+        self.write(options, false).map(|(out, _)| out)
+    }
+
+    /// Writes the model as [`Model::to_xml_string_with`] does, and tells where each
+    /// element was written: its locator, its tag, and its line and byte offset in the
+    /// text. This is the map from what a consumer of the text (MuJoCo's compiler)
+    /// reports back, by line, to the element of the model.
+    ///
+    /// Time: as [`Model::to_xml_string_with`], plus O(E) for the E elements written.
+    ///
+    /// # Errors
+    /// As [`Model::to_xml_string_with`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, WriteOptions, element};
+    /// let mut m = Model::new("m");
+    /// let torso = m.add_mut(&m.worldbody(), element!("body", name = "torso"))?;
+    /// let written = m.to_xml_written(&WriteOptions::default())?;
+    /// let line = written.elements().iter().find(|e| e.loc == torso).unwrap().line;
+    /// assert_eq!(written.xml().lines().nth(line - 1), Some(r#"    <body name="torso"/>"#));
+    /// assert_eq!(written.element_at_line(line).map(|e| e.tag), Some("body"));
+    /// # Ok::<(), mjcf::Error>(())
+    /// ```
+    pub fn to_xml_written(&self, options: &WriteOptions) -> Result<Written, WriteError> {
+        let (xml, marks) = self.write(options, true)?;
+        let mut elements = Vec::with_capacity(marks.len());
+        let (mut line, mut scanned) = (1, 0);
+        for (offset, loc, tag) in marks {
+            line += xml.as_bytes()[scanned..offset].iter().filter(|b| **b == b'\n').count();
+            scanned = offset;
+            elements.push(WrittenElement { loc, tag, line, offset });
+        }
+        Ok(Written { xml, elements })
+    }
+
+    /// The writer's entry: the text, and with `marks`, where each element starts.
+    fn write(
+        &self,
+        options: &WriteOptions,
+        marks: bool,
+    ) -> Result<(String, Vec<Mark>), WriteError> {
         // The merged global settings, folded before anything is written.
         let merged = settings::merged(self).map_err(|k| WriteError::Conflict(k.to_string()))?;
         let mut w = Writer {
+            marks: marks.then(Vec::new),
             insts: Vec::new(),
             merged: &merged,
             out: String::with_capacity(4096),
@@ -151,19 +194,88 @@ impl Model {
         if let Some((tag, attribute, character)) = w.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
+        let marks = w.marks.take().unwrap_or_default();
+        let marks = marks
+            .into_iter()
+            .map(|(offset, inst, node)| {
+                let loc = crate::Loc::scoped(w.insts[inst].frames.clone(), node.id(), self.name());
+                (offset, loc, node.kind().tag())
+            })
+            .collect();
         let mut out = w.out;
         if out.capacity() > 2 * out.len() && out.capacity() - out.len() > 1 << 20 {
             // The reservation was far too much (elements not written: the empty
             // singletons of many default classes).
             out.shrink_to_fit();
         }
-        Ok(out)
+        Ok((out, marks))
+    }
+}
+
+/// Where an element's start tag begins: byte offset, locator, tag.
+type Mark = (usize, crate::Loc, &'static str);
+
+/// MJCF text and where each element of the model was written in it, from
+/// [`Model::to_xml_written`].
+#[derive(Clone, Debug)]
+pub struct Written {
+    xml: String,
+    elements: Vec<WrittenElement>,
+}
+
+/// Where one element was written (see [`Written`]).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct WrittenElement {
+    /// The element's locator in the model written.
+    pub loc: crate::Loc,
+    /// The tag of its model element (`body` for an attachment frame, whichever tag it
+    /// was written with).
+    pub tag: &'static str,
+    /// The line its start tag begins on (1 for the first).
+    pub line: usize,
+    /// The byte offset of its `<`.
+    pub offset: usize,
+}
+
+impl Written {
+    /// The text.
+    ///
+    /// Time: O(1).
+    pub fn xml(&self) -> &str {
+        &self.xml
+    }
+
+    /// The text, taken out.
+    ///
+    /// Time: O(1).
+    pub fn into_xml(self) -> String {
+        self.xml
+    }
+
+    /// Every element written, in document order.
+    ///
+    /// Time: O(1).
+    pub fn elements(&self) -> &[WrittenElement] {
+        &self.elements
+    }
+
+    /// The element whose start tag begins on `line`, when exactly one does (one per
+    /// line when pretty-printed).
+    ///
+    /// Time: O(log E).
+    pub fn element_at_line(&self, line: usize) -> Option<&WrittenElement> {
+        let from = self.elements.partition_point(|e| e.line < line);
+        let to = self.elements.partition_point(|e| e.line <= line);
+        (to == from + 1).then(|| &self.elements[from])
     }
 }
 
 /// What the writer keeps per model of the composition (per instance of the walk).
 struct Inst<'a> {
     model: &'a Model,
+    /// The attachment frames leading to the model (for locators).
+    frames: std::sync::Arc<[ElementId]>,
     /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
     prefix: String,
     /// Running auto-name counters (document order of this model's own elements), by
@@ -233,6 +345,8 @@ struct Open {
 
 struct Writer<'a> {
     insts: Vec<Inst<'a>>,
+    /// Where each element's start tag begins (offset, instance, node), when asked.
+    marks: Option<Vec<(usize, usize, &'a Node)>>,
     /// The merged settings sections (`compiler`, `option`, ...), written in place of
     /// the root model's own.
     merged: &'a [Node],
@@ -309,6 +423,7 @@ impl<'a> Writer<'a> {
                 };
                 self.insts.push(Inst {
                     model: i.model,
+                    frames: i.frames.clone(),
                     prefix_clean: is_clean(prefix.as_bytes()),
                     prefix,
                     counters: Vec::new(),
@@ -428,13 +543,16 @@ impl<'a> Writer<'a> {
     fn start_tag(
         &mut self,
         inst: usize,
-        node: &Node,
+        node: &'a Node,
         depth: usize,
         childclass: bool,
         frame: Option<&str>,
     ) -> Result<(), WriteError> {
         let tag = self.open.last().map_or("", |o| o.tag);
         self.indent(depth);
+        if let Some(marks) = &mut self.marks {
+            marks.push((self.out.len(), inst, node));
+        }
         self.out.push('<');
         if let Some(a) = node.attached() {
             self.out.push_str(tag);

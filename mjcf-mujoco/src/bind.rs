@@ -1,0 +1,288 @@
+//! Binding elements of the `mjcf` model to MuJoCo's ids and fields (dm_control's
+//! `physics.bind`).
+
+use std::ffi::c_int;
+use std::ops::Range;
+
+use crate::error::BindError;
+use crate::fields::{self, DATA_FIELDS, Field, MODEL_FIELDS};
+use crate::sys::{self, mjData, mjModel};
+
+/// MuJoCo's kinds of compiled elements (`mjtObj`) that `mjcf` elements become.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum ObjKind {
+    /// `mjOBJ_BODY` (bodies and attachment frames).
+    Body,
+    /// `mjOBJ_JOINT` (`<joint>`, `<freejoint>`).
+    Joint,
+    /// `mjOBJ_GEOM`.
+    Geom,
+    /// `mjOBJ_SITE`.
+    Site,
+    /// `mjOBJ_CAMERA`.
+    Camera,
+    /// `mjOBJ_LIGHT`.
+    Light,
+    /// `mjOBJ_FLEX`.
+    Flex,
+    /// `mjOBJ_MESH`.
+    Mesh,
+    /// `mjOBJ_SKIN`.
+    Skin,
+    /// `mjOBJ_HFIELD`.
+    Hfield,
+    /// `mjOBJ_TEXTURE`.
+    Texture,
+    /// `mjOBJ_MATERIAL`.
+    Material,
+    /// `mjOBJ_PAIR` (`<contact><pair>`).
+    Pair,
+    /// `mjOBJ_EXCLUDE`.
+    Exclude,
+    /// `mjOBJ_EQUALITY`.
+    Equality,
+    /// `mjOBJ_TENDON`.
+    Tendon,
+    /// `mjOBJ_ACTUATOR`.
+    Actuator,
+    /// `mjOBJ_SENSOR`.
+    Sensor,
+    /// `mjOBJ_NUMERIC`.
+    Numeric,
+    /// `mjOBJ_TEXT`.
+    Text,
+    /// `mjOBJ_TUPLE`.
+    Tuple,
+    /// `mjOBJ_KEY`.
+    Key,
+    /// `mjOBJ_PLUGIN`.
+    Plugin,
+}
+
+impl ObjKind {
+    /// MuJoCo's `mjtObj` value.
+    pub(crate) fn raw(self) -> c_int {
+        (match self {
+            ObjKind::Body => sys::mjtObj_mjOBJ_BODY,
+            ObjKind::Joint => sys::mjtObj_mjOBJ_JOINT,
+            ObjKind::Geom => sys::mjtObj_mjOBJ_GEOM,
+            ObjKind::Site => sys::mjtObj_mjOBJ_SITE,
+            ObjKind::Camera => sys::mjtObj_mjOBJ_CAMERA,
+            ObjKind::Light => sys::mjtObj_mjOBJ_LIGHT,
+            ObjKind::Flex => sys::mjtObj_mjOBJ_FLEX,
+            ObjKind::Mesh => sys::mjtObj_mjOBJ_MESH,
+            ObjKind::Skin => sys::mjtObj_mjOBJ_SKIN,
+            ObjKind::Hfield => sys::mjtObj_mjOBJ_HFIELD,
+            ObjKind::Texture => sys::mjtObj_mjOBJ_TEXTURE,
+            ObjKind::Material => sys::mjtObj_mjOBJ_MATERIAL,
+            ObjKind::Pair => sys::mjtObj_mjOBJ_PAIR,
+            ObjKind::Exclude => sys::mjtObj_mjOBJ_EXCLUDE,
+            ObjKind::Equality => sys::mjtObj_mjOBJ_EQUALITY,
+            ObjKind::Tendon => sys::mjtObj_mjOBJ_TENDON,
+            ObjKind::Actuator => sys::mjtObj_mjOBJ_ACTUATOR,
+            ObjKind::Sensor => sys::mjtObj_mjOBJ_SENSOR,
+            ObjKind::Numeric => sys::mjtObj_mjOBJ_NUMERIC,
+            ObjKind::Text => sys::mjtObj_mjOBJ_TEXT,
+            ObjKind::Tuple => sys::mjtObj_mjOBJ_TUPLE,
+            ObjKind::Key => sys::mjtObj_mjOBJ_KEY,
+            ObjKind::Plugin => sys::mjtObj_mjOBJ_PLUGIN,
+        }) as c_int
+    }
+
+    /// Its name, as in MuJoCo's `mjOBJ_` names, lower case.
+    pub fn name(self) -> &'static str {
+        self.table().0
+    }
+
+    /// (name, the size field that counts it, the prefixes of its mjModel fields, the
+    /// prefix of its mjData fields).
+    fn table(self) -> (&'static str, &'static str, &'static [&'static str], &'static str) {
+        match self {
+            ObjKind::Body => ("body", "nbody", &["body_"], ""),
+            ObjKind::Joint => ("joint", "njnt", &["jnt_", "dof_"], ""),
+            ObjKind::Geom => ("geom", "ngeom", &["geom_"], "geom_"),
+            ObjKind::Site => ("site", "nsite", &["site_"], "site_"),
+            ObjKind::Camera => ("camera", "ncam", &["cam_"], "cam_"),
+            ObjKind::Light => ("light", "nlight", &["light_"], "light_"),
+            ObjKind::Flex => ("flex", "nflex", &["flex_"], "flex_"),
+            ObjKind::Mesh => ("mesh", "nmesh", &["mesh_"], ""),
+            ObjKind::Skin => ("skin", "nskin", &["skin_"], ""),
+            ObjKind::Hfield => ("hfield", "nhfield", &["hfield_"], ""),
+            ObjKind::Texture => ("texture", "ntex", &["tex_"], ""),
+            ObjKind::Material => ("material", "nmat", &["mat_"], ""),
+            ObjKind::Pair => ("pair", "npair", &["pair_"], ""),
+            ObjKind::Exclude => ("exclude", "nexclude", &["exclude_"], ""),
+            ObjKind::Equality => ("equality", "neq", &["eq_"], "eq_"),
+            ObjKind::Tendon => ("tendon", "ntendon", &["tendon_"], "ten_"),
+            ObjKind::Actuator => ("actuator", "nactuator", &["actuator_"], "actuator_"),
+            ObjKind::Sensor => ("sensor", "nsensor", &["sensor_"], "sensor"),
+            ObjKind::Numeric => ("numeric", "nnumeric", &["numeric_"], ""),
+            ObjKind::Text => ("text", "ntext", &["text_"], ""),
+            ObjKind::Tuple => ("tuple", "ntuple", &["tuple_"], ""),
+            ObjKind::Key => ("key", "nkey", &["key_"], ""),
+            ObjKind::Plugin => ("plugin", "nplugin", &["plugin_"], ""),
+        }
+    }
+}
+
+/// An element of a compiled model, bound from a locator of the `mjcf` model
+/// ([`Compiled::bind`](crate::Compiled::bind)): its kind, its MuJoCo id and its name.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Bound {
+    pub(crate) kind: ObjKind,
+    pub(crate) id: usize,
+    pub(crate) name: String,
+}
+
+impl Bound {
+    /// MuJoCo's kind of the element.
+    ///
+    /// Time: O(1).
+    pub fn kind(&self) -> ObjKind {
+        self.kind
+    }
+
+    /// MuJoCo's id of the element (its index among the elements of its kind).
+    ///
+    /// Time: O(1).
+    pub fn id(&self) -> usize {
+        self.id
+    }
+
+    /// The name it has in the compiled model.
+    ///
+    /// Time: O(1).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+}
+
+/// Where a bound field lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Place {
+    Model,
+    Data,
+}
+
+/// A field of one element: where, which field, and which of its rows.
+#[derive(Clone, Debug)]
+pub(crate) struct Slot {
+    pub(crate) place: Place,
+    pub(crate) index: usize,
+    pub(crate) field: &'static Field,
+    pub(crate) rows: Range<usize>,
+}
+
+/// An integer of a model field (`jnt_qposadr[id]`), -1 if there is none.
+fn model_int(m: &mjModel, name: &str, row: usize) -> i64 {
+    let Some(i) = MODEL_FIELDS.iter().position(|f| f.name == name) else { return -1 };
+    let Some(raw) = fields::model_field(m, i) else { return -1 };
+    if row >= raw.rows || raw.ptr.is_null() || MODEL_FIELDS[i].scalar != fields::Scalar::I32 {
+        return -1;
+    }
+    // SAFETY: an int field of the model, row within its rows.
+    i64::from(unsafe { *raw.ptr.cast::<i32>().add(row * raw.cols) })
+}
+
+/// The rows of a field counted by `rows` that element `id` of `kind` owns.
+fn rows_of(m: &mjModel, kind: ObjKind, id: usize, rows: &str) -> Option<Range<usize>> {
+    if rows == kind.table().1 {
+        return Some(id..id + 1);
+    }
+    let span = |adr: &str, num: &str| -> Option<Range<usize>> {
+        let a = usize::try_from(model_int(m, adr, id)).ok()?;
+        let n = usize::try_from(model_int(m, num, id)).ok()?;
+        Some(a..a + n)
+    };
+    match (kind, rows) {
+        (ObjKind::Joint, "nq" | "nv") => {
+            // Free: 7 positions, 6 dofs; ball: 4, 3; slide and hinge: 1, 1.
+            let (q, v) = match u32::try_from(model_int(m, "jnt_type", id)).ok()? {
+                sys::mjtJoint_mjJNT_FREE => (7, 6),
+                sys::mjtJoint_mjJNT_BALL => (4, 3),
+                _ => (1, 1),
+            };
+            let (adr, n) = if rows == "nq" { ("jnt_qposadr", q) } else { ("jnt_dofadr", v) };
+            let a = usize::try_from(model_int(m, adr, id)).ok()?;
+            Some(a..a + n)
+        }
+        (ObjKind::Body, "nv") => span("body_dofadr", "body_dofnum"),
+        (ObjKind::Body, "nmocap") => {
+            let a = usize::try_from(model_int(m, "body_mocapid", id)).ok()?;
+            Some(a..a + 1)
+        }
+        (ObjKind::Actuator, "nu") => span("actuator_ctrladr", "actuator_ctrlnum"),
+        (ObjKind::Actuator, "nout") => span("actuator_outadr", "actuator_outnum"),
+        (ObjKind::Actuator, "na") => span("actuator_actadr", "actuator_actnum"),
+        (ObjKind::Sensor, "nsensordata") => span("sensor_adr", "sensor_dim"),
+        (ObjKind::Tendon, "nwrap") => span("tendon_adr", "tendon_num"),
+        _ => None,
+    }
+}
+
+/// Finds field `name` of element `id` of `kind`: a field of mjData first (`qpos`,
+/// `xpos`, `site_xpos`, or `xpos` for a site), then of mjModel (`damping` of a joint
+/// is `dof_damping`, `mass` of a body `body_mass`; full names work too).
+pub(crate) fn resolve(
+    m: &mjModel,
+    kind: ObjKind,
+    id: usize,
+    name: &str,
+) -> Result<Slot, BindError> {
+    let (_, _, model_prefixes, data_prefix) = kind.table();
+    let data_names = [format!("{data_prefix}{name}"), name.to_string()];
+    for candidate in &data_names {
+        if let Some(i) = DATA_FIELDS.iter().position(|f| f.name == candidate) {
+            let field = &DATA_FIELDS[i];
+            if let Some(rows) = rows_of(m, kind, id, field.rows) {
+                return Ok(Slot { place: Place::Data, index: i, field, rows });
+            }
+        }
+    }
+    let mut model_names: Vec<String> =
+        model_prefixes.iter().map(|p| format!("{p}{name}")).collect();
+    model_names.push(name.to_string());
+    for candidate in &model_names {
+        if let Some(i) = MODEL_FIELDS.iter().position(|f| f.name == candidate) {
+            let field = &MODEL_FIELDS[i];
+            if let Some(rows) = rows_of(m, kind, id, field.rows) {
+                return Ok(Slot { place: Place::Model, index: i, field, rows });
+            }
+        }
+    }
+    Err(BindError::NoField {
+        kind: kind.name(),
+        field: name.to_string(),
+        known: known_fields(m, kind, id),
+    })
+}
+
+/// The fields element `id` of `kind` has, comma-separated (for the error).
+fn known_fields(m: &mjModel, kind: ObjKind, id: usize) -> String {
+    let (_, _, model_prefixes, data_prefix) = kind.table();
+    let short = |name: &'static str, prefixes: &[&str]| -> &'static str {
+        prefixes.iter().filter(|p| !p.is_empty()).find_map(|p| name.strip_prefix(p)).unwrap_or(name)
+    };
+    let mut out: Vec<&str> = Vec::new();
+    for f in DATA_FIELDS {
+        if rows_of(m, kind, id, f.rows).is_some() {
+            out.push(short(f.name, &[data_prefix]));
+        }
+    }
+    for f in MODEL_FIELDS {
+        if rows_of(m, kind, id, f.rows).is_some() {
+            out.push(short(f.name, model_prefixes));
+        }
+    }
+    out.join(", ")
+}
+
+/// The raw field a slot names, in `m` or `d`.
+pub(crate) fn raw(slot: &Slot, m: &mjModel, d: Option<&mjData>) -> Option<fields::RawField> {
+    match (slot.place, d) {
+        (Place::Model, _) => fields::model_field(m, slot.index),
+        (Place::Data, Some(d)) => fields::data_field(d, m, slot.index),
+        (Place::Data, None) => None,
+    }
+}

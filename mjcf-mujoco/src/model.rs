@@ -1,0 +1,341 @@
+//! A compiled model (`mjModel`), with the `mjcf` model it was compiled from.
+
+use std::ffi::{CStr, CString, c_int};
+use std::ptr::NonNull;
+use std::sync::Arc;
+
+use mjcf::{Loc, Model, Namespace, Written};
+
+use crate::bind::{Bound, ObjKind};
+use crate::error::{BindError, Error, ErrorElement};
+use crate::fields::{self, Field, RawField, Scalar};
+use crate::guard::Message;
+use crate::library::MuJoCo;
+use crate::sys::mjModel;
+
+/// A model compiled by MuJoCo (its `mjModel`), with the `mjcf` model it was compiled
+/// from, so that the model's locators bind to MuJoCo's ids ([`Compiled::bind`]).
+///
+/// It is `Send + Sync`: MuJoCo only reads a compiled model while simulating, so any
+/// number of [`Physics`](crate::Physics) on any threads can share one. Cloning is
+/// O(1) (shared); writing a model field through a `Physics` copies the model first if
+/// it is shared ([`Physics::model_floats_mut`](crate::Physics::model_floats_mut)).
+#[derive(Clone)]
+pub struct Compiled {
+    pub(crate) inner: Arc<Inner>,
+}
+
+pub(crate) struct Inner {
+    pub(crate) mujoco: MuJoCo,
+    pub(crate) ptr: NonNull<mjModel>,
+    /// The `mjcf` model and where its elements were written, when compiled from one.
+    pub(crate) source: Option<Arc<(Model, Written)>>,
+    pub(crate) messages: Vec<Message>,
+}
+
+// SAFETY: the `mjModel` is owned by `Inner` alone (deleted on drop); through `&Inner`
+// MuJoCo only reads it (`const mjModel*` in every function the binding calls with a
+// shared model), and it is written only through `&mut`, when the `Arc` is not shared.
+unsafe impl Send for Inner {}
+// SAFETY: as above: shared access is read-only.
+unsafe impl Sync for Inner {}
+
+impl Drop for Inner {
+    fn drop(&mut self) {
+        // SAFETY: the model was made by MuJoCo and is deleted once, here.
+        unsafe { (self.mujoco.lib.fns.delete_model)(self.ptr.as_ptr()) }
+    }
+}
+
+impl std::fmt::Debug for Compiled {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let m = self.raw();
+        f.debug_struct("Compiled")
+            .field("nq", &m.nq)
+            .field("nv", &m.nv)
+            .field("nu", &m.nu)
+            .field("nbody", &m.nbody)
+            .field("njnt", &m.njnt)
+            .field("ngeom", &m.ngeom)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The sizes of a compiled model that most code needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Sizes {
+    /// Position coordinates (`nq`).
+    pub nq: usize,
+    /// Degrees of freedom (`nv`).
+    pub nv: usize,
+    /// Controls (`nu`).
+    pub nu: usize,
+    /// Activations (`na`).
+    pub na: usize,
+    /// Bodies, the world included (`nbody`).
+    pub nbody: usize,
+    /// Joints (`njnt`).
+    pub njnt: usize,
+    /// Geoms (`ngeom`).
+    pub ngeom: usize,
+    /// Sites (`nsite`).
+    pub nsite: usize,
+    /// Actuators (`nactuator`).
+    pub nactuator: usize,
+    /// Sensors (`nsensor`).
+    pub nsensor: usize,
+    /// Mocap bodies (`nmocap`).
+    pub nmocap: usize,
+    /// Keyframes (`nkey`).
+    pub nkey: usize,
+    /// Tendons (`ntendon`).
+    pub ntendon: usize,
+    /// Cameras (`ncam`).
+    pub ncam: usize,
+    /// Lights (`nlight`).
+    pub nlight: usize,
+}
+
+fn count(n: i64) -> usize {
+    usize::try_from(n).unwrap_or(0)
+}
+
+impl Compiled {
+    pub(crate) fn new(
+        mujoco: MuJoCo,
+        ptr: NonNull<mjModel>,
+        source: Option<(Model, Written)>,
+        messages: Vec<Message>,
+    ) -> Compiled {
+        Compiled { inner: Arc::new(Inner { mujoco, ptr, source: source.map(Arc::new), messages }) }
+    }
+
+    /// The raw `mjModel`.
+    pub(crate) fn raw(&self) -> &mjModel {
+        // SAFETY: valid while `inner` lives; shared access reads only.
+        unsafe { self.inner.ptr.as_ref() }
+    }
+
+    /// The `mjcf` model it was compiled from (`None` when compiled from text or a file).
+    ///
+    /// Time: O(1).
+    pub fn source(&self) -> Option<&Model> {
+        self.inner.source.as_deref().map(|(m, _)| m)
+    }
+
+    /// The MJCF text MuJoCo compiled, with where each element was written (`None`
+    /// when compiled from text or a file).
+    ///
+    /// Time: O(1).
+    pub fn written(&self) -> Option<&Written> {
+        self.inner.source.as_deref().map(|(_, w)| w)
+    }
+
+    /// What MuJoCo logged while compiling (its warnings).
+    ///
+    /// Time: O(1).
+    pub fn messages(&self) -> &[Message] {
+        &self.inner.messages
+    }
+
+    /// The model's sizes.
+    ///
+    /// Time: O(1).
+    pub fn sizes(&self) -> Sizes {
+        let m = self.raw();
+        Sizes {
+            nq: count(m.nq),
+            nv: count(m.nv),
+            nu: count(m.nu),
+            na: count(m.na),
+            nbody: count(m.nbody),
+            njnt: count(m.njnt),
+            ngeom: count(m.ngeom),
+            nsite: count(m.nsite),
+            nactuator: count(m.nactuator),
+            nsensor: count(m.nsensor),
+            nmocap: count(m.nmocap),
+            nkey: count(m.nkey),
+            ntendon: count(m.ntendon),
+            ncam: count(m.ncam),
+            nlight: count(m.nlight),
+        }
+    }
+
+    /// MuJoCo's id of the element of `kind` named `name` (`mj_name2id`), if any.
+    ///
+    /// Time: O(1) expected (MuJoCo's name hash).
+    pub fn id(&self, kind: ObjKind, name: &str) -> Option<usize> {
+        let name = CString::new(name).ok()?;
+        // SAFETY: a valid model and a NUL-terminated name; `mj_name2id` only reads.
+        let id =
+            unsafe { (self.inner.mujoco.lib.fns.name2id)(self.raw(), kind.raw(), name.as_ptr()) };
+        usize::try_from(id).ok()
+    }
+
+    /// The name of the element of `kind` with MuJoCo id `id` (`mj_id2name`), if it has
+    /// one.
+    ///
+    /// Time: O(1).
+    pub fn name(&self, kind: ObjKind, id: usize) -> Option<&str> {
+        let id = c_int::try_from(id).ok()?;
+        // SAFETY: a valid model; `mj_id2name` returns null or a string inside the model.
+        let p = unsafe { (self.inner.mujoco.lib.fns.id2name)(self.raw(), kind.raw(), id) };
+        // SAFETY: the string lives as long as the model.
+        (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_str().ok()).flatten()
+    }
+
+    /// The element of the compiled model that `loc` (a locator of the `mjcf` model it
+    /// was compiled from) became: its kind and MuJoCo id, found by the name it was
+    /// written with ([`ElementRef::full_name`](mjcf::ElementRef::full_name)), as
+    /// dm_control's `physics.bind`.
+    ///
+    /// Time: O(levels · depth · log n) to name the element (O(n) more for an unnamed
+    /// one), plus MuJoCo's lookup.
+    ///
+    /// # Errors
+    /// [`BindError`]: no source model, a locator of another model, an element MuJoCo
+    /// keeps no record of (a `<frame>`, a default class), or not found by MuJoCo.
+    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
+        let model = self.source().ok_or(BindError::NoSource)?;
+        let element = model.get(loc).map_err(|e| BindError::NoElement(e.to_string()))?;
+        let kind = ObjKind::of(&element).ok_or(BindError::NotCompiled { tag: element.tag() })?;
+        let name = element.full_name().ok_or(BindError::Unnamed { tag: element.tag() })?;
+        let id = self
+            .id(kind, &name)
+            .ok_or_else(|| BindError::NotFound { kind: kind.name(), name: name.clone() })?;
+        Ok(Bound { kind, id, name })
+    }
+
+    /// The model field `name` (`jnt_qposadr`, `geom_friction`, ...), all rows.
+    pub(crate) fn field(&self, name: &str) -> Option<(&'static Field, RawField)> {
+        let i = fields::MODEL_FIELDS.iter().position(|f| f.name == name)?;
+        Some((&fields::MODEL_FIELDS[i], fields::model_field(self.raw(), i)?))
+    }
+
+    /// The model field `name` as numbers (`body_mass`, `geom_size`, ...): every row,
+    /// row after row.
+    ///
+    /// Time: O(f) for the f fields of `mjModel` (found by name).
+    ///
+    /// # Errors
+    /// [`BindError::NoField`] for a name `mjModel` has no array field of;
+    /// [`BindError::WrongType`] for a field of integers (see [`Compiled::ints`]).
+    pub fn floats(&self, name: &str) -> Result<&[f64], BindError> {
+        let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
+        // SAFETY: the field's pointer and size come from the model's own tables.
+        unsafe { raw.floats(field) }
+    }
+
+    /// The model field `name` as integers (`jnt_qposadr`, `body_parentid`, ...).
+    ///
+    /// Time: O(f), as [`Compiled::floats`].
+    ///
+    /// # Errors
+    /// As [`Compiled::floats`], the other way round.
+    pub fn ints(&self, name: &str) -> Result<&[i32], BindError> {
+        let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
+        // SAFETY: the field's pointer and size come from the model's own tables.
+        unsafe { raw.ints(field) }
+    }
+}
+
+fn no_model_field(name: &str) -> BindError {
+    BindError::NoField {
+        kind: "model",
+        field: name.to_string(),
+        known: "mjModel's array fields".into(),
+    }
+}
+
+impl RawField {
+    /// # Safety
+    /// `self` describes a live array of `rows * cols` scalars of `field.scalar`.
+    pub(crate) unsafe fn floats<'a>(&self, field: &'static Field) -> Result<&'a [f64], BindError> {
+        if field.scalar != Scalar::F64 {
+            return Err(BindError::WrongType {
+                field: field.name,
+                holds: field.scalar.name(),
+                asked: "f64",
+            });
+        }
+        let len = self.rows * self.cols;
+        if len == 0 || self.ptr.is_null() {
+            return Ok(&[]);
+        }
+        // SAFETY: as the caller promises.
+        Ok(unsafe { std::slice::from_raw_parts(self.ptr.cast::<f64>(), len) })
+    }
+
+    /// # Safety
+    /// As [`RawField::floats`].
+    pub(crate) unsafe fn ints<'a>(&self, field: &'static Field) -> Result<&'a [i32], BindError> {
+        if field.scalar != Scalar::I32 {
+            return Err(BindError::WrongType {
+                field: field.name,
+                holds: field.scalar.name(),
+                asked: "i32",
+            });
+        }
+        let len = self.rows * self.cols;
+        if len == 0 || self.ptr.is_null() {
+            return Ok(&[]);
+        }
+        // SAFETY: as the caller promises.
+        Ok(unsafe { std::slice::from_raw_parts(self.ptr.cast::<i32>(), len) })
+    }
+}
+
+/// A compile error located in the `mjcf` model: the element at the line MuJoCo names.
+pub(crate) fn locate(error: Error, model: &Model, written: &Written) -> Error {
+    let Error::Compile(mut e) = error else { return error };
+    if let Some(w) = e.line.and_then(|line| written.element_at_line(line)) {
+        let full_name = model.get(&w.loc).ok().and_then(|el| el.full_name());
+        e.element = Some(ErrorElement { loc: w.loc.clone(), tag: w.tag, full_name });
+    }
+    Error::Compile(e)
+}
+
+impl ObjKind {
+    /// The kind of the compiled element an `mjcf` element becomes, if any.
+    pub(crate) fn of(element: &mjcf::ElementRef<'_>) -> Option<ObjKind> {
+        if element.is_frame() {
+            return Some(ObjKind::Body);
+        }
+        Some(match element.kind().namespace()? {
+            Namespace::Body => ObjKind::Body,
+            Namespace::Joint => ObjKind::Joint,
+            Namespace::Geom => ObjKind::Geom,
+            Namespace::Site => ObjKind::Site,
+            Namespace::Camera => ObjKind::Camera,
+            Namespace::Light => ObjKind::Light,
+            Namespace::Actuator => ObjKind::Actuator,
+            Namespace::Sensor => ObjKind::Sensor,
+            Namespace::Tendon => ObjKind::Tendon,
+            Namespace::Equality => ObjKind::Equality,
+            Namespace::Mesh => ObjKind::Mesh,
+            Namespace::Hfield => ObjKind::Hfield,
+            Namespace::Texture => ObjKind::Texture,
+            Namespace::Material => ObjKind::Material,
+            Namespace::Skin => ObjKind::Skin,
+            Namespace::Key => ObjKind::Key,
+            Namespace::Numeric => ObjKind::Numeric,
+            Namespace::Text => ObjKind::Text,
+            Namespace::Tuple => ObjKind::Tuple,
+            Namespace::Plugin => ObjKind::Plugin,
+            Namespace::Flexcomp => ObjKind::Flex,
+            Namespace::Contact => match element.tag() {
+                "pair" => ObjKind::Pair,
+                "exclude" => ObjKind::Exclude,
+                _ => return None,
+            },
+            Namespace::Deformable => match element.tag() {
+                "flex" => ObjKind::Flex,
+                "skin" => ObjKind::Skin,
+                _ => return None,
+            },
+            _ => return None,
+        })
+    }
+}

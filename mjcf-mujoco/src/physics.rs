@@ -1,0 +1,501 @@
+//! Simulation: a compiled model with its `mjData`.
+
+use std::ffi::{CStr, c_long};
+use std::ptr::NonNull;
+use std::sync::Arc;
+
+use mjcf::Loc;
+
+use crate::bind::{self, Bound, Place, Slot};
+use crate::error::{BindError, Error};
+use crate::fields::Scalar;
+use crate::guard::{self, Message};
+use crate::model::{Compiled, Inner};
+use crate::sys::{mjData, mjModel};
+
+/// A simulation: a [`Compiled`] model and its state (MuJoCo's `mjData`), as
+/// dm_control's `Physics`.
+///
+/// It is `Send` (a simulation can move to another thread) and not `Sync`. Many
+/// simulations can share one compiled model ([`Physics::new`] on clones of it).
+pub struct Physics {
+    model: Compiled,
+    data: NonNull<mjData>,
+    /// Set by a fatal error inside MuJoCo, cleared by a reset.
+    poisoned: bool,
+    messages: Vec<Message>,
+}
+
+// SAFETY: the `mjData` is owned by this value alone; MuJoCo keeps no reference to it
+// between calls, and the model it is used with is `Sync`.
+unsafe impl Send for Physics {}
+
+impl Drop for Physics {
+    fn drop(&mut self) {
+        // SAFETY: made by `mj_makeData`, deleted once, here.
+        unsafe { (self.model.inner.mujoco.lib.fns.delete_data)(self.data.as_ptr()) }
+    }
+}
+
+impl std::fmt::Debug for Physics {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Physics")
+            .field("model", &self.model)
+            .field("time", &self.time())
+            .field("poisoned", &self.poisoned)
+            .finish_non_exhaustive()
+    }
+}
+
+/// A kind of warning MuJoCo counts while simulating (`mjtWarning`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum WarningKind {
+    /// `mjWARN_INERTIA`: a body's inertia is too small.
+    Inertia,
+    /// `mjWARN_CONTACTFULL`: too many contacts.
+    ContactFull,
+    /// `mjWARN_CNSTRFULL`: too many constraints.
+    ConstraintFull,
+    /// `mjWARN_BADQPOS`: NaN, Inf or a huge value in qpos.
+    BadQpos,
+    /// `mjWARN_BADQVEL`: NaN, Inf or a huge value in qvel.
+    BadQvel,
+    /// `mjWARN_BADQACC`: NaN, Inf or a huge value in qacc (the simulation diverged).
+    BadQacc,
+    /// `mjWARN_BADCTRL`: NaN, Inf or a huge value in ctrl.
+    BadCtrl,
+}
+
+const WARNING_KINDS: [WarningKind; 7] = [
+    WarningKind::Inertia,
+    WarningKind::ContactFull,
+    WarningKind::ConstraintFull,
+    WarningKind::BadQpos,
+    WarningKind::BadQvel,
+    WarningKind::BadQacc,
+    WarningKind::BadCtrl,
+];
+
+/// Warnings MuJoCo raised: of one kind, how often, and MuJoCo's text for the last.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Warning {
+    /// The kind.
+    pub kind: WarningKind,
+    /// How many times (in the call that returned it, or since the last reset).
+    pub count: u32,
+    /// MuJoCo's text (`mju_warningText`) for the last one, such as
+    /// `Nan, Inf or huge value in QACC at DOF 3. The simulation is unstable.`.
+    pub text: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} (x{})", self.text, self.count)
+    }
+}
+
+impl Physics {
+    /// A simulation of `model` in its default state (MuJoCo's `mj_makeData`).
+    ///
+    /// Time: O(size of the model's data).
+    ///
+    /// # Errors
+    /// [`Error::Fatal`] when MuJoCo cannot allocate the data.
+    pub fn new(model: &Compiled) -> Result<Physics, Error> {
+        let fns = &model.inner.mujoco.lib.fns;
+        let mut data: *mut mjData = std::ptr::null_mut();
+        // SAFETY: a valid model; the guard calls `mj_makeData` and stores its result.
+        let fatal =
+            unsafe { guard::mjr_make_data(fns.make_data, model.inner.ptr.as_ptr(), &mut data) };
+        let messages = guard::take_messages();
+        if fatal != 0 {
+            return Err(Error::Fatal { call: "Physics::new", message: guard::fatal_message() });
+        }
+        let data = NonNull::new(data).ok_or_else(|| Error::Fatal {
+            call: "Physics::new",
+            message: "mj_makeData returned no data".into(),
+        })?;
+        Ok(Physics { model: model.clone(), data, poisoned: false, messages })
+    }
+
+    /// The compiled model.
+    ///
+    /// Time: O(1).
+    pub fn model(&self) -> &Compiled {
+        &self.model
+    }
+
+    fn m(&self) -> *const mjModel {
+        self.model.inner.ptr.as_ptr()
+    }
+
+    fn d(&self) -> &mjData {
+        // SAFETY: owned and valid while `self` lives.
+        unsafe { self.data.as_ref() }
+    }
+
+    /// Runs a guarded call; a fatal error poisons the data.
+    fn guarded(
+        &mut self,
+        call: &'static str,
+        f: impl FnOnce(*const mjModel, *mut mjData) -> i32,
+    ) -> Result<(), Error> {
+        let fatal = f(self.m(), self.data.as_ptr());
+        self.messages.extend(guard::take_messages());
+        if fatal != 0 {
+            self.poisoned = true;
+            return Err(Error::Fatal { call, message: guard::fatal_message() });
+        }
+        Ok(())
+    }
+
+    fn check(&self) -> Result<(), Error> {
+        if self.poisoned { Err(Error::Poisoned) } else { Ok(()) }
+    }
+
+    /// Resets the state to the model's defaults (`mj_resetData`); the one way out of
+    /// [`Error::Poisoned`].
+    ///
+    /// Time: O(size of the data).
+    ///
+    /// # Errors
+    /// [`Error::Fatal`] from inside MuJoCo.
+    pub fn reset(&mut self) -> Result<(), Error> {
+        let f = self.model.inner.mujoco.lib.fns.reset_data;
+        // SAFETY: valid model and data of that model; the guard calls `f` with them.
+        self.guarded("Physics::reset", |m, d| unsafe { guard::mjr_call(f, m, d) })?;
+        self.poisoned = false;
+        Ok(())
+    }
+
+    /// Resets the state to the keyframe named `name` (`mj_resetDataKeyframe`); call
+    /// [`Physics::forward`] to compute positions before reading them.
+    ///
+    /// Time: O(size of the data).
+    ///
+    /// # Errors
+    /// [`Error::NoKey`] when the model has no key of that name; [`Error::Fatal`] from
+    /// inside MuJoCo.
+    pub fn reset_to_key(&mut self, name: &str) -> Result<(), Error> {
+        let key = self
+            .model
+            .id(crate::ObjKind::Key, name)
+            .ok_or_else(|| Error::NoKey { name: name.to_string() })?;
+        let f = self.model.inner.mujoco.lib.fns.reset_data_keyframe;
+        let key = i32::try_from(key).map_err(|_| Error::NoKey { name: name.to_string() })?;
+        // SAFETY: valid model and data, and a key id of the model.
+        self.guarded("Physics::reset_to_key", |m, d| unsafe {
+            guard::mjr_reset_key(f, m, d, key)
+        })?;
+        self.poisoned = false;
+        Ok(())
+    }
+
+    /// Computes everything that follows from the state (`mj_forward`): positions,
+    /// velocities, forces, sensors; time does not advance.
+    ///
+    /// Time: one MuJoCo forward pass.
+    ///
+    /// # Errors
+    /// [`Error::Poisoned`]; [`Error::Fatal`] from inside MuJoCo.
+    pub fn forward(&mut self) -> Result<(), Error> {
+        self.check()?;
+        let f = self.model.inner.mujoco.lib.fns.forward;
+        // SAFETY: valid model and data of that model.
+        self.guarded("Physics::forward", |m, d| unsafe { guard::mjr_call(f, m, d) })
+    }
+
+    /// Advances the simulation by `n` time steps (`mj_step` `n` times) and returns the
+    /// warnings MuJoCo raised during them (empty when it ran clean).
+    ///
+    /// Time: n MuJoCo steps.
+    ///
+    /// # Errors
+    /// [`Error::Poisoned`]; [`Error::Fatal`] from inside MuJoCo (the data is then
+    /// poisoned until reset).
+    pub fn step(&mut self, n: usize) -> Result<Vec<Warning>, Error> {
+        self.check()?;
+        let before = self.counts();
+        let f = self.model.inner.mujoco.lib.fns.step;
+        let n = c_long::try_from(n).unwrap_or(c_long::MAX);
+        // SAFETY: valid model and data of that model.
+        self.guarded("Physics::step", |m, d| unsafe { guard::mjr_step(f, m, d, n) })?;
+        let after = self.counts();
+        Ok(self.warnings_between(&before, &after))
+    }
+
+    fn counts(&self) -> [u32; 7] {
+        let w = &self.d().warning;
+        std::array::from_fn(|i| u32::try_from(w[i].number).unwrap_or(0))
+    }
+
+    fn warnings_between(&self, before: &[u32; 7], after: &[u32; 7]) -> Vec<Warning> {
+        let fns = &self.model.inner.mujoco.lib.fns;
+        (0..WARNING_KINDS.len())
+            .filter(|&i| after[i] != before[i])
+            .map(|i| {
+                let info = usize::try_from(self.d().warning[i].lastinfo).unwrap_or(0);
+                // SAFETY: a warning index below mjNWARNING; MuJoCo returns a static
+                // buffer's text (or null).
+                let text = unsafe {
+                    let p = (fns.warning_text)(i as i32, info);
+                    if p.is_null() {
+                        String::new()
+                    } else {
+                        CStr::from_ptr(p).to_string_lossy().into_owned()
+                    }
+                };
+                Warning { kind: WARNING_KINDS[i], count: after[i].wrapping_sub(before[i]), text }
+            })
+            .collect()
+    }
+
+    /// Every warning since the last reset, by kind.
+    ///
+    /// Time: O(1).
+    pub fn warnings(&self) -> Vec<Warning> {
+        self.warnings_between(&[0; 7], &self.counts())
+    }
+
+    /// The messages MuJoCo logged in this simulation's calls (taken out).
+    ///
+    /// Time: O(1).
+    pub fn take_messages(&mut self) -> Vec<Message> {
+        std::mem::take(&mut self.messages)
+    }
+
+    /// The simulation time.
+    ///
+    /// Time: O(1).
+    pub fn time(&self) -> f64 {
+        self.d().time
+    }
+
+    /// Sets the simulation time.
+    ///
+    /// Time: O(1).
+    pub fn set_time(&mut self, time: f64) {
+        // SAFETY: owned data.
+        unsafe { self.data.as_mut() }.time = time;
+    }
+
+    /// A whole array field of the data, by its `mjData` name (`qpos`, `xpos`, ...).
+    ///
+    /// Time: O(f) for the f fields of `mjData`.
+    ///
+    /// # Errors
+    /// [`BindError::NoField`] for a name `mjData` has no array field of;
+    /// [`BindError::WrongType`] for a field of another scalar type.
+    pub fn data(&self, name: &str) -> Result<&[f64], BindError> {
+        let (i, field) = data_field(name)?;
+        // SAFETY: valid model and data.
+        let raw = crate::fields::data_field(self.d(), unsafe { &*self.m() }, i)
+            .ok_or_else(|| no_data_field(name))?;
+        // SAFETY: the field's pointer and size from the data's own tables; borrowed
+        // from `self`.
+        unsafe { raw.floats(field) }
+    }
+
+    /// [`Physics::data`], to write.
+    ///
+    /// Time: as [`Physics::data`].
+    ///
+    /// # Errors
+    /// As [`Physics::data`].
+    pub fn data_mut(&mut self, name: &str) -> Result<&mut [f64], BindError> {
+        let (i, field) = data_field(name)?;
+        // SAFETY: valid model and data.
+        let raw = crate::fields::data_field(self.d(), unsafe { &*self.m() }, i)
+            .ok_or_else(|| no_data_field(name))?;
+        // SAFETY: as in `data`, borrowed mutably from `self`, which owns the data.
+        unsafe { raw.floats_mut(field) }
+    }
+
+    /// Positions (`qpos`).
+    ///
+    /// Time: O(f).
+    pub fn qpos(&self) -> &[f64] {
+        self.data("qpos").unwrap_or_default()
+    }
+
+    /// Positions (`qpos`), to write.
+    ///
+    /// Time: O(f).
+    pub fn qpos_mut(&mut self) -> &mut [f64] {
+        self.data_mut("qpos").unwrap_or_default()
+    }
+
+    /// Velocities (`qvel`).
+    ///
+    /// Time: O(f).
+    pub fn qvel(&self) -> &[f64] {
+        self.data("qvel").unwrap_or_default()
+    }
+
+    /// Velocities (`qvel`), to write.
+    ///
+    /// Time: O(f).
+    pub fn qvel_mut(&mut self) -> &mut [f64] {
+        self.data_mut("qvel").unwrap_or_default()
+    }
+
+    /// Controls (`ctrl`).
+    ///
+    /// Time: O(f).
+    pub fn ctrl(&self) -> &[f64] {
+        self.data("ctrl").unwrap_or_default()
+    }
+
+    /// Controls (`ctrl`), to write.
+    ///
+    /// Time: O(f).
+    pub fn ctrl_mut(&mut self) -> &mut [f64] {
+        self.data_mut("ctrl").unwrap_or_default()
+    }
+
+    /// Binds a locator of the `mjcf` model (see [`Compiled::bind`]).
+    ///
+    /// Time: as [`Compiled::bind`].
+    ///
+    /// # Errors
+    /// As [`Compiled::bind`].
+    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
+        self.model.bind(loc)
+    }
+
+    fn slot(&self, b: &Bound, field: &str) -> Result<Slot, BindError> {
+        // SAFETY: valid model.
+        bind::resolve(unsafe { &*self.m() }, b.kind, b.id, field)
+    }
+
+    /// A field of a bound element, as dm_control's `physics.bind(el).field`: a field
+    /// of the data first (`qpos` and `qvel` of a joint, `xpos` and `xquat` of a body,
+    /// `xpos` of a site, `ctrl` and `act` of an actuator, `sensordata` of a sensor),
+    /// else of the model (`damping` of a joint, `mass` of a body, `friction` and
+    /// `size` of a geom, `gainprm` of an actuator); `mjModel` and `mjData` names work
+    /// too (`dof_damping`, `site_xpos`). The element's rows, row after row.
+    ///
+    /// Time: O(f) for the f fields of `mjModel` and `mjData`.
+    ///
+    /// # Errors
+    /// [`BindError::NoField`] (naming the fields there are); [`BindError::WrongType`]
+    /// for a field of integers (see [`Physics::ints`]).
+    pub fn get(&self, b: &Bound, field: &str) -> Result<&[f64], BindError> {
+        let slot = self.slot(b, field)?;
+        // SAFETY: valid model and data.
+        let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
+            .ok_or_else(|| no_data_field(field))?;
+        // SAFETY: the field's pointer and size from the model's tables, borrowed from
+        // `self`; the rows are the element's, within the field.
+        let all = unsafe { raw.floats(slot.field) }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// [`Physics::get`], to write. Writing a model field when the compiled model is
+    /// shared (with other simulations, or a [`Compiled`] kept elsewhere) first gives
+    /// this simulation its own copy of the model (`mj_copyModel`), so the others keep
+    /// their numbers.
+    ///
+    /// Time: O(f), plus the copy of the model the first time a shared one is written.
+    ///
+    /// # Errors
+    /// As [`Physics::get`]; [`Error::Fatal`] when MuJoCo cannot copy the model.
+    pub fn get_mut(&mut self, b: &Bound, field: &str) -> Result<&mut [f64], Error> {
+        let slot = self.slot(b, field)?;
+        if slot.place == Place::Model {
+            self.own_model()?;
+        }
+        // SAFETY: valid model and data.
+        let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
+            .ok_or_else(|| no_data_field(field))?;
+        // SAFETY: as in `get`; the model is owned by this simulation alone now
+        // (`own_model`), and the data always is.
+        let all = unsafe { raw.floats_mut(slot.field) }?;
+        Ok(&mut all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// [`Physics::get`] for fields of integers (`contype` of a geom, `qposadr` of a
+    /// joint).
+    ///
+    /// Time: as [`Physics::get`].
+    ///
+    /// # Errors
+    /// As [`Physics::get`], the other way round.
+    pub fn ints(&self, b: &Bound, field: &str) -> Result<&[i32], BindError> {
+        let slot = self.slot(b, field)?;
+        // SAFETY: valid model and data.
+        let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
+            .ok_or_else(|| no_data_field(field))?;
+        // SAFETY: as in `get`.
+        let all = unsafe { raw.ints(slot.field) }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// Makes the compiled model this simulation's own (copied if shared).
+    fn own_model(&mut self) -> Result<(), Error> {
+        if Arc::get_mut(&mut self.model.inner).is_some() {
+            return Ok(());
+        }
+        let inner = &self.model.inner;
+        let fns = &inner.mujoco.lib.fns;
+        let mut copy: *mut mjModel = std::ptr::null_mut();
+        // SAFETY: a valid source model; the guard calls `mj_copyModel(NULL, src)`.
+        let fatal = unsafe { guard::mjr_copy_model(fns.copy_model, inner.ptr.as_ptr(), &mut copy) };
+        self.messages.extend(guard::take_messages());
+        let ptr = NonNull::new(copy).filter(|_| fatal == 0).ok_or_else(|| Error::Fatal {
+            call: "Physics::get_mut",
+            message: guard::fatal_message(),
+        })?;
+        self.model = Compiled {
+            inner: Arc::new(Inner {
+                mujoco: inner.mujoco.clone(),
+                ptr,
+                source: inner.source.clone(),
+                messages: inner.messages.clone(),
+            }),
+        };
+        Ok(())
+    }
+}
+
+fn data_field(name: &str) -> Result<(usize, &'static crate::fields::Field), BindError> {
+    let i = crate::fields::DATA_FIELDS
+        .iter()
+        .position(|f| f.name == name)
+        .ok_or_else(|| no_data_field(name))?;
+    Ok((i, &crate::fields::DATA_FIELDS[i]))
+}
+
+fn no_data_field(name: &str) -> BindError {
+    BindError::NoField {
+        kind: "data",
+        field: name.to_string(),
+        known: "mjData's array fields".into(),
+    }
+}
+
+impl crate::fields::RawField {
+    /// # Safety
+    /// As [`RawField::floats`](crate::fields::RawField), and nothing else reads or
+    /// writes the array while the slice lives.
+    pub(crate) unsafe fn floats_mut<'a>(
+        &self,
+        field: &'static crate::fields::Field,
+    ) -> Result<&'a mut [f64], BindError> {
+        if field.scalar != Scalar::F64 {
+            return Err(BindError::WrongType {
+                field: field.name,
+                holds: field.scalar.name(),
+                asked: "f64",
+            });
+        }
+        let len = self.rows * self.cols;
+        if len == 0 || self.ptr.is_null() {
+            return Ok(&mut []);
+        }
+        // SAFETY: as the caller promises.
+        Ok(unsafe { std::slice::from_raw_parts_mut(self.ptr.cast::<f64>(), len) })
+    }
+}
