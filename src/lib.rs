@@ -88,8 +88,8 @@ pub use crate::error::{
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
-    Attachment, Attrs, Element, ElementRef, Event, Loc, Model, Preorder, Problem, ProblemKind,
-    ScopeRef,
+    Attachment, Attrs, Element, ElementRef, Event, JointType, Layout, LayoutActuator, LayoutJoint,
+    LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind, ScopeRef,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

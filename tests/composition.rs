@@ -317,3 +317,30 @@ fn merged_settings_follow_edits_inside_nested_attachments() {
     let cleared = scene.remove_with_attachments(&body).unwrap();
     assert!(!cleared.to_xml_string().unwrap().contains("timestep"));
 }
+
+/// DESIGN D15: the attachment frame sits where MuJoCo puts the site, also when the
+/// site's class or its `fromto` places it (dm_control copies the site's own
+/// attributes only).
+#[test]
+fn a_frame_is_placed_where_mujoco_places_its_site() {
+    let arena = mjcf::ReadOptions::new()
+        .read_str(
+            r#"<mujoco model="arena"><default><default class="spot"><site pos="1 2 0.5" euler="0 0 45"/></default></default>
+               <worldbody><site name="by_class" class="spot"/><site name="own" class="spot" pos="3 0 0"/>
+               <site name="ft" type="capsule" size="0.01" fromto="0 -1 0 0.3 -1 0.4"/></worldbody></mujoco>"#,
+        )
+        .unwrap();
+    let robot = Model::new("robot");
+    let frame_of = |site: &str| {
+        let mut a = arena.clone();
+        let at = a.find(mjcf::Namespace::Site, site).unwrap();
+        let f = a.attach_mut(&at, &robot).unwrap();
+        let el = a.get(f.frame()).unwrap();
+        el.attrs().map(|(n, v)| format!("{n}={v}")).collect::<Vec<_>>()
+    };
+    assert_eq!(frame_of("by_class"), ["pos=1 2 0.5", "euler=0 0 45"]);
+    // Its own position wins; the orientation still comes from the class.
+    assert_eq!(frame_of("own"), ["pos=3 0 0", "euler=0 0 45"]);
+    // A fromto: its middle, and the z axis from its end back to its start.
+    assert_eq!(frame_of("ft"), ["pos=0.15 -1 0.2", "zaxis=-0.3 0 -0.4"]);
+}

@@ -8,7 +8,7 @@
 
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
-use crate::model::frame::frame_attrs;
+use crate::model::frame::placed_frame_attrs;
 use crate::model::settings;
 use crate::model::tree::{Attached, ElementId, Node};
 use crate::model::{Attachment, Loc, MergedCache, Model, ScopeRef};
@@ -150,7 +150,7 @@ impl Model {
                     pos += 1;
                 }
                 let pos = pos.min(parent.children().len());
-                (parent_path, parent, pos, kind, frame_attrs(node, kind))
+                (parent_path, parent, pos, kind, placed_frame_attrs(self, &path, node, kind))
             }
             _ => return Err(err(ErrorKind::InvalidParent(tag))),
         };

@@ -27,6 +27,78 @@ pub(crate) fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
         .collect()
 }
 
+/// The frame attributes of an attachment at `site` (at `path` in `model`), placing
+/// the frame where MuJoCo places the site (DESIGN D15): its own attributes, and where
+/// it sets neither a position nor an orientation, those its default classes give it;
+/// a `fromto` gives both (its middle, and the direction from its end back to its
+/// start as the z axis), as MuJoCo
+/// reads it. dm_control copies the site's own attributes only, which puts the frame
+/// elsewhere than the site when its class or a `fromto` places it.
+pub(crate) fn placed_frame_attrs(
+    model: &super::Model,
+    path: &[usize],
+    site: &Node,
+    body_kind: ElementKind,
+) -> Vec<Attr> {
+    use crate::value::Value;
+    let ours = frame_attr_indices(body_kind);
+    let set = |attrs: &mut Vec<Attr>, name: &str, value: Value| {
+        let Some(i) = FRAME_ATTRS.iter().position(|n| *n == name) else { return };
+        if let Some(b) = ours[i] {
+            attrs.retain(|(j, _)| *j != b);
+            attrs.push((b, value));
+        }
+    };
+    let mut attrs = frame_attrs(site, body_kind);
+    let own = |name: &str| site.kind().attr_index(name).and_then(|i| site.attr(i));
+    if let Some(ft) = own("fromto").and_then(Value::as_floats).filter(|f| f.len() == 6) {
+        let mid: Vec<f64> = (0..3).map(|i| (ft[i] + ft[i + 3]) / 2.0).collect();
+        // MuJoCo's z axis points from `to` back to `from`.
+        let dir: Vec<f64> = (0..3).map(|i| ft[i] - ft[i + 3]).collect();
+        let placing: Vec<u16> = ORIENTATIONS
+            .iter()
+            .filter_map(|n| ours[FRAME_ATTRS.iter().position(|f| f == n)?])
+            .collect();
+        attrs.retain(|(j, _)| !placing.contains(j));
+        set(&mut attrs, "pos", Value::Floats(mid.into()));
+        set(&mut attrs, "zaxis", Value::Floats(dir.into()));
+        attrs.sort_by_key(|(i, _)| *i);
+        return attrs;
+    }
+    // The class in force: the site's own, else the nearest `childclass` above it, else
+    // the model's root class.
+    let class = super::layout::class_of(site).or_else(|| {
+        (0..path.len()).rev().find_map(|n| {
+            let node = model.node_at(&path[..n])?;
+            let c = node.kind().attr_index("childclass")?;
+            match node.attr(c) {
+                Some(Value::Reference(crate::value::Reference::Element(id))) => Some(*id),
+                _ => None,
+            }
+        })
+    });
+    let class = class
+        .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id));
+    if own("pos").is_none() {
+        if let Some(v) = super::layout::effective(model, site, class, "pos") {
+            set(&mut attrs, "pos", v.clone());
+        }
+    }
+    if ORIENTATIONS.iter().all(|n| own(n).is_none()) {
+        if let Some((name, v)) = ORIENTATIONS
+            .iter()
+            .find_map(|n| Some((*n, super::layout::effective(model, site, class, n)?)))
+        {
+            set(&mut attrs, name, v.clone());
+        }
+    }
+    attrs.sort_by_key(|(i, _)| *i);
+    attrs
+}
+
+/// The attributes that orient a site or a frame.
+const ORIENTATIONS: [&str; 5] = ["quat", "axisangle", "xyaxes", "zaxis", "euler"];
+
 /// The schema indices of [`FRAME_ATTRS`] in `kind` (`None` where it has no such
 /// attribute), from a table computed once for all kinds: an attach asks for two
 /// kinds, which by name would be 14 binary searches of attribute names.

@@ -13,6 +13,9 @@ mod elems;
 mod eq;
 pub(crate) mod frame;
 mod index;
+pub(crate) mod keys;
+pub(crate) mod layout;
+pub(crate) mod pose;
 mod scope;
 pub(crate) mod settings;
 pub(crate) mod tree;
@@ -40,6 +43,7 @@ pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Item, Step, Walk};
 pub(crate) use elems::ElemMap;
 pub(crate) use index::{Entry, Index, MergedCache, ReadIndex};
+pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 

@@ -1,7 +1,6 @@
 //! MJCF text: reading and writing.
 
 mod export;
-mod keys;
 mod read;
 mod write;
 

@@ -480,8 +480,7 @@ impl<'a> Writer<'a> {
 
     /// Writes the composed keys in place of the keyframe section.
     fn write_merged_keys(&mut self) -> Result<(), WriteError> {
-        let compiler = self.merged.iter().find(|n| n.kind().tag() == "compiler");
-        let keys = super::keys::merged_keys(self.insts[0].model, compiler);
+        let keys = crate::model::keys::merged_keys(self.insts[0].model);
         if keys.is_empty() {
             return Ok(());
         }

@@ -1,0 +1,452 @@
+//! The physics layout of a composed model, as MuJoCo numbers it: every joint with its
+//! type and its `qpos` and `qvel` addresses, every actuator with its controls and
+//! activations, every mocap body, and the keys. Composed keyframes
+//! ([`WriteOptions::merge_keyframes`](crate::WriteOptions)) and [`Model::check`]'s key
+//! lengths are computed from it; the binding crate's tests check it against MuJoCo's
+//! compiled model (`jnt_qposadr`, `jnt_dofadr`, `nq`, `nv`, `nu`, `na`).
+//!
+//! MuJoCo numbers joints, bodies and actuators in the order the written model holds
+//! them, which is the order of [`Model::walk`]; `<frame>`s are transparent, and a
+//! `<replicate>` holds its content `count` times, copy after copy (nested ones
+//! inside out). Elements that make joints MuJoCo's compiler generates (`<attach>` of
+//! an asset model, `<composite>`, `<flexcomp>`) are not expanded: they are listed in
+//! [`Layout::unexpanded`], and the layout is exact only where that list is empty.
+
+use std::collections::HashMap;
+
+use crate::model::check::joint_type;
+use crate::model::pose::{self, Angles, IDENTITY, Pose};
+use crate::model::tree::{ElementId, Node};
+use crate::model::{Loc, Model, Step, Walk, settings};
+use crate::schema::ElementKind;
+use crate::value::{Reference, Value};
+
+/// A joint's type, as MuJoCo compiles it (the element's own `type`, else its default
+/// classes', else a hinge).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointType {
+    /// A free joint: 7 positions (position, quaternion), 6 velocities.
+    Free,
+    /// A ball joint: 4 positions (quaternion), 3 velocities.
+    Ball,
+    /// A slide joint: 1 and 1.
+    Slide,
+    /// A hinge joint: 1 and 1.
+    Hinge,
+}
+
+impl JointType {
+    /// The positions (`qpos` entries) of a joint of this type.
+    ///
+    /// Time: O(1).
+    pub fn nq(self) -> usize {
+        match self {
+            JointType::Free => 7,
+            JointType::Ball => 4,
+            JointType::Slide | JointType::Hinge => 1,
+        }
+    }
+
+    /// The degrees of freedom (`qvel` entries) of a joint of this type.
+    ///
+    /// Time: O(1).
+    pub fn nv(self) -> usize {
+        match self {
+            JointType::Free => 6,
+            JointType::Ball => 3,
+            JointType::Slide | JointType::Hinge => 1,
+        }
+    }
+
+    fn of(name: &str) -> JointType {
+        match name {
+            "free" => JointType::Free,
+            "ball" => JointType::Ball,
+            "slide" => JointType::Slide,
+            _ => JointType::Hinge,
+        }
+    }
+}
+
+/// A joint of the layout.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct LayoutJoint {
+    /// The joint element (for a joint inside a `<replicate>`, each copy has the same
+    /// locator).
+    pub loc: Loc,
+    /// Its type.
+    pub joint_type: JointType,
+    /// The address of its first position in `qpos` (MuJoCo's `jnt_qposadr`).
+    pub qpos: usize,
+    /// The address of its first velocity in `qvel` (MuJoCo's `jnt_dofadr`).
+    pub dof: usize,
+    /// The instance (model of the composition, in walk order) it belongs to.
+    pub(crate) inst: usize,
+    /// Its addresses among its own model's positions and velocities.
+    pub(crate) own_qpos: usize,
+    pub(crate) own_dof: usize,
+    /// MuJoCo's default positions (`qpos0`): a hinge's or slide's `ref`, a ball's
+    /// unit quaternion, a free joint's body pose in the world.
+    pub(crate) qpos0: Vec<f64>,
+}
+
+/// An actuator of the layout.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct LayoutActuator {
+    /// The actuator element.
+    pub loc: Loc,
+    /// The address of its first control in `ctrl`.
+    pub ctrl: usize,
+    /// Its controls (1, or 2 for a `<pid>`).
+    pub nctrl: usize,
+    /// The address of its first activation in `act`.
+    pub act: usize,
+    /// Its activations.
+    pub nact: usize,
+    pub(crate) inst: usize,
+    pub(crate) own_ctrl: usize,
+    pub(crate) own_act: usize,
+}
+
+/// A mocap body of the layout.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct LayoutMocap {
+    /// The body element.
+    pub loc: Loc,
+    /// Its index among the mocap bodies (`mocap_pos` row).
+    pub index: usize,
+    pub(crate) inst: usize,
+    pub(crate) own: usize,
+    /// Its pose in the world, as compiled.
+    pub(crate) pose: Pose,
+}
+
+/// The physics layout of a composed model (see the module documentation), from
+/// [`Model::layout`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Layout<'a> {
+    /// Every joint, in MuJoCo's order.
+    pub joints: Vec<LayoutJoint>,
+    /// Every actuator, in MuJoCo's order.
+    pub actuators: Vec<LayoutActuator>,
+    /// Every mocap body, in MuJoCo's order.
+    pub mocap: Vec<LayoutMocap>,
+    /// Positions (`nq`).
+    pub nq: usize,
+    /// Degrees of freedom (`nv`).
+    pub nv: usize,
+    /// Controls (`nu`).
+    pub nu: usize,
+    /// Activations (`na`).
+    pub na: usize,
+    /// Elements whose generated joints, bodies or actuators the layout does not count
+    /// (`<attach>`, `<composite>`, `<flexcomp>`): the layout is exact when empty.
+    pub unexpanded: Vec<Loc>,
+    /// The keys, with the instance each belongs to, in document order.
+    pub(crate) keys: Vec<(usize, &'a Node)>,
+    /// Per instance: the pose of its model's world in the composed world (the pose of
+    /// the attachment frame it hangs from; identity for the root model).
+    pub(crate) origins: HashMap<usize, Pose>,
+}
+
+impl Layout<'_> {
+    /// The pose of instance `inst`'s world in the composed world.
+    pub(crate) fn origin(&self, inst: usize) -> Pose {
+        self.origins.get(&inst).copied().unwrap_or(IDENTITY)
+    }
+}
+
+/// What a `<replicate>` collects until it is left, to repeat it `count` times.
+#[derive(Default)]
+struct Pending {
+    joints: Vec<(LayoutJoint, Pose)>,
+    actuators: Vec<LayoutActuator>,
+    mocap: Vec<LayoutMocap>,
+}
+
+/// An open element of the walk.
+struct Open<'a> {
+    inst: usize,
+    node: &'a Node,
+    /// Its pose in the world (for a body, frame or attachment frame: its own; else
+    /// its parent's).
+    pose: Pose,
+    /// The `childclass` in force for its content.
+    childclass: Option<ElementId>,
+}
+
+/// The element's own class (a resolved `class` attribute).
+pub(crate) fn class_of(node: &Node) -> Option<ElementId> {
+    let c = node.kind().class_attr()?;
+    match node.attr(c) {
+        Some(Value::Reference(Reference::Element(id))) => Some(*id),
+        _ => None,
+    }
+}
+
+/// The value of `attr` for `node`: its own, else that of the defaults of its tag in
+/// `class` and the classes above it.
+pub(crate) fn effective<'m>(
+    model: &'m Model,
+    node: &'m Node,
+    class: Option<ElementId>,
+    attr: &str,
+) -> Option<&'m Value> {
+    let kind = node.kind();
+    if let Some(v) = kind.attr_index(attr).and_then(|i| node.attr(i)) {
+        return Some(v);
+    }
+    let mut cur = class;
+    while let Some(id) = cur {
+        let class_node = model.node_by_id(id)?;
+        let default = class_node.children().iter().find(|c| c.kind().tag() == kind.tag());
+        if let Some(v) = default.and_then(|d| d.attr(d.kind().attr_index(attr)?)) {
+            return Some(v);
+        }
+        cur = model
+            .index
+            .parent(id)
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().tag() == "default"));
+    }
+    None
+}
+
+/// The controls and activations of an actuator element, as MuJoCo 4.0 counts them.
+fn actuator_size(model: &Model, node: &Node, class: Option<ElementId>) -> (usize, usize) {
+    let value = |attr: &str| effective(model, node, class, attr);
+    let positive = |attr: &str| {
+        value(attr)
+            .and_then(|v| v.as_float().or_else(|| v.as_floats()?.first().copied()))
+            .is_some_and(|x| x > 0.0)
+    };
+    let set = |attr: &str| value(attr).is_some();
+    let dyntype = value("dyntype").and_then(Value::as_str);
+    let explicit = value("actdim").and_then(Value::as_int).and_then(|n| usize::try_from(n).ok());
+    let act = match node.kind().tag() {
+        "muscle" | "cylinder" | "intvelocity" => 1,
+        "general" => usize::from(dyntype.is_some_and(|d| d != "none")),
+        "position" | "velocity" => usize::from(positive("timeconst")),
+        "dcmotor" => usize::from(positive("inductance")) + usize::from(set("thermal")),
+        "pid" => usize::from(positive("ki")) + usize::from(positive("slewmax")),
+        _ => 0,
+    };
+    let ctrl = if node.kind().tag() == "pid" { 2 } else { 1 };
+    (ctrl, explicit.unwrap_or(act))
+}
+
+impl Model {
+    /// The physics layout of the composed model: its joints with their `qpos` and
+    /// `qvel` addresses, its actuators, its mocap bodies (see [`Layout`]).
+    ///
+    /// Time: O(N) for a composed model of N elements (O(N · c) where classes c deep
+    /// are followed for joint types and actuator settings), plus the copies a
+    /// `<replicate>` makes.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{JointType, Model, element};
+    /// let mut robot = Model::new("robot");
+    /// let torso = robot.add_mut(&robot.worldbody(), element!("body", name = "torso"))?;
+    /// robot.add_mut(&torso, element!("joint", name = "hip", type = "ball"))?;
+    /// robot.add_mut(&torso, element!("joint", name = "knee"))?;
+    /// let mut arena = Model::new("arena");
+    /// let a = arena.attach_mut(&arena.worldbody(), &robot)?;
+    /// arena.add_mut(a.frame(), element!("freejoint"))?;
+    /// let layout = arena.layout();
+    /// let joints: Vec<_> = layout.joints.iter().map(|j| (j.joint_type, j.qpos, j.dof)).collect();
+    /// assert_eq!(joints, [(JointType::Free, 0, 0), (JointType::Ball, 7, 6), (JointType::Hinge, 11, 9)]);
+    /// assert_eq!((layout.nq, layout.nv), (12, 10));
+    /// # Ok::<(), mjcf::Error>(())
+    /// ```
+    pub fn layout(&self) -> Layout<'_> {
+        let merged = settings::merged(self).ok();
+        let compiler =
+            merged.as_deref().and_then(|m| m.iter().find(|n| n.kind().tag() == "compiler"));
+        let angles = Angles::of(compiler);
+        let name = self.name();
+        let mut out = Layout {
+            joints: Vec::new(),
+            actuators: Vec::new(),
+            mocap: Vec::new(),
+            nq: 0,
+            nv: 0,
+            nu: 0,
+            na: 0,
+            unexpanded: Vec::new(),
+            keys: Vec::new(),
+            origins: HashMap::new(),
+        };
+        // The replicates open, innermost last, with what they collect.
+        let mut replicates: Vec<(Pending, Pose, Pose, usize)> = Vec::new();
+        let mut top = Pending::default();
+        let mut open: Vec<Open<'_>> = Vec::new();
+        let mut walk = Walk::new(self);
+        let root_class =
+            |m: &Model| m.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id);
+        while let Some(step) = walk.next() {
+            let item = match step {
+                Step::Enter(item) => item,
+                Step::Leave(item) => {
+                    open.pop();
+                    if item.node.kind().tag() == "replicate" {
+                        if let Some((pending, at, step, count)) = replicates.pop() {
+                            let into = replicates.last_mut().map_or(&mut top, |r| &mut r.0);
+                            repeat(pending, at, step, count, into);
+                        }
+                    }
+                    continue;
+                }
+            };
+            let inst = walk.insts.list[item.inst].frames.clone();
+            let m = walk.insts.list[item.inst].model;
+            let node = item.node;
+            let kind = node.kind();
+            let loc = || Loc::scoped(inst.clone(), node.id(), name);
+            let parent = open.last();
+            let parent_tag = parent.map(|p| p.node.kind().tag());
+            let parent_pose = parent.map_or(IDENTITY, |p| p.pose);
+            if parent.is_some_and(|p| p.node.attached().is_some() && p.inst != item.inst) {
+                out.origins.entry(item.inst).or_insert(parent_pose);
+            }
+            let inherited = parent.filter(|p| p.inst == item.inst).and_then(|p| p.childclass);
+            let class = class_of(node).or(inherited).or_else(|| root_class(m));
+            let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
+            let is_body = kind.tag() == "body" && !in_default;
+            let frame_like = node.attached().is_some() || kind.tag() == "frame";
+            let pose = if is_body || frame_like {
+                pose::compose(parent_pose, pose::local_pose(node, &angles))
+            } else {
+                parent_pose
+            };
+            let pending = replicates.last_mut().map_or(&mut top, |r| &mut r.0);
+            match kind.tag() {
+                "joint" | "freejoint" if matches!(parent_tag, Some("body")) => {
+                    let joint_type = JointType::of(joint_type(m, node, class));
+                    let qpos0 = match joint_type {
+                        JointType::Free => [parent_pose.pos.as_slice(), &parent_pose.quat].concat(),
+                        JointType::Ball => vec![1.0, 0.0, 0.0, 0.0],
+                        _ => vec![
+                            effective(m, node, class, "ref")
+                                .and_then(Value::as_float)
+                                .unwrap_or(0.0),
+                        ],
+                    };
+                    let joint = LayoutJoint {
+                        loc: loc(),
+                        joint_type,
+                        qpos: 0,
+                        dof: 0,
+                        inst: item.inst,
+                        own_qpos: 0,
+                        own_dof: 0,
+                        qpos0,
+                    };
+                    pending.joints.push((joint, parent_pose));
+                }
+                "attach" | "composite" | "flexcomp" if !in_default => out.unexpanded.push(loc()),
+                _ => {}
+            }
+            if is_body && effective(m, node, class, "mocap").and_then(Value::as_str) == Some("true")
+            {
+                pending.mocap.push(LayoutMocap {
+                    loc: loc(),
+                    index: 0,
+                    inst: item.inst,
+                    own: 0,
+                    pose,
+                });
+            }
+            if parent_tag == Some("actuator")
+                && kind.spec().parent.is_some_and(|p| p.tag() == "actuator")
+            {
+                let (nctrl, nact) = actuator_size(m, node, class);
+                pending.actuators.push(LayoutActuator {
+                    loc: loc(),
+                    ctrl: 0,
+                    nctrl,
+                    act: 0,
+                    nact,
+                    inst: item.inst,
+                    own_ctrl: 0,
+                    own_act: 0,
+                });
+            }
+            if parent_tag == Some("keyframe") && kind.tag() == "key" {
+                out.keys.push((item.inst, node));
+            }
+            if kind.tag() == "replicate" && !in_default {
+                let count = node
+                    .attr(kind.attr_index("count").unwrap_or(usize::MAX))
+                    .and_then(Value::as_int)
+                    .and_then(|c| usize::try_from(c).ok())
+                    .unwrap_or(1);
+                replicates.push((
+                    Pending::default(),
+                    pose,
+                    pose::replicate_step(node, &angles),
+                    count,
+                ));
+            }
+            let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
+                Some(Value::Reference(Reference::Element(id))) => Some(*id),
+                _ => None,
+            });
+            open.push(Open { inst: item.inst, node, pose, childclass: childclass.or(inherited) });
+        }
+        // Addresses in the composed model and in each model's own, in order.
+        // Per instance: its own positions, velocities, controls, activations and mocap
+        // bodies so far.
+        let mut own: HashMap<usize, [usize; 5]> = HashMap::new();
+        for (mut joint, _) in top.joints {
+            let counts = own.entry(joint.inst).or_default();
+            (joint.qpos, joint.dof, joint.own_qpos, joint.own_dof) =
+                (out.nq, out.nv, counts[0], counts[1]);
+            let (q, v) = (joint.joint_type.nq(), joint.joint_type.nv());
+            (out.nq, out.nv, counts[0], counts[1]) =
+                (out.nq + q, out.nv + v, counts[0] + q, counts[1] + v);
+            out.joints.push(joint);
+        }
+        for mut a in top.actuators {
+            let counts = own.entry(a.inst).or_default();
+            (a.ctrl, a.act, a.own_ctrl, a.own_act) = (out.nu, out.na, counts[2], counts[3]);
+            (out.nu, out.na, counts[2], counts[3]) =
+                (out.nu + a.nctrl, out.na + a.nact, counts[2] + a.nctrl, counts[3] + a.nact);
+            out.actuators.push(a);
+        }
+        for (i, mut b) in top.mocap.into_iter().enumerate() {
+            let counts = own.entry(b.inst).or_default();
+            (b.index, b.own) = (i, counts[4]);
+            counts[4] += 1;
+            out.mocap.push(b);
+        }
+        out
+    }
+}
+
+/// Appends `count` copies of what a `<replicate>` at pose `at` collected to `into`;
+/// copy k is moved by `step` k times (the free joints' default poses with it).
+fn repeat(pending: Pending, at: Pose, step: Pose, count: usize, into: &mut Pending) {
+    let back = pose::inverse(at);
+    let mut shift = IDENTITY;
+    for _ in 0..count {
+        // The copy's transform in the world: at · shift · at⁻¹.
+        let moved = pose::compose(pose::compose(at, shift), back);
+        for (j, parent) in &pending.joints {
+            let mut j = j.clone();
+            if j.joint_type == JointType::Free {
+                let p = pose::compose(moved, *parent);
+                j.qpos0 = [p.pos.as_slice(), &p.quat].concat();
+            }
+            into.joints.push((j, pose::compose(moved, *parent)));
+        }
+        into.actuators.extend(pending.actuators.iter().cloned());
+        for b in &pending.mocap {
+            into.mocap.push(LayoutMocap { pose: pose::compose(moved, b.pose), ..b.clone() });
+        }
+        shift = pose::compose(shift, step);
+    }
+}
