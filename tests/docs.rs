@@ -1,6 +1,7 @@
 //! Figures and names the documentation states that something else in the repository
 //! decides: each test reads both places and fails when one changes alone.
 //!
+//! - the README's `[dependencies]` line and Rust version are the manifest's;
 //! - the real-model floor of the README is `.ci/run`'s `realmodels_floor`;
 //! - the README's conformance summary counts every case of the corpus;
 //! - every `deviation` label a conformance case uses is explained in
@@ -45,6 +46,47 @@ fn number_after_refuses_a_prefix_without_a_number() {
 #[should_panic(expected = "occurs more than once")]
 fn number_after_refuses_an_ambiguous_prefix() {
     number_after("floor=1 floor=2", "floor=", "t");
+}
+
+/// The quoted value of `key = "..."` in the only line of `text` that starts with it.
+fn quoted_value<'a>(text: &'a str, key: &str, what: &str) -> &'a str {
+    let prefix = format!("{key} = \"");
+    let mut lines = text.lines().filter(|l| l.starts_with(&prefix));
+    let line = lines.next().unwrap_or_else(|| panic!("{what}: no `{key} = \"...\"` line"));
+    assert!(lines.next().is_none(), "{what}: more than one `{key} = ` line");
+    line[prefix.len()..].split('"').next().unwrap()
+}
+
+/// `mjcf = "0.1"` for version 0.1.x, `"1"` for 1.x.y: the requirement that takes every
+/// compatible release.
+fn caret_requirement(version: &str) -> String {
+    let parts: Vec<&str> = version.split('.').collect();
+    match parts.as_slice() {
+        ["0", minor, ..] => format!("0.{minor}"),
+        [major, ..] => (*major).to_string(),
+        [] => unreachable!("split gives at least one part"),
+    }
+}
+
+#[test]
+fn caret_requirement_keeps_the_version_that_breaks() {
+    assert_eq!(caret_requirement("0.1.0"), "0.1");
+    assert_eq!(caret_requirement("0.12.3"), "0.12");
+    assert_eq!(caret_requirement("1.4.2"), "1");
+}
+
+/// The README's "Use it" section: the dependency line takes the manifest's version,
+/// and the Rust version it names is the workspace's `rust-version`.
+#[test]
+fn readme_dependency_line_and_rust_version_are_the_manifests() {
+    let manifest = read("Cargo.toml");
+    let readme = read("README.md");
+    let version = quoted_value(&manifest, "version", "Cargo.toml");
+    let line = format!("\nmjcf = \"{}\"\n", caret_requirement(version));
+    assert!(readme.contains(&line), "the README has no `{}` line", line.trim());
+    let rust_version = quoted_value(&manifest, "rust-version", "Cargo.toml");
+    let stated = format!("Rust {rust_version} or newer");
+    assert!(readme.contains(&stated), "the README does not say `{stated}`");
 }
 
 /// The README's "Real models" section: the floor it states, and the pass count of its
