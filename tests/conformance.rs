@@ -1,7 +1,8 @@
 //! One test per conformance case in `tests/conformance/cases` (see the README there):
-//! every case must pass, or differ from dm_control only on ops marked as one of our
-//! deliberate deviations (DESIGN D1–D3), which count as passed and print
-//! `ok (deviation: …)`.
+//! every case must pass, or differ from dm_control only on ops that carry a
+//! `deviation` label (one of our deliberate deviations; the README there says how
+//! each label the cases use is replayed, the crate's README what each one is), which
+//! count as passed and print `ok (deviation: …)` with the labels seen.
 //!
 //! The target has `harness = false`: `main` below is a small runner that behaves like
 //! libtest as far as cargo and CI need, so each case is a test named after its folder:

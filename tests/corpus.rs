@@ -1,6 +1,7 @@
 //! Reads every `*.xml` file of the conformance corpus (`tests/conformance/cases`),
-//! writes every model that reads, and checks that the output is well-formed XML; plus
-//! malformed-input tests that pin the exact error kind and line:column.
+//! writes every model that reads, checks that the output is well-formed XML and that it
+//! reads back to a model that writes the same text; plus malformed-input tests that pin
+//! the exact error kind and line:column.
 //!
 //! How input files are classified (derived from the cases, not from file names):
 //! - a file that a case `load`s without `expect_error` must read;
@@ -12,11 +13,21 @@
 //!   broken `broken_part.xml` and the `inner.xml` that names a missing mesh do);
 //! - any other input file is a test failure (a new kind of file to classify).
 //!
-//! `expected_*.xml` files are dm_control's output. Every one of them holds a `/` in an
-//! identifier (the root default class `<default class="/">`, scoped names such as
-//! `robot/torso`, auto names `//unnamed_geom_0`), which the reader rejects, so they
-//! must read or fail with a positioned `invalid value` error whose value has a `/`
-//! (or, for hashed asset file names, with `FileNotFound`) — never a panic.
+//! `expected_*.xml` files are dm_control's output. They hold `/` in identifiers (the
+//! root default class `<default class="/">`, scoped names such as `robot/torso`, auto
+//! names `//unnamed_geom_0`), which the reader accepts as literal names, so each must
+//! read, except those that name an asset file by dm_control's hashed name
+//! (`cube-<sha1>.stl`: dm_control writes those files beside its output, and the corpus
+//! does not hold them), which must fail with [`ErrorKind::FileNotFound`] for that name.
+//!
+//! Every model that reads (inputs and dm_control outputs alike) must write, and its
+//! output must read back, with each file it holds supplied by the name the writer gave
+//! it, to a model that writes the same text; and again with its root default class
+//! named, where the only difference is that class's extra level.
+//!
+//! The counts of each kind of file are floors (the corpus as of writing): a corpus
+//! that lost files, or a walk that no longer finds them, fails the test; adding cases
+//! does not.
 
 #[path = "support/text.rs"]
 mod text;
@@ -154,31 +165,25 @@ fn assert_well_formed(text: &str, what: &str) -> usize {
     elements
 }
 
-/// Whether `e` is the "identifier holds a '/'" error, positioned.
-fn is_positioned_slash_error(e: &ReadError) -> bool {
-    e.pos().is_some()
-        && matches!(e.kind(), ErrorKind::InvalidValue { error: ValueError::SlashInIdentifier, value, .. } if value.contains('/'))
+/// Whether the last component of `path` is dm_control's hashed asset file name,
+/// `stem-<40 hex digits>.ext`.
+fn is_hashed_file_name(path: &Path) -> bool {
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+    stem.rsplit_once('-').is_some_and(|(head, hash)| {
+        !head.is_empty() && hash.len() == 40 && hash.bytes().all(|b| b.is_ascii_hexdigit())
+    })
 }
 
-/// Elements the writer names `//unnamed_<ns>_<i>` (they have an identifier slot, belong
-/// to a namespace, are not default classes, and have no name).
-fn unnamed_elements(model: &Model) -> usize {
-    fn walk(e: ElementRef<'_>, n: &mut usize) {
-        let kind = e.kind();
-        if kind.identifier().is_some()
-            && kind.namespace().is_some()
-            && e.tag() != "default"
-            && e.identifier().is_none()
-        {
-            *n += 1;
-        }
-        for c in e.children() {
-            walk(c, n);
-        }
-    }
-    let mut n = 0;
-    walk(model.element(&model.root()).unwrap(), &mut n);
-    n
+#[test]
+fn is_hashed_file_name_knows_dm_control_asset_names() {
+    let hashed = |p: &str| is_hashed_file_name(Path::new(p));
+    assert!(hashed("/c/cube-3c02070cac597a650269d1d12dd7380c7efedfcc.stl"));
+    assert!(hashed("a-b-3c02070cac597a650269d1d12dd7380c7efedfcc"));
+    assert!(!hashed("/c/cube.stl"));
+    assert!(!hashed("/c/-3c02070cac597a650269d1d12dd7380c7efedfcc.stl"));
+    assert!(!hashed("/c/cube-3c02070cac597a650269d1d12dd7380c7efedfc.stl"));
+    assert!(!hashed("/c/cube-3c02070cac597a650269d1d12dd7380c7efedfcz.stl"));
+    assert!(!hashed("/c-3c02070cac597a650269d1d12dd7380c7efedfcc/cube.stl"));
 }
 
 /// Every file held by the model, by the name the writer gives it.
@@ -198,6 +203,16 @@ fn file_assets(model: &Model, options: &WriteOptions) -> BTreeMap<String, Vec<u8
     out
 }
 
+/// Read options that supply every file `model` holds, by the name the writer gives it
+/// with `options`.
+fn read_options_with_files(model: &Model, options: &WriteOptions) -> ReadOptions {
+    let mut read = ReadOptions::new();
+    for (file, contents) in file_assets(model, options) {
+        read = read.asset(&file, contents);
+    }
+    read
+}
+
 #[derive(Debug, Default)]
 struct Counts {
     inputs: usize,
@@ -206,13 +221,15 @@ struct Counts {
     included_only_failed: usize,
     outputs_of_dm_control: usize,
     outputs_of_dm_control_read: usize,
+    outputs_of_dm_control_missing_hashed_file: usize,
     written: usize,
+    reread_as_written: usize,
     rewritten_after_naming_root_class: usize,
     written_elements: usize,
 }
 
 #[test]
-fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes() {
+fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes_and_reads_back() {
     let mut files = Vec::new();
     xml_files(&cases_dir(), &mut files);
     let loads = case_loads();
@@ -243,11 +260,11 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
                 }
                 Err(e) => {
                     assert!(
-                        is_positioned_slash_error(&e)
-                            || matches!(e.kind(), ErrorKind::FileNotFound { .. }),
-                        "{name}: dm_control output failed for another reason than a '/' in an identifier or a missing (hashed) asset: {e} ({:?})",
+                        matches!(e.kind(), ErrorKind::FileNotFound { path, .. } if is_hashed_file_name(path)),
+                        "{name}: dm_control output failed for another reason than a missing asset file of a hashed name: {e} ({:?})",
                         e.kind()
                     );
+                    c.outputs_of_dm_control_missing_hashed_file += 1;
                     continue;
                 }
             }
@@ -323,50 +340,36 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
         assert_eq!(one_line.lines().count(), 1, "{name}");
         c.written += 1;
 
-        // The output as written has `<default class="/">` (or a named root class), so
-        // it reads back only when the root class is named; either way the result is
-        // a typed, positioned error or a model, never a panic.
-        if let Err(e) = Model::from_xml_str(&out) {
-            assert!(e.pos().is_some(), "{name}: re-reading the output: {e} ({:?})", e.kind());
-        }
+        // The output reads back (every file supplied by the name the writer gave it)
+        // and writes the same text again: the root class `<default class="/">`, the
+        // scoped names and the auto names read back as they were written.
+        let reread = read_options_with_files(&model, &WriteOptions::default())
+            .read_str(&out)
+            .unwrap_or_else(|e| panic!("{name}: the output does not read back: {e}"));
+        let rewritten = reread.to_xml_string().unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(rewritten, out, "{name}: write(read(write(m))) differs");
+        c.reread_as_written += 1;
 
-        // With the root class named (and every file supplied by its written name),
-        // the output reads back whenever no element is unnamed, and writing it again
-        // gives the same text but for the extra class level in the defaults.
+        // With the root class named, writing it again gives the same text but for the
+        // extra class level in the defaults.
         let root_class = "corpus_root_class";
-        let Ok(named) = model.set_attr(&model.default_class(), "class", root_class) else {
-            continue;
-        };
+        let named = model
+            .set_attr(&model.default_class(), "class", root_class)
+            .unwrap_or_else(|e| panic!("{name}: naming the root class: {e}"));
         // Without the hash in file names: a hashed name read back is a new stem, so
         // it would get a second hash when written again.
         let options = WriteOptions { filename_with_hash: false, ..WriteOptions::default() };
         let w1 = named.to_xml_string_with(&options).unwrap();
-        let mut read = ReadOptions::new();
-        for (file, contents) in file_assets(&named, &options) {
-            read = read.asset(&file, contents);
-        }
-        match read.read_str(&w1) {
-            Ok(m2) => {
-                let w2 = m2.to_xml_string_with(&options).unwrap();
-                assert_eq!(
-                    w2,
-                    text::rewrapped_root_default(&w1),
-                    "{name}: write(read(write(m))) differs"
-                );
-                c.rewritten_after_naming_root_class += 1;
-            }
-            Err(e) => {
-                assert!(
-                    unnamed_elements(&named) > 0,
-                    "{name}: a fully named model's output does not read back: {e}"
-                );
-                assert!(
-                    is_positioned_slash_error(&e)
-                        && matches!(e.kind(), ErrorKind::InvalidValue { value, .. } if value.starts_with("//unnamed_")),
-                    "{name}: {e}"
-                );
-            }
-        }
+        let m2 = read_options_with_files(&named, &options)
+            .read_str(&w1)
+            .unwrap_or_else(|e| panic!("{name}: with the root class named: {e}"));
+        let w2 = m2.to_xml_string_with(&options).unwrap();
+        assert_eq!(
+            w2,
+            text::rewrapped_root_default(&w1),
+            "{name}: with the root class named, write(read(write(m))) differs"
+        );
+        c.rewritten_after_naming_root_class += 1;
     }
 
     println!("{c:#?}");
@@ -384,14 +387,18 @@ fn every_corpus_file_reads_or_fails_as_its_case_expects_and_every_model_writes()
         c.inputs_read + c.outputs_of_dm_control_read,
         "every model that reads also writes"
     );
+    assert_eq!(
+        c.outputs_of_dm_control,
+        c.outputs_of_dm_control_read + c.outputs_of_dm_control_missing_hashed_file
+    );
     // The corpus as of writing: 221 input files (214 read; 5 loads expected to fail;
     // `broken_part.xml` and `inner.xml` fail as only their failing includers use them)
-    // and 263 dm_control outputs (none reads: each has a '/' in an identifier). These
-    // are floors, so adding cases does not break the test.
-    assert!(c.inputs >= 221 && c.inputs_read >= 214 && c.outputs_of_dm_control >= 263, "{c:?}");
+    // and 263 dm_control outputs (228 read; 35 name a hashed asset file the corpus does
+    // not hold). Every one of the 442 models that read writes, reads back and writes
+    // the same text (checked per model above).
+    assert!(c.inputs >= 221 && c.inputs_read >= 214, "{c:?}");
     assert!(c.inputs_failed_as_expected >= 5 && c.included_only_failed >= 2, "{c:?}");
-    // 103 of the 214 models name every element, so their output reads back.
-    assert!(c.rewritten_after_naming_root_class >= 103, "{c:?}");
+    assert!(c.outputs_of_dm_control >= 263 && c.outputs_of_dm_control_read >= 228, "{c:?}");
 }
 
 // ---------------------------------------------------------------------------------

@@ -1836,18 +1836,18 @@ fn refusals_follow_the_reference() {
 }
 
 // ---------------------------------------------------------------------------------
-// Library bugs the property test found. Each asserts the reference's behaviour and
-// fails until the library is fixed.
+// Library bugs the property test found, kept as regression tests: each asserts the
+// reference's behaviour, which the library has followed since the fix.
 
 /// Reference §1.5 and §8 ("duplicate frame-joint name on one frame: ValueError
 /// `Duplicated identifier 'jx' in namespace <joint@attachment_frame_NNN>`",
 /// `testDuplicateAttachmentFrameJointIdentifiers`): the joints of one attachment frame
-/// have a namespace of their own. The library accepts a second joint `j` on a frame
-/// (and renaming `k` to `j` there), and writes two joints named `robot/j/`.
+/// have a namespace of their own. The library accepted a second joint `j` on a frame
+/// (and renaming `k` to `j` there), and wrote two joints named `robot/j/`.
 /// Minimal case found: attach, then add a joint `torso` to the frame twice.
-/// Likely cause: `check_frame_child` (src/model/mod.rs:535, `"joint" => Ok(())`) checks
-/// no name, and the index does not register frame joints (src/model/index.rs:49-57), so
-/// neither `insert_here` nor `set_here` (src/model/mod.rs:517) sees the clash.
+/// The cause was that no check compared a frame joint's name with its siblings' (the
+/// index keeps frame joints out of the model's joint namespace); now an add and a
+/// rename compare it with the frame's other joints.
 #[test]
 fn a_frame_refuses_two_joints_of_the_same_name() {
     let (m, frame) = Model::new("scene").attach_to_world(&ROBOTS.lib[0]).unwrap();
@@ -1875,11 +1875,9 @@ fn a_frame_refuses_two_joints_of_the_same_name() {
 /// Reference §1.5, §2.2 and dm_control's `Identifier._assign`, which checks a rename in
 /// the element's own namespace (per frame, for a frame joint): a frame joint may take
 /// the name of a joint of the model that holds the frame (adding one with that name is
-/// accepted by the library already). The library refuses the rename with
-/// `DuplicateIdentifier`.
-/// Likely cause: `set_here` (src/model/mod.rs:517-521) checks `index.names` for every
-/// renamed element, though `Index::rename` (src/model/index.rs:92) leaves frame joints
-/// out of it.
+/// accepted even then). The library refused the rename with
+/// `DuplicateIdentifier`: a rename was checked against the model's joint namespace,
+/// which holds no frame joints, instead of the frame's own.
 #[test]
 fn a_frame_joint_can_be_renamed_like_a_joint_of_its_model() {
     let m = Model::new("scene");

@@ -1,0 +1,248 @@
+//! Figures and names the documentation states that something else in the repository
+//! decides: each test reads both places and fails when one changes alone.
+//!
+//! - the README's `[dependencies]` line and Rust version are the manifest's;
+//! - the real-model floor of the README is `.ci/run`'s `realmodels_floor`;
+//! - the README's conformance summary counts every case of the corpus;
+//! - every `deviation` label a conformance case uses is explained in
+//!   `tests/conformance/README.md` and listed in the README's table;
+//! - no comment or document cites a line of code by number (a file name, a colon and
+//!   the number, or a `#L` anchor), which goes stale as soon as the code above moves.
+
+use std::path::{Path, PathBuf};
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(relative: &str) -> String {
+    let path = root().join(relative);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The decimal number that follows the only occurrence of `prefix` in `text`.
+fn number_after(text: &str, prefix: &str, what: &str) -> u64 {
+    let mut found = text.match_indices(prefix);
+    let (at, _) = found.next().unwrap_or_else(|| panic!("{what}: no `{prefix}` found"));
+    assert!(found.next().is_none(), "{what}: `{prefix}` occurs more than once");
+    let digits: String =
+        text[at + prefix.len()..].chars().take_while(|c| c.is_ascii_digit()).collect();
+    digits.parse().unwrap_or_else(|_| panic!("{what}: no number after `{prefix}`"))
+}
+
+#[test]
+fn number_after_reads_the_number_after_its_prefix() {
+    assert_eq!(number_after("a floor=179\nb", "floor=", "t"), 179);
+    assert_eq!(number_after("fewer than 12 pass", "fewer than ", "t"), 12);
+}
+
+#[test]
+#[should_panic(expected = "no number after")]
+fn number_after_refuses_a_prefix_without_a_number() {
+    number_after("floor=x", "floor=", "t");
+}
+
+#[test]
+#[should_panic(expected = "occurs more than once")]
+fn number_after_refuses_an_ambiguous_prefix() {
+    number_after("floor=1 floor=2", "floor=", "t");
+}
+
+/// The quoted value of `key = "..."` in the only line of `text` that starts with it.
+fn quoted_value<'a>(text: &'a str, key: &str, what: &str) -> &'a str {
+    let prefix = format!("{key} = \"");
+    let mut lines = text.lines().filter(|l| l.starts_with(&prefix));
+    let line = lines.next().unwrap_or_else(|| panic!("{what}: no `{key} = \"...\"` line"));
+    assert!(lines.next().is_none(), "{what}: more than one `{key} = ` line");
+    line[prefix.len()..].split('"').next().unwrap()
+}
+
+/// `mjcf = "0.1"` for version 0.1.x, `"1"` for 1.x.y: the requirement that takes every
+/// compatible release.
+fn caret_requirement(version: &str) -> String {
+    let parts: Vec<&str> = version.split('.').collect();
+    match parts.as_slice() {
+        ["0", minor, ..] => format!("0.{minor}"),
+        [major, ..] => (*major).to_string(),
+        [] => unreachable!("split gives at least one part"),
+    }
+}
+
+#[test]
+fn caret_requirement_keeps_the_version_that_breaks() {
+    assert_eq!(caret_requirement("0.1.0"), "0.1");
+    assert_eq!(caret_requirement("0.12.3"), "0.12");
+    assert_eq!(caret_requirement("1.4.2"), "1");
+}
+
+/// The README's "Use it" section: the dependency line takes the manifest's version,
+/// and the Rust version it names is the workspace's `rust-version`.
+#[test]
+fn readme_dependency_line_and_rust_version_are_the_manifests() {
+    let manifest = read("Cargo.toml");
+    let readme = read("README.md");
+    let version = quoted_value(&manifest, "version", "Cargo.toml");
+    let line = format!("\nmjcf = \"{}\"\n", caret_requirement(version));
+    assert!(readme.contains(&line), "the README has no `{}` line", line.trim());
+    let rust_version = quoted_value(&manifest, "rust-version", "Cargo.toml");
+    let stated = format!("Rust {rust_version} or newer");
+    assert!(readme.contains(&stated), "the README does not say `{stated}`");
+}
+
+/// The README's "Real models" section: the floor it states, and the pass count of its
+/// sample run, which is at least that floor.
+#[test]
+fn readme_real_model_floor_is_the_ci_floor() {
+    let ci = number_after(&read(".ci/run"), "\nrealmodels_floor=", ".ci/run");
+    let readme = read("README.md");
+    let stated = number_after(&readme, "fails if fewer than ", "README.md, Real models");
+    assert_eq!(
+        stated, ci,
+        "the README states a real-model floor of {stated}, .ci/run's realmodels_floor is {ci}"
+    );
+    let sample = number_after(
+        &readme,
+        "../shared/realmodels/cases\n# ",
+        "README.md, Real models: the sample run's result",
+    );
+    assert!(sample >= ci, "the README's sample run passes {sample}, below the floor {ci}");
+}
+
+fn case_dirs() -> Vec<PathBuf> {
+    let cases = root().join("tests/conformance/cases");
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(&cases)
+        .unwrap_or_else(|e| panic!("{}: {e}", cases.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("case.json").is_file())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// `# P passed, 0 failed, K deviations` under the README's conformance runner command:
+/// every case passes, and P + K is the number of cases.
+#[test]
+fn readme_conformance_summary_counts_every_case() {
+    let readme = read("README.md");
+    let prefix = "--example conformance -- tests/conformance/cases\n# ";
+    let passed = number_after(&readme, prefix, "README.md, Conformance");
+    let rest = &readme[readme.find(prefix).unwrap() + prefix.len()..];
+    let line = rest.lines().next().unwrap();
+    let failed = number_after(line, "passed, ", "README.md, Conformance");
+    let deviations = number_after(line, "failed, ", "README.md, Conformance");
+    assert!(line.ends_with(" deviations"), "README.md, Conformance: {line}");
+    assert_eq!(failed, 0, "README.md, Conformance: {line}");
+    let cases = case_dirs().len() as u64;
+    assert_eq!(passed + deviations, cases, "README.md says `{line}`, the corpus has {cases} cases");
+}
+
+/// The deviation labels the cases use (`"deviation": "D2,D3"` on an op).
+fn case_deviation_labels() -> std::collections::BTreeSet<String> {
+    let mut labels = std::collections::BTreeSet::new();
+    for dir in case_dirs() {
+        let text = std::fs::read_to_string(dir.join("case.json")).unwrap();
+        let case: serde_json::Value = serde_json::from_str(&text).unwrap();
+        for op in case["ops"].as_array().unwrap() {
+            if let Some(d) = op.get("deviation").and_then(|d| d.as_str()) {
+                labels.extend(
+                    d.split(',').map(str::trim).filter(|l| !l.is_empty()).map(String::from),
+                );
+            }
+        }
+    }
+    labels
+}
+
+#[test]
+fn every_deviation_label_of_the_cases_is_documented() {
+    let labels = case_deviation_labels();
+    assert!(labels.contains("D1") && labels.contains("D3"), "labels found: {labels:?}");
+    let format = read("tests/conformance/README.md");
+    let readme = read("README.md");
+    for label in &labels {
+        assert!(
+            format.contains(&format!("\n* `{label}` (")),
+            "tests/conformance/README.md does not say how ops marked {label} are replayed"
+        );
+        assert!(
+            readme.contains(&format!("\n| {label} | ")),
+            "the README's table of deviations has no row {label}"
+        );
+    }
+}
+
+/// Where `text` cites a line of a file: a `.rs`, `.py`, `.sh`, `.toml` or `.md` file
+/// name followed by a colon and a number, or a link anchor `#L` with a number; one
+/// `file: line` entry per citation.
+fn line_citations(file: &str, text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for line in text.lines() {
+        for ext in [".rs:", ".py:", ".sh:", ".toml:", ".md:", "#L"] {
+            for (at, _) in line.match_indices(ext) {
+                let after = &line[at + ext.len()..];
+                let stem_before = line[..at].chars().next_back().is_some_and(|c| {
+                    c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '/' || c == ')'
+                });
+                if stem_before && after.starts_with(|c: char| c.is_ascii_digit()) {
+                    found.push(format!("{file}: {}", line.trim()));
+                }
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn line_citations_finds_file_line_references_only() {
+    // Split so that this file cites nothing itself.
+    let citing = concat!(
+        "// see src/model/mod.rs",
+        ":535 and index.rs",
+        ":49-57, write.py",
+        ":3, blob#L",
+        "10"
+    );
+    assert_eq!(line_citations("f", citing).len(), 4);
+    let plain = "// at 3:5 in line 3; a `.rs:` suffix; Cargo.toml: [lib]; #Loc";
+    assert_eq!(line_citations("f", plain), Vec::<String>::new());
+}
+
+fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if path.is_dir() {
+            // Build output and data: the conformance cases and the fuzz corpora and
+            // findings.
+            if !matches!(name, "target" | ".git" | "cases" | "corpus" | "artifacts") {
+                text_files(&path, out);
+            }
+        } else if ["rs", "py", "sh", "md", "toml"]
+            .iter()
+            .any(|x| path.extension().is_some_and(|e| e == *x))
+            || matches!(name, "run" | "mujoco_check")
+        {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn no_comment_or_document_cites_a_line_of_code() {
+    let mut files = Vec::new();
+    text_files(root(), &mut files);
+    for expected in ["src/lib.rs", "tests/docs.rs", ".ci/run", "README.md", "benches/NOTES.md"] {
+        assert!(files.contains(&root().join(expected)), "{expected} is not scanned");
+    }
+    let mut citations = Vec::new();
+    for path in &files {
+        let relative = path.strip_prefix(root()).unwrap().display().to_string();
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{relative}: {e}"));
+        citations.extend(line_citations(&relative, &text));
+    }
+    assert!(citations.is_empty(), "lines of code cited by number:\n{}", citations.join("\n"));
+}
