@@ -192,7 +192,8 @@ impl Compiled {
     /// dm_control's `physics.bind`.
     ///
     /// Time: O(levels · depth · log n) to name the element (O(n) more for an unnamed
-    /// one), plus MuJoCo's lookup.
+    /// one; O(E) more for an attachment frame, to see how it was written), plus
+    /// MuJoCo's lookup.
     ///
     /// # Errors
     /// [`BindError`]: no source model, a locator of another model, an element MuJoCo
@@ -201,6 +202,13 @@ impl Compiled {
         let model = self.source().ok_or(BindError::NoSource)?;
         let element = model.get(loc).map_err(|e| BindError::NoElement(e.to_string()))?;
         let kind = ObjKind::of(&element).ok_or(BindError::NotCompiled { tag: element.tag() })?;
+        // An attachment frame written as MuJoCo's `<frame>` is no body of MuJoCo's.
+        if element.is_frame() {
+            let written = self.written().and_then(|w| w.elements().iter().find(|e| e.loc == *loc));
+            if written.is_some_and(|w| w.tag == "frame") {
+                return Err(BindError::NotCompiled { tag: "frame" });
+            }
+        }
         let name = element.full_name().ok_or(BindError::Unnamed { tag: element.tag() })?;
         let id = self
             .id(kind, &name)

@@ -160,12 +160,28 @@ impl Layout<'_> {
     }
 }
 
-/// What a `<replicate>` collects until it is left, to repeat it `count` times.
+/// A body of the compiled model (or the world, or the content of a `<replicate>`):
+/// its own joints and whether it is a mocap body, then its child bodies. MuJoCo
+/// numbers a body's joints before those of its children, wherever they stand among
+/// its child elements, and bodies in the order they start.
 #[derive(Default)]
-struct Pending {
+struct BodyRec {
+    /// The joints, each with the pose of its body in the world.
     joints: Vec<(LayoutJoint, Pose)>,
-    actuators: Vec<LayoutActuator>,
-    mocap: Vec<LayoutMocap>,
+    mocap: Option<LayoutMocap>,
+    children: Vec<Child>,
+}
+
+enum Child {
+    Body(usize),
+    /// A `<replicate>`'s content (a record of its own), `count` copies, each moved by
+    /// `step` from the one before, about the replicate's pose `at`.
+    Repeat {
+        rec: usize,
+        count: usize,
+        at: Pose,
+        step: Pose,
+    },
 }
 
 /// An open element of the walk.
@@ -177,6 +193,8 @@ struct Open<'a> {
     pose: Pose,
     /// The `childclass` in force for its content.
     childclass: Option<ElementId>,
+    /// The body record its content belongs to.
+    rec: usize,
 }
 
 /// The element's own class (a resolved `class` attribute).
@@ -215,26 +233,35 @@ pub(crate) fn effective<'m>(
     None
 }
 
-/// The controls and activations of an actuator element, as MuJoCo 4.0 counts them.
+/// The controls and activations of an actuator element, as MuJoCo 4.0 counts them
+/// (probed with MuJoCo; the binding crate's tests hold the layout to MuJoCo's).
 fn actuator_size(model: &Model, node: &Node, class: Option<ElementId>) -> (usize, usize) {
     let value = |attr: &str| effective(model, node, class, attr);
+    // Any of its numbers above 0 (`inductance="0 0.001"` counts).
     let positive = |attr: &str| {
-        value(attr)
-            .and_then(|v| v.as_float().or_else(|| v.as_floats()?.first().copied()))
-            .is_some_and(|x| x > 0.0)
+        value(attr).is_some_and(|v| match v.as_floats() {
+            Some(xs) => xs.iter().any(|x| *x > 0.0),
+            None => v.as_float().is_some_and(|x| x > 0.0),
+        })
     };
     let set = |attr: &str| value(attr).is_some();
     let dyntype = value("dyntype").and_then(Value::as_str);
     let explicit = value("actdim").and_then(Value::as_int).and_then(|n| usize::try_from(n).ok());
-    let act = match node.kind().tag() {
+    let tag = node.kind().tag();
+    let act = match tag {
         "muscle" | "cylinder" | "intvelocity" => 1,
         "general" => usize::from(dyntype.is_some_and(|d| d != "none")),
         "position" | "velocity" => usize::from(positive("timeconst")),
-        "dcmotor" => usize::from(positive("inductance")) + usize::from(set("thermal")),
+        "dcmotor" => [positive("inductance"), set("thermal"), set("lugre")]
+            .into_iter()
+            .map(usize::from)
+            .sum(),
         "pid" => usize::from(positive("ki")) + usize::from(positive("slewmax")),
         _ => 0,
     };
-    let ctrl = if node.kind().tag() == "pid" { 2 } else { 1 };
+    // One control per word of `input` (`pos vel`); a <pid> takes both by default.
+    let words = value("input").and_then(Value::as_str).map(|s| s.split_whitespace().count());
+    let ctrl = words.unwrap_or(if tag == "pid" { 2 } else { 1 });
     (ctrl, explicit.unwrap_or(act))
 }
 
@@ -280,9 +307,9 @@ impl Model {
             keys: Vec::new(),
             origins: HashMap::new(),
         };
-        // The replicates open, innermost last, with what they collect.
-        let mut replicates: Vec<(Pending, Pose, Pose, usize)> = Vec::new();
-        let mut top = Pending::default();
+        // Record 0 is the world.
+        let mut recs: Vec<BodyRec> = vec![BodyRec::default()];
+        let mut actuators = Vec::new();
         let mut open: Vec<Open<'_>> = Vec::new();
         let mut walk = Walk::new(self);
         let root_class =
@@ -290,31 +317,26 @@ impl Model {
         while let Some(step) = walk.next() {
             let item = match step {
                 Step::Enter(item) => item,
-                Step::Leave(item) => {
+                Step::Leave(_) => {
                     open.pop();
-                    if item.node.kind().tag() == "replicate" {
-                        if let Some((pending, at, step, count)) = replicates.pop() {
-                            let into = replicates.last_mut().map_or(&mut top, |r| &mut r.0);
-                            repeat(pending, at, step, count, into);
-                        }
-                    }
                     continue;
                 }
             };
-            let inst = walk.insts.list[item.inst].frames.clone();
+            let frames = walk.insts.list[item.inst].frames.clone();
             let m = walk.insts.list[item.inst].model;
             let node = item.node;
             let kind = node.kind();
-            let loc = || Loc::scoped(inst.clone(), node.id(), name);
+            let loc = || Loc::scoped(frames.clone(), node.id(), name);
             let parent = open.last();
-            let parent_tag = parent.map(|p| p.node.kind().tag());
             let parent_pose = parent.map_or(IDENTITY, |p| p.pose);
+            let mut rec = parent.map_or(0, |p| p.rec);
             if parent.is_some_and(|p| p.node.attached().is_some() && p.inst != item.inst) {
                 out.origins.entry(item.inst).or_insert(parent_pose);
             }
             let inherited = parent.filter(|p| p.inst == item.inst).and_then(|p| p.childclass);
             let class = class_of(node).or(inherited).or_else(|| root_class(m));
             let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
+            let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().tag() == "replicate");
             let is_body = kind.tag() == "body" && !in_default;
             let frame_like = node.attached().is_some() || kind.tag() == "frame";
             let pose = if is_body || frame_like {
@@ -322,9 +344,9 @@ impl Model {
             } else {
                 parent_pose
             };
-            let pending = replicates.last_mut().map_or(&mut top, |r| &mut r.0);
             match kind.tag() {
-                "joint" | "freejoint" if matches!(parent_tag, Some("body")) => {
+                // Joints of a body, directly or inside its `<frame>`s.
+                "joint" | "freejoint" if !in_default && in_body => {
                     let joint_type = JointType::of(joint_type(m, node, class));
                     let qpos0 = match joint_type {
                         JointType::Free => [parent_pose.pos.as_slice(), &parent_pose.quat].concat(),
@@ -345,26 +367,40 @@ impl Model {
                         own_dof: 0,
                         qpos0,
                     };
-                    pending.joints.push((joint, parent_pose));
+                    recs[rec].joints.push((joint, parent_pose));
                 }
                 "attach" | "composite" | "flexcomp" if !in_default => out.unexpanded.push(loc()),
                 _ => {}
             }
-            if is_body && effective(m, node, class, "mocap").and_then(Value::as_str) == Some("true")
-            {
-                pending.mocap.push(LayoutMocap {
-                    loc: loc(),
-                    index: 0,
-                    inst: item.inst,
-                    own: 0,
-                    pose,
-                });
+            if is_body || node.attached().is_some() {
+                let new = recs.len();
+                recs.push(BodyRec::default());
+                recs[rec].children.push(Child::Body(new));
+                rec = new;
+                let mocap = effective(m, node, class, "mocap").and_then(Value::as_str);
+                if is_body && mocap == Some("true") {
+                    recs[rec].mocap =
+                        Some(LayoutMocap { loc: loc(), index: 0, inst: item.inst, own: 0, pose });
+                }
             }
+            if kind.tag() == "replicate" && !in_default {
+                let count = node
+                    .attr(kind.attr_index("count").unwrap_or(usize::MAX))
+                    .and_then(Value::as_int)
+                    .and_then(|c| usize::try_from(c).ok())
+                    .unwrap_or(1);
+                let new = recs.len();
+                recs.push(BodyRec::default());
+                let step = pose::replicate_step(node, &angles);
+                recs[rec].children.push(Child::Repeat { rec: new, count, at: pose, step });
+                rec = new;
+            }
+            let parent_tag = parent.map(|p| p.node.kind().tag());
             if parent_tag == Some("actuator")
                 && kind.spec().parent.is_some_and(|p| p.tag() == "actuator")
             {
                 let (nctrl, nact) = actuator_size(m, node, class);
-                pending.actuators.push(LayoutActuator {
+                actuators.push(LayoutActuator {
                     loc: loc(),
                     ctrl: 0,
                     nctrl,
@@ -378,30 +414,58 @@ impl Model {
             if parent_tag == Some("keyframe") && kind.tag() == "key" {
                 out.keys.push((item.inst, node));
             }
-            if kind.tag() == "replicate" && !in_default {
-                let count = node
-                    .attr(kind.attr_index("count").unwrap_or(usize::MAX))
-                    .and_then(Value::as_int)
-                    .and_then(|c| usize::try_from(c).ok())
-                    .unwrap_or(1);
-                replicates.push((
-                    Pending::default(),
-                    pose,
-                    pose::replicate_step(node, &angles),
-                    count,
-                ));
-            }
             let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
                 Some(Value::Reference(Reference::Element(id))) => Some(*id),
                 _ => None,
             });
-            open.push(Open { inst: item.inst, node, pose, childclass: childclass.or(inherited) });
+            open.push(Open {
+                inst: item.inst,
+                node,
+                pose,
+                childclass: childclass.or(inherited),
+                rec,
+            });
+        }
+        // MuJoCo's order: bodies depth first, each body's joints before its children's;
+        // a replicate's content once per copy, moved.
+        let (mut joints, mut mocap) = (Vec::new(), Vec::new());
+        let mut todo = vec![(0, IDENTITY)];
+        while let Some((r, moved)) = todo.pop() {
+            for (j, body) in &recs[r].joints {
+                let mut j = j.clone();
+                if j.joint_type == JointType::Free && moved != IDENTITY {
+                    let p = pose::compose(moved, *body);
+                    j.qpos0 = [p.pos.as_slice(), &p.quat].concat();
+                }
+                joints.push(j);
+            }
+            if let Some(b) = &recs[r].mocap {
+                mocap.push(LayoutMocap { pose: pose::compose(moved, b.pose), ..b.clone() });
+            }
+            // Children in reverse onto the stack, so the first comes out first.
+            for child in recs[r].children.iter().rev() {
+                match *child {
+                    Child::Body(c) => todo.push((c, moved)),
+                    Child::Repeat { rec, count, at, step } => {
+                        let back = pose::inverse(at);
+                        let mut shifts = Vec::with_capacity(count);
+                        let mut shift = IDENTITY;
+                        for _ in 0..count {
+                            // The copy's transform in the world: at · shift · at⁻¹.
+                            let copy = pose::compose(pose::compose(at, shift), back);
+                            shifts.push(pose::compose(moved, copy));
+                            shift = pose::compose(shift, step);
+                        }
+                        todo.extend(shifts.into_iter().rev().map(|s| (rec, s)));
+                    }
+                }
+            }
         }
         // Addresses in the composed model and in each model's own, in order.
         // Per instance: its own positions, velocities, controls, activations and mocap
         // bodies so far.
         let mut own: HashMap<usize, [usize; 5]> = HashMap::new();
-        for (mut joint, _) in top.joints {
+        for mut joint in joints {
             let counts = own.entry(joint.inst).or_default();
             (joint.qpos, joint.dof, joint.own_qpos, joint.own_dof) =
                 (out.nq, out.nv, counts[0], counts[1]);
@@ -410,43 +474,19 @@ impl Model {
                 (out.nq + q, out.nv + v, counts[0] + q, counts[1] + v);
             out.joints.push(joint);
         }
-        for mut a in top.actuators {
+        for mut a in actuators {
             let counts = own.entry(a.inst).or_default();
             (a.ctrl, a.act, a.own_ctrl, a.own_act) = (out.nu, out.na, counts[2], counts[3]);
             (out.nu, out.na, counts[2], counts[3]) =
                 (out.nu + a.nctrl, out.na + a.nact, counts[2] + a.nctrl, counts[3] + a.nact);
             out.actuators.push(a);
         }
-        for (i, mut b) in top.mocap.into_iter().enumerate() {
+        for (i, mut b) in mocap.into_iter().enumerate() {
             let counts = own.entry(b.inst).or_default();
             (b.index, b.own) = (i, counts[4]);
             counts[4] += 1;
             out.mocap.push(b);
         }
         out
-    }
-}
-
-/// Appends `count` copies of what a `<replicate>` at pose `at` collected to `into`;
-/// copy k is moved by `step` k times (the free joints' default poses with it).
-fn repeat(pending: Pending, at: Pose, step: Pose, count: usize, into: &mut Pending) {
-    let back = pose::inverse(at);
-    let mut shift = IDENTITY;
-    for _ in 0..count {
-        // The copy's transform in the world: at · shift · at⁻¹.
-        let moved = pose::compose(pose::compose(at, shift), back);
-        for (j, parent) in &pending.joints {
-            let mut j = j.clone();
-            if j.joint_type == JointType::Free {
-                let p = pose::compose(moved, *parent);
-                j.qpos0 = [p.pos.as_slice(), &p.quat].concat();
-            }
-            into.joints.push((j, pose::compose(moved, *parent)));
-        }
-        into.actuators.extend(pending.actuators.iter().cloned());
-        for b in &pending.mocap {
-            into.mocap.push(LayoutMocap { pose: pose::compose(moved, b.pose), ..b.clone() });
-        }
-        shift = pose::compose(shift, step);
     }
 }

@@ -197,9 +197,9 @@ impl Model {
         let marks = w.marks.take().unwrap_or_default();
         let marks = marks
             .into_iter()
-            .map(|(offset, inst, node)| {
+            .map(|(offset, inst, node, tag)| {
                 let loc = crate::Loc::scoped(w.insts[inst].frames.clone(), node.id(), self.name());
-                (offset, loc, node.kind().tag())
+                (offset, loc, tag)
             })
             .collect();
         let mut out = w.out;
@@ -229,8 +229,9 @@ pub struct Written {
 pub struct WrittenElement {
     /// The element's locator in the model written.
     pub loc: crate::Loc,
-    /// The tag of its model element (`body` for an attachment frame, whichever tag it
-    /// was written with).
+    /// The tag it was written with: its element's, or for an attachment frame `body`,
+    /// or `frame` where it is written as MuJoCo's `<frame>` (DESIGN D10), which
+    /// MuJoCo's compiled model keeps no record of.
     pub tag: &'static str,
     /// The line its start tag begins on (1 for the first).
     pub line: usize,
@@ -346,7 +347,7 @@ struct Open {
 struct Writer<'a> {
     insts: Vec<Inst<'a>>,
     /// Where each element's start tag begins (offset, instance, node), when asked.
-    marks: Option<Vec<(usize, usize, &'a Node)>>,
+    marks: Option<Vec<(usize, usize, &'a Node, &'static str)>>,
     /// The merged settings sections (`compiler`, `option`, ...), written in place of
     /// the root model's own.
     merged: &'a [Node],
@@ -550,7 +551,8 @@ impl<'a> Writer<'a> {
         let tag = self.open.last().map_or("", |o| o.tag);
         self.indent(depth);
         if let Some(marks) = &mut self.marks {
-            marks.push((self.out.len(), inst, node));
+            let written = if node.attached().is_some() { tag } else { node.kind().tag() };
+            marks.push((self.out.len(), inst, node, written));
         }
         self.out.push('<');
         if let Some(a) = node.attached() {

@@ -560,7 +560,9 @@ impl<'a> Fields<'a> {
     }
 }
 
-#[cfg(test)]
+// These modules' own tests run in the mjcf crate's test targets, not in the binding
+// crate's, which include them too (its build script sets `mjcf_mujoco`).
+#[cfg(all(test, not(mjcf_mujoco)))]
 mod tests {
     use super::*;
 

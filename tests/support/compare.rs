@@ -685,7 +685,9 @@ fn py_repr(text: &str) -> String {
     out
 }
 
-#[cfg(test)]
+// These modules' own tests run in the mjcf crate's test targets, not in the binding
+// crate's, which include them too (its build script sets `mjcf_mujoco`).
+#[cfg(all(test, not(mjcf_mujoco)))]
 mod tests {
     use super::*;
 

@@ -115,66 +115,92 @@ struct State<'c> {
     /// Handle name → (variable, element in that variable's own model).
     handles: HashMap<String, (String, Loc)>,
     actual_dir: Option<&'c Path>,
+    /// Every model output, with its file name and options (for judges that look at
+    /// the model values: the binding crate's MuJoCo tests).
+    outputs: Vec<(String, Model, WriteOptions)>,
 }
 
 /// Runs one case. With `actual_dir`, every output is also written to
 /// `actual_dir/<case>/<file>`.
 pub(crate) fn run_case(case: &Case, actual_dir: Option<&Path>) -> Outcome {
-    let mut st = State { case, vars: HashMap::new(), handles: HashMap::new(), actual_dir };
-    let mut deviations: Vec<String> = Vec::new();
-    for op in &case.ops {
-        let marked = !op.deviation.is_empty();
-        if op.has_deviation("D1") {
-            continue;
-        }
-        let is_output = matches!(op.kind, OpKind::Output { .. });
-        if marked && !is_output && op.expect_error.is_some() {
-            // dm_control refused it where a persistent implementation accepts it.
-            continue;
-        }
-        let result = st.apply(op, marked && is_output);
-        let mismatch = match (&result, &op.expect_error) {
-            (Ok(()), None) => None,
-            (Ok(()), Some(want)) => Some(format!(
-                "op {} ({}): expected error {want}, but it succeeded",
-                op.index,
-                op.op_name()
-            )),
-            (Err(e), Some(want)) if e.category == want => None,
-            (Err(e), Some(want)) => Some(format!(
-                "op {} ({}): expected error {want}, got {}: {}",
-                op.index,
-                op.op_name(),
-                e.category,
-                e.message
-            )),
-            (Err(e), None) => Some(format!(
-                "op {} ({}): unexpected error {}: {}",
-                op.index,
-                op.op_name(),
-                e.category,
-                e.message
-            )),
-        };
-        // Reading an output back is this crate's own property, deviation or not.
-        if let Err(e) = &result {
-            if e.category == "read_back" {
-                return Outcome::Fail(format!("op {} (output): {}", op.index, e.message));
+    run_case_collecting(case, actual_dir).0
+}
+
+/// [`run_case`], with every model the case outputs (file name, model, options).
+pub(crate) fn run_case_collecting(
+    case: &Case,
+    actual_dir: Option<&Path>,
+) -> (Outcome, Vec<(String, Model, WriteOptions)>) {
+    let mut st = State {
+        case,
+        vars: HashMap::new(),
+        handles: HashMap::new(),
+        actual_dir,
+        outputs: Vec::new(),
+    };
+    let outcome = st.run();
+    (outcome, st.outputs)
+}
+
+impl State<'_> {
+    fn run(&mut self) -> Outcome {
+        let st = self;
+        let case = st.case;
+        let mut deviations: Vec<String> = Vec::new();
+        for op in &case.ops {
+            let marked = !op.deviation.is_empty();
+            if op.has_deviation("D1") {
+                continue;
             }
-        }
-        if marked && (is_output || mismatch.is_some()) {
-            for d in &op.deviation {
-                if !deviations.contains(d) {
-                    deviations.push(d.clone());
+            let is_output = matches!(op.kind, OpKind::Output { .. });
+            if marked && !is_output && op.expect_error.is_some() {
+                // dm_control refused it where a persistent implementation accepts it.
+                continue;
+            }
+            let result = st.apply(op, marked && is_output);
+            let mismatch = match (&result, &op.expect_error) {
+                (Ok(()), None) => None,
+                (Ok(()), Some(want)) => Some(format!(
+                    "op {} ({}): expected error {want}, but it succeeded",
+                    op.index,
+                    op.op_name()
+                )),
+                (Err(e), Some(want)) if e.category == want => None,
+                (Err(e), Some(want)) => Some(format!(
+                    "op {} ({}): expected error {want}, got {}: {}",
+                    op.index,
+                    op.op_name(),
+                    e.category,
+                    e.message
+                )),
+                (Err(e), None) => Some(format!(
+                    "op {} ({}): unexpected error {}: {}",
+                    op.index,
+                    op.op_name(),
+                    e.category,
+                    e.message
+                )),
+            };
+            // Reading an output back is this crate's own property, deviation or not.
+            if let Err(e) = &result {
+                if e.category == "read_back" {
+                    return Outcome::Fail(format!("op {} (output): {}", op.index, e.message));
                 }
             }
-            continue;
+            if marked && (is_output || mismatch.is_some()) {
+                for d in &op.deviation {
+                    if !deviations.contains(d) {
+                        deviations.push(d.clone());
+                    }
+                }
+                continue;
+            }
+            if let Some(m) = mismatch {
+                return Outcome::Fail(m);
+            }
         }
-        if let Some(m) = mismatch {
-            return Outcome::Fail(m);
-        }
+        if deviations.is_empty() { Outcome::Pass } else { Outcome::Deviation(deviations) }
     }
-    if deviations.is_empty() { Outcome::Pass } else { Outcome::Deviation(deviations) }
 }
 
 fn numbers(v: &AttrValue) -> Option<mjcf::AttrInput> {
@@ -524,8 +550,10 @@ impl State<'_> {
                     filename_with_hash: options.filename_with_hash.unwrap_or(true),
                     ..WriteOptions::default()
                 };
-                let m = self.model(model)?;
+                let m = self.model(model)?.clone();
+                let m = &m;
                 let xml = m.to_xml_string_with(&opts).map_err(write_err)?;
+                self.outputs.push((file.clone(), m.clone(), opts.clone()));
                 let back = read_back(m, &xml, &opts)
                     .map_err(|e| OpError::new("read_back", format!("{file}: {e}")))?;
                 if let Some(out) = self.actual_dir {
