@@ -324,16 +324,32 @@ pub struct TextPos {
 }
 
 impl TextPos {
-    /// The position of byte offset `offset` in `text`.
+    /// The position of byte offset `offset` in `text`. Lines end as XML ends them
+    /// (XML 1.0 §2.11): at `\n`, `\r\n` or a `\r` alone, each one line break, so a
+    /// place in a file gets one position whichever of the three its lines end with.
+    ///
+    /// Time: O(offset).
     pub(crate) fn of_offset(text: &str, offset: usize) -> TextPos {
         let mut offset = offset.min(text.len());
         while !text.is_char_boundary(offset) {
             offset -= 1;
         }
-        let before = &text[..offset];
-        let line = before.bytes().filter(|b| *b == b'\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let column = before[line_start..].chars().count() + 1;
+        let bytes = text.as_bytes();
+        // The `\n` of a `\r\n` is where its `\r` is: the one place of the break.
+        if offset > 0 && bytes[offset - 1] == b'\r' && bytes.get(offset) == Some(&b'\n') {
+            offset -= 1;
+        }
+        let (mut line, mut line_start) = (1usize, 0usize);
+        for (i, b) in bytes[..offset].iter().enumerate() {
+            // A `\r` followed by `\n` (even past `offset`) is not a break itself: the
+            // `\n` is.
+            let breaks = *b == b'\n' || (*b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
+            if breaks {
+                line += 1;
+                line_start = i + 1;
+            }
+        }
+        let column = text[line_start..offset].chars().count() + 1;
         TextPos {
             line: line.min(u32::MAX as usize) as u32,
             column: column.min(u32::MAX as usize) as u32,
@@ -545,6 +561,38 @@ mod tests {
         assert_eq!(TextPos::of_offset(t, 3), TextPos { line: 2, column: 1 });
         assert_eq!(TextPos::of_offset(t, 7), TextPos { line: 2, column: 4 });
         assert_eq!(TextPos::of_offset(t, 100), TextPos { line: 3, column: 2 });
+    }
+
+    /// `\n`, `\r\n` and a lone `\r` each end one line: every place of a text gets
+    /// the same position whichever of them the text uses (also a mix of them).
+    #[test]
+    fn positions_are_the_same_for_every_line_ending() {
+        let lines = ["<mujoco>", "  <worldbody>", "", "    <bogus/>", "é</mujoco>"];
+        let texts: Vec<String> = ["\n", "\r\n", "\r"].iter().map(|e| lines.join(e)).collect();
+        // (A `\r` then an empty line then `\n` would be one `\r\n`.)
+        let mixed =
+            format!("{}\r\n{}\n{}\r{}\r\n{}", lines[0], lines[1], lines[2], lines[3], lines[4]);
+        // Each character's position, skipping the line breaks themselves.
+        let positions = |t: &str| -> Vec<TextPos> {
+            t.char_indices()
+                .filter(|(_, c)| !matches!(c, '\r' | '\n'))
+                .map(|(i, _)| TextPos::of_offset(t, i))
+                .collect()
+        };
+        let want = positions(&texts[0]);
+        assert_eq!(want.len(), lines.iter().map(|l| l.chars().count()).sum::<usize>());
+        assert_eq!(want.last(), Some(&TextPos { line: 5, column: 10 }));
+        assert!(want.contains(&TextPos { line: 4, column: 5 }));
+        for t in texts.iter().skip(1).chain([&mixed]) {
+            assert_eq!(positions(t), want, "{t:?}");
+        }
+        // The end of the text, and an offset between the two bytes of a `\r\n`: at
+        // the end of the line, as the offset of the `\n` alone in the `\n` text.
+        assert_eq!(TextPos::of_offset(&texts[1], 9), TextPos::of_offset(&texts[0], 8));
+        assert_eq!(TextPos::of_offset(&texts[1], 9), TextPos { line: 1, column: 9 });
+        for t in &texts {
+            assert_eq!(TextPos::of_offset(t, t.len()), TextPos { line: 5, column: 11 });
+        }
     }
 
     #[test]

@@ -511,3 +511,63 @@ fn include_copy_merges_a_20_000_deep_chain_without_overflow() {
     let copied = Model::new("m").include_copy(&deep, false).unwrap();
     assert_eq!(copied.find_all(Namespace::Body).len(), 20_000);
 }
+
+// ---- line endings -----------------------------------------------------------------------
+
+/// The position of the error reading `lines` joined by each of `\n`, `\r\n` and a lone
+/// `\r`: the same for all three (asserted), returned with its kind.
+fn position_for_every_line_ending(lines: &[&str]) -> (ErrorKind, (u32, u32)) {
+    let mut seen: Vec<(ErrorKind, (u32, u32))> = Vec::new();
+    for ending in ["\n", "\r\n", "\r"] {
+        let text = lines.join(ending);
+        let err = ReadOptions::new()
+            .asset("inc.xml", text.clone().into_bytes())
+            .read_bytes(text.as_bytes())
+            .unwrap_err();
+        let pos = err.pos().map(|p| (p.line, p.column)).expect("a position");
+        seen.push((err.kind().clone(), pos));
+        // The same text as an included file: the same position, in that file.
+        let err = ReadOptions::new()
+            .asset("inc.xml", text.into_bytes())
+            .read_str("<mujoco>\n<include file=\"inc.xml\"/></mujoco>")
+            .unwrap_err();
+        assert!(err.file().is_some_and(|f| f.ends_with("inc.xml")), "{err}");
+        seen.push((err.kind().clone(), err.pos().map(|p| (p.line, p.column)).unwrap()));
+    }
+    assert!(seen.windows(2).all(|w| w[0] == w[1]), "{lines:?}: {seen:?}");
+    seen.swap_remove(0)
+}
+
+#[test]
+fn error_positions_are_the_same_for_lf_crlf_and_cr_line_endings() {
+    // A syntax error (quick-xml's position), an unknown attribute, a bad value, an
+    // invalid child, a duplicate name, invalid UTF-8 and an unclosed element (at the
+    // end of the text), each after lines of every kind, one of them empty.
+    let head = ["<mujoco>", "", "  <worldbody>", "    <body name=\"é\">"];
+    let cases: [(&str, (u32, u32)); 5] = [
+        ("      <geom size=\"1\"></body>", (5, 22)),
+        ("      <geom bogus=\"1\"/>", (5, 7)),
+        ("      <geom size=\"1 x\"/>", (5, 7)),
+        ("      <bogus/>", (5, 7)),
+        ("      <body name=\"é\"/>", (5, 7)),
+    ];
+    for (line, want) in cases {
+        let mut lines = head.to_vec();
+        lines.extend([line, "    </body>", "  </worldbody>", "</mujoco>"]);
+        let (kind, pos) = position_for_every_line_ending(&lines);
+        assert_eq!(pos, want, "{line}: {kind}");
+    }
+    let (kind, pos) = position_for_every_line_ending(&head);
+    assert!(matches!(kind, ErrorKind::Syntax(_)), "{kind}");
+    assert_eq!(pos, (4, 20), "{kind}");
+    // Invalid UTF-8 (found before any XML is read).
+    for ending in ["\n", "\r\n", "\r"] {
+        let mut bytes = head.join(ending).into_bytes();
+        bytes.extend_from_slice(ending.as_bytes());
+        bytes.extend_from_slice(b"  <geom name=\"");
+        bytes.push(0xff);
+        let err = ReadOptions::new().read_bytes(&bytes).unwrap_err();
+        assert_eq!(err.kind(), &ErrorKind::InvalidUtf8);
+        assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((5, 15)), "{ending:?}");
+    }
+}
