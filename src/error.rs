@@ -166,6 +166,15 @@ pub enum ErrorKind {
     /// An `<include>` that includes itself, directly or not.
     #[error("include cycle through {0:?}")]
     IncludeCycle(PathBuf),
+    /// An `<include>` of a file the model's include tree already includes (beside it,
+    /// in another branch, or the main file), which MuJoCo refuses too ("File '...'
+    /// already included").
+    #[error("file {0:?} is already included in this model (a file can be included once)")]
+    IncludedTwice(PathBuf),
+    /// An asset model file that brings more files than the reader takes (counting the
+    /// files of the model files it names, each path once).
+    #[error("a model file names more than {0} files (with those of the model files it names)")]
+    TooManyFiles(usize),
     /// An element nested deeper than the reader allows.
     #[error("elements nested deeper than {0} levels")]
     TooDeep(usize),

@@ -58,27 +58,163 @@ fn include_cycle_a_b_a_is_an_error_in_memory() {
     assert!(matches!(err.kind(), ErrorKind::IncludeCycle(p) if p.ends_with("a.xml")), "{err}");
 }
 
+/// The kind, file name and line:column of the error reading `main` (a path).
+fn where_refused(main: &Path) -> (ErrorKind, String, (u32, u32)) {
+    let err = Model::from_path(main).unwrap_err();
+    let file = err.file().and_then(Path::file_name).unwrap().to_string_lossy().into_owned();
+    (err.kind().clone(), file, err.pos().map(|p| (p.line, p.column)).unwrap())
+}
+
+/// MuJoCo 4.0 refuses a file included twice within one model's include tree ("File
+/// 'a.xml' already included"), wherever the two includes are: side by side, in other
+/// elements, in other branches of the tree, spelled differently (`./a.xml`,
+/// `sub/../a.xml`), or the main file itself (a cycle). Each case below was compiled
+/// with MuJoCo 4.0 from files like these, and refused.
 #[test]
-fn a_file_included_twice_without_a_cycle_is_fine() {
-    let dir = temp_dir("diamond");
-    let main = write(
-        &dir,
-        "main.xml",
-        r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#,
+fn a_file_included_twice_in_one_include_tree_is_refused_as_mujoco_does() {
+    let geoms = r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#;
+    let twice = |main: &str| {
+        let dir = temp_dir("twice");
+        write(&dir, "a.xml", geoms);
+        write(&dir, "g.xml", r#"<mujoco><geom size="1"/></mujoco>"#);
+        write(&dir, "e.xml", r#"<mujoco><site name="s"/></mujoco>"#);
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        where_refused(&write(&dir, "main.xml", main))
+    };
+    for (main, twice_included, pos) in [
+        // Side by side at the root, and spelled otherwise.
+        (
+            "<mujoco>\n<include file=\"a.xml\"/>\n<include file=\"a.xml\"/></mujoco>",
+            "a.xml",
+            (3, 1),
+        ),
+        (
+            "<mujoco>\n<include file=\"a.xml\"/><include file=\"./a.xml\"/></mujoco>",
+            "a.xml",
+            (2, 24),
+        ),
+        (
+            "<mujoco><include file=\"a.xml\"/><include file=\"sub/../a.xml\"/></mujoco>",
+            "a.xml",
+            (1, 32),
+        ),
+        // Inside an element, and in two different elements.
+        (
+            "<mujoco><worldbody>\n  <include file=\"g.xml\"/>\n  <include file=\"g.xml\"/></worldbody></mujoco>",
+            "g.xml",
+            (3, 3),
+        ),
+        // One inside an element, one at the root.
+        (
+            "<mujoco><worldbody><include file=\"e.xml\"/></worldbody><include file=\"e.xml\"/></mujoco>",
+            "e.xml",
+            (1, 55),
+        ),
+    ] {
+        let (kind, file, at) = twice(main);
+        assert!(
+            matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with(twice_included)),
+            "{main}: {kind}"
+        );
+        assert_eq!((file.as_str(), at), ("main.xml", pos), "{main}");
+    }
+    let (kind, file, at) = twice(
+        r#"<mujoco><worldbody><body><include file="g.xml"/></body><body><include file="g.xml"/></body></worldbody></mujoco>"#,
     );
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("g.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("main.xml", (1, 62)));
+
+    // In two branches: main includes x and y, each includes common; refused in y.
+    let dir = temp_dir("branches");
     write(
         &dir,
         "x.xml",
         r#"<mujoco><include file="common.xml"/><worldbody><body name="x"/></worldbody></mujoco>"#,
     );
-    write(
-        &dir,
-        "y.xml",
-        r#"<mujoco><include file="common.xml"/><worldbody><body name="y"/></worldbody></mujoco>"#,
-    );
+    write(&dir, "y.xml", "<mujoco>\n  <include file=\"common.xml\"/></mujoco>");
     write(&dir, "common.xml", r#"<mujoco><compiler angle="radian"/></mujoco>"#);
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#,
+    );
+    let (kind, file, at) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("common.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("y.xml", (2, 3)));
+    // The message says which file, and where.
+    let err = Model::from_path(&main).unwrap_err().to_string();
+    assert!(
+        err.contains("common.xml")
+            && err.contains("already included")
+            && err.ends_with("y.xml:2:3"),
+        "{err}"
+    );
+
+    // The main file included again from an included file is a cycle.
+    let dir = temp_dir("main-again");
+    write(&dir, "b.xml", r#"<mujoco><include file="main.xml"/></mujoco>"#);
+    let main = write(&dir, "main.xml", r#"<mujoco><include file="b.xml"/></mujoco>"#);
+    let (kind, file, _) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludeCycle(p) if p.ends_with("main.xml")), "{kind}");
+    assert_eq!(file, "b.xml");
+
+    // In-memory files follow the same rule (by their path as written, normalised).
+    for main in [
+        r#"<mujoco><include file="a.xml"/><include file="a.xml"/></mujoco>"#,
+        r#"<mujoco><include file="a.xml"/><include file="./a.xml"/></mujoco>"#,
+        r#"<mujoco><include file="a.xml"/><include file="b.xml"/></mujoco>"#,
+    ] {
+        let err = ReadOptions::new()
+            .asset("a.xml", geoms.as_bytes().to_vec())
+            .asset("./a.xml", geoms.as_bytes().to_vec())
+            .asset("b.xml", br#"<mujoco><include file="a.xml"/></mujoco>"#.to_vec())
+            .read_str(main)
+            .unwrap_err();
+        assert!(
+            matches!(err.kind(), ErrorKind::IncludedTwice(p) if p.ends_with("a.xml")),
+            "{main}: {err}"
+        );
+    }
+}
+
+/// What MuJoCo 4.0 accepts stays accepted: one file included once and also named as
+/// an asset `<model>` (its own include tree), two asset models that each include the
+/// same file, and a file included by one model read twice.
+#[test]
+fn a_file_in_several_include_trees_is_fine() {
+    let dir = temp_dir("trees");
+    write(&dir, "a.xml", r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#);
+    write(&dir, "b.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    write(&dir, "c.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="a.xml"/><asset><model name="m1" file="b.xml"/><model name="m2" file="c.xml"/><model name="m3" file="a.xml"/></asset></mujoco>"#,
+    );
     let m = Model::from_path(&main).unwrap();
-    assert!(m.find(Namespace::Body, "x").is_some() && m.find(Namespace::Body, "y").is_some());
+    assert_eq!(m.find_all(Namespace::Geom).len(), 1);
+    assert_eq!(m.find_all(Namespace::Model).len(), 3);
+    // Reading again is a new include tree.
+    assert_eq!(Model::from_path(&main).unwrap(), m);
+}
+
+/// Told apart by canonical path, a file reached through a symlink is the file it
+/// points at: included under both names it is refused (MuJoCo compares the paths as
+/// written and reads it twice), so that no spelling reads a file twice.
+#[cfg(unix)]
+#[test]
+fn a_file_included_again_through_a_symlink_is_included_twice() {
+    let dir = temp_dir("symlinked-include");
+    write(&dir, "a.xml", r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#);
+    std::os::unix::fs::symlink("a.xml", dir.join("l.xml")).unwrap();
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="a.xml"/><include file="l.xml"/></mujoco>"#,
+    );
+    let (kind, file, at) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("l.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("main.xml", (1, 32)));
 }
 
 /// A chain main → inc1 → … → incN, each adding one body.
