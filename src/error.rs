@@ -528,8 +528,19 @@ pub enum ExportError {
     /// name); nothing was written.
     #[error(transparent)]
     Write(#[from] WriteError),
+    /// A folder of a file's path inside the export folder is a symlink: export never
+    /// writes through one (it could lead out of the folder); nothing was written.
+    #[error(
+        "cannot write through {}: it is a symbolic link, and export writes only into real folders inside its folder",
+        .path.display()
+    )]
+    SymlinkedFolder {
+        /// The folder (the export folder joined with the path's components up to it).
+        path: PathBuf,
+    },
     /// A folder or file could not be created or written, or a name is not a plain
-    /// file name (`InvalidInput`).
+    /// file name or a path inside the folder (`InvalidInput`, before anything is
+    /// written).
     #[error("cannot write {}: {reason}", .path.display())]
     Io {
         /// The folder, or the file as named in the folder (never a temporary name).
