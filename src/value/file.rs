@@ -158,6 +158,17 @@ impl PartialEq for FileAsset {
     }
 }
 
+impl Eq for FileAsset {}
+
+impl std::hash::Hash for FileAsset {
+    /// Consistent with equality: the name and the contents' hash.
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.0.sha1.hash(state);
+        self.0.stem.hash(state);
+        self.0.extension.hash(state);
+    }
+}
+
 impl fmt::Debug for FileAsset {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "FileAsset({} bytes, {})", self.0.contents.len(), self.vfs_name(true))
