@@ -707,3 +707,91 @@ fn error_positions_are_the_same_for_lf_crlf_and_cr_line_endings() {
         assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((5, 15)), "{ending:?}");
     }
 }
+
+// ---- error messages -----------------------------------------------------------------------
+
+/// Every error message quotes a huge name or value (a tag, an attribute, an
+/// identifier, a scope, a model name, a file name, a value) cut to its first 200
+/// characters and `...`, as values always were: the message stays short and still
+/// says which name.
+#[test]
+fn error_messages_cut_every_huge_name_at_200_characters() {
+    let n = "n".repeat(1_000_000);
+    // The name's first 200 characters (less what is quoted with it, such as `</`),
+    // never more, and the mark of the cut.
+    let check = |what: &str, message: String| {
+        assert!(message.len() < 1500, "{what}: {} bytes: {}", message.len(), &message[..300]);
+        assert!(message.contains(&format!("{}...", &n[..190])), "{what}: {message}");
+        assert!(!message.contains(&n[..201]), "{what}: {message}");
+    };
+    let read = |text: String| Model::from_xml_str(&text).unwrap_err().to_string();
+    let reads = [
+        ("root tag", format!("<{n}/>")),
+        ("child tag", format!("<mujoco><{n}/></mujoco>")),
+        ("attribute", format!(r#"<mujoco><worldbody><geom {n}="1"/></worldbody></mujoco>"#)),
+        ("value", format!(r#"<mujoco><worldbody><geom size="{n}"/></worldbody></mujoco>"#)),
+        ("keyword", format!(r#"<mujoco><worldbody><geom type="{n}"/></worldbody></mujoco>"#)),
+        (
+            "identifier",
+            format!(
+                r#"<mujoco><worldbody><body name="{n}"/><body name="{n}"/></worldbody></mujoco>"#
+            ),
+        ),
+        ("end tag", format!("<mujoco></{n}>")),
+        ("entity", format!(r#"<mujoco model="&{n};"/>"#)),
+        ("file", format!(r#"<mujoco><asset><mesh file="{n}.stl"/></asset></mujoco>"#)),
+        ("include", format!(r#"<mujoco><include file="{n}.xml"/></mujoco>"#)),
+    ];
+    for (what, text) in reads {
+        check(what, read(text));
+    }
+    // A file included twice, under a huge in-memory name.
+    let err = ReadOptions::new()
+        .asset(&n, b"<mujoco/>".to_vec())
+        .read_str(&format!(r#"<mujoco><include file="{n}"/><include file="{n}"/></mujoco>"#))
+        .unwrap_err();
+    check("included twice", err.to_string());
+
+    // Edits.
+    let m = Model::new("m");
+    let world = m.worldbody();
+    check("lookup", m.lookup(Namespace::Body, &n).unwrap_err().to_string());
+    check("added tag", m.add(&world, Element::new(&n)).unwrap_err().to_string());
+    let e = m.add(&world, Element::new("geom").attr(n.as_str(), 1.0)).unwrap_err();
+    check("added attribute", e.to_string());
+    let (named, _) = m.add(&world, Element::new("body").attr("name", n.as_str())).unwrap();
+    let e =
+        named.add(&named.worldbody(), Element::new("body").attr("name", n.as_str())).unwrap_err();
+    check("added identifier", e.to_string());
+    // The element path of an edit error names the element by its (cut) name.
+    let body = named.lookup(Namespace::Body, &n).unwrap();
+    let e = named.add(&body, Element::new("bogus")).unwrap_err();
+    check("element path", e.to_string());
+    check("scope", m.detach(&n).unwrap_err().to_string());
+    check("scope path", m.detach(format!("{n}//x")).unwrap_err().to_string());
+    // A locator of a model with a huge name, used on another model.
+    let other = Model::new(&n);
+    let (other, g) = other.add(&other.worldbody(), Element::new("geom")).unwrap();
+    check("model name", m.remove(&g).unwrap_err().to_string());
+    // A freejoint on the frame of a robot with a huge name, attached inside a body.
+    let (arena, site) = {
+        let a = Model::new("arena");
+        let (a, b) = a.add(&a.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+        let (a, s) = a.add(&b, Element::new("site").attr("name", "s")).unwrap();
+        (a, s)
+    };
+    let (arena, frame) = arena.attach(&site, &other).unwrap();
+    let e = arena.add(&frame.frame().clone(), Element::new("freejoint")).unwrap_err();
+    check("frame scope", e.to_string());
+
+    // Writing and exporting.
+    let file = |bytes: &[u8]| Value::File(mjcf::FileAsset::new(&n, ".stl", bytes.to_vec()));
+    let plain = mjcf::WriteOptions { filename_with_hash: false, ..mjcf::WriteOptions::default() };
+    let (x, _) =
+        m.add(&m.asset(), Element::new("mesh").attr("name", "a").attr("file", file(b"a"))).unwrap();
+    let (x, _) =
+        x.add(&x.asset(), Element::new("mesh").attr("name", "b").attr("file", file(b"b"))).unwrap();
+    check("file name clash", x.assets(&plain).unwrap_err().to_string());
+    let dir = temp_dir("long-names");
+    check("export name", m.export(&dir, &n, &plain).unwrap_err().to_string());
+}

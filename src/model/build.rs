@@ -581,11 +581,9 @@ pub(crate) fn input_text(input: &AttrInput) -> String {
     cut(&s)
 }
 
+/// A value as errors keep it: [`crate::error::cut`], owned.
 pub(crate) fn cut(s: &str) -> String {
-    match s.char_indices().nth(200) {
-        Some((i, _)) => format!("{}...", &s[..i]),
-        None => s.to_string(),
-    }
+    crate::error::cut(s).into_owned()
 }
 
 /// Applies assignments to an attribute list, keeping schema order. Returns the
