@@ -122,7 +122,8 @@ fn float_bits(x: f64) -> u64 {
 }
 
 impl PartialEq for Value {
-    /// Equality with floats compared by [`same_float`] (see [`Value`]).
+    /// Equality with floats compared by their bits, every NaN one value (see
+    /// [`Value`]).
     fn eq(&self, other: &Value) -> bool {
         match (self, other) {
             (Value::Float(a), Value::Float(b)) => same_float(*a, *b),
@@ -143,7 +144,7 @@ impl PartialEq for Value {
 impl Eq for Value {}
 
 impl std::hash::Hash for Value {
-    /// Consistent with equality: floats by [`same_float`]'s bits.
+    /// Consistent with equality: floats by their bits, every NaN hashed as one.
     fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
         std::mem::discriminant(self).hash(state);
         match self {
@@ -163,7 +164,8 @@ impl std::hash::Hash for Value {
 }
 
 impl PartialEq for AttrInput {
-    /// Equality with numbers compared by [`same_float`] (see [`Value`]).
+    /// Equality with numbers compared by their bits, every NaN one value (see
+    /// [`Value`]).
     fn eq(&self, other: &AttrInput) -> bool {
         match (self, other) {
             (AttrInput::Text(a), AttrInput::Text(b)) => a == b,
