@@ -203,12 +203,20 @@ fn a_failed_export_names_the_path_and_leaves_no_xml() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
     std::fs::remove_file(&file).unwrap();
 
-    // A file cannot be written (a folder holds its name): the MJCF file is not written,
-    // and an older one under the target name stays as it was.
+    // A file cannot be written (a folder holds its name): refused before anything is
+    // written, and an older MJCF file under the target name stays as it was.
     let dir = temp_path("blocked");
     std::fs::create_dir_all(dir.join("cube.stl")).unwrap();
     let e = r.export(&dir, "robot.xml", &plain()).unwrap_err();
     assert_eq!(io_path(&e), dir.join("cube.stl"));
+    assert!(matches!(e, ExportError::Io { kind: std::io::ErrorKind::IsADirectory, .. }), "{e:?}");
+    // The same for a folder under the MJCF file's name: not even the mesh is written.
+    let xml_blocked = temp_path("xml-blocked");
+    std::fs::create_dir_all(xml_blocked.join("robot.xml")).unwrap();
+    let e = r.export(&xml_blocked, "robot.xml", &plain()).unwrap_err();
+    assert_eq!(io_path(&e), xml_blocked.join("robot.xml"));
+    assert_eq!(listing(&xml_blocked), BTreeSet::from(["robot.xml".to_string()]));
+    std::fs::remove_dir_all(&xml_blocked).unwrap();
     assert_eq!(listing(&dir), BTreeSet::from(["cube.stl".to_string()]), "no temporary files");
     std::fs::write(dir.join("robot.xml"), "old").unwrap();
     r.export(&dir, "robot.xml", &plain()).unwrap_err();

@@ -134,7 +134,8 @@ impl Model {
     /// name (`xml_file_name`) or a relative path inside `dir` (`..`, an absolute path,
     /// NUL, a component over 255 bytes, a file that is also another file's folder);
     /// [`ExportError::SymlinkedFolder`] when a folder of a file's path inside `dir` is
-    /// a symlink; [`ExportError::Io`] of kind `NotADirectory` when it is a file.
+    /// a symlink; [`ExportError::Io`] of kind `NotADirectory` when it is a file, and
+    /// of kind `IsADirectory` when a folder is there under a file's name.
     /// While writing: [`ExportError::Io`], naming the folder or file and the
     /// operating system's reason, when `dir` or a folder in it cannot be created or a
     /// file cannot be written there.
@@ -185,9 +186,19 @@ impl Model {
         {
             return Err(invalid(dir.join(both), "both a file and a folder of another file"));
         }
-        // Those already there must be real folders (checked again when created).
+        // Those already there must be real folders (checked again when created), and
+        // no file may have a folder under its name.
         for folder in &folders {
             real_folder(&dir.join(folder), false)?;
+        }
+        for path in files.iter().map(|(_, path, _)| path).chain([&xml_path]) {
+            if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+                return Err(ExportError::Io {
+                    path: path.clone(),
+                    kind: io::ErrorKind::IsADirectory,
+                    reason: "a folder has this name".to_string(),
+                });
+            }
         }
         std::fs::create_dir_all(dir).map_err(|e| io_error(dir, &e))?;
         for folder in &folders {
