@@ -11,10 +11,13 @@
 //!   I/O failure carries the path and the operating system's reason.
 //!
 //! Reading and editing fail for the same reasons, so both carry an [`ErrorKind`].
-//! Every failing operation leaves every model value unchanged.
+//! Every failing operation leaves every model value unchanged. Messages quote each
+//! name or value a caller or a file supplied cut to 200 characters (the fields keep
+//! them whole, but for [`ErrorKind::InvalidValue`]'s value).
 
+use std::borrow::Cow;
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use smol_str::SmolStr;
 
@@ -76,16 +79,16 @@ pub enum ValueError {
 #[non_exhaustive]
 pub enum ErrorKind {
     /// The text is not well-formed XML.
-    #[error("malformed XML: {0}")]
+    #[error("malformed XML: {}", cut_quoted(.0))]
     Syntax(String),
     /// The bytes are not UTF-8.
     #[error("the text is not valid UTF-8")]
     InvalidUtf8,
     /// The root element is not `<mujoco>`.
-    #[error("the root element should be <mujoco>, got <{0}>")]
+    #[error("the root element should be <mujoco>, got <{}>", cut(.0))]
     WrongRoot(SmolStr),
     /// An element the schema does not allow here.
-    #[error("<{tag}> is not a valid child of <{parent}>{}", hint_one(*.suggestion))]
+    #[error("<{}> is not a valid child of <{parent}>{}", cut(.tag), hint_one(*.suggestion))]
     InvalidChild {
         /// The parent's tag.
         parent: &'static str,
@@ -98,7 +101,7 @@ pub enum ErrorKind {
     #[error("a <{0}> child already exists")]
     DuplicateChild(&'static str),
     /// An attribute the schema does not define for this element.
-    #[error("'{attribute}' is not a valid attribute for <{tag}>{}", hint_one(*.suggestion))]
+    #[error("'{}' is not a valid attribute for <{tag}>{}", cut(.attribute), hint_one(*.suggestion))]
     UnknownAttribute {
         /// The element's tag.
         tag: &'static str,
@@ -109,7 +112,8 @@ pub enum ErrorKind {
     },
     /// A value that does not fit its attribute.
     #[error(
-        "invalid value {value:?} for attribute '{attribute}' of <{tag}>: {error}{}",
+        "invalid value {:?} for attribute '{attribute}' of <{tag}>: {error}{}",
+        cut(.value),
         keyword_hint(value, error)
     )]
     InvalidValue {
@@ -123,7 +127,7 @@ pub enum ErrorKind {
         error: ValueError,
     },
     /// An identifier already taken in its namespace.
-    #[error("duplicate identifier '{name}' in namespace {namespace}")]
+    #[error("duplicate identifier '{}' in namespace {namespace}", cut(.name))]
     DuplicateIdentifier {
         /// The namespace.
         namespace: Namespace,
@@ -139,7 +143,7 @@ pub enum ErrorKind {
         attribute: &'static str,
     },
     /// A file that does not exist (or cannot be read).
-    #[error("cannot read file {path:?}: {reason}")]
+    #[error("cannot read file {:?}: {reason}", cut_path(.path))]
     FileNotFound {
         /// The path as resolved.
         path: PathBuf,
@@ -147,12 +151,12 @@ pub enum ErrorKind {
         reason: String,
     },
     /// A file outside the folder that file access is confined to.
-    #[error("file {0:?} is outside the model's folder")]
+    #[error("file {:?} is outside the model's folder", cut_path(.0))]
     FileOutsideRoot(PathBuf),
     /// A file larger than the cap on the size of one file
     /// ([`ReadOptions::max_file_size`](crate::ReadOptions::max_file_size), 1 GiB by
     /// default).
-    #[error("file {path:?} is larger than the limit of {limit} bytes")]
+    #[error("file {:?} is larger than the limit of {limit} bytes", cut_path(.path))]
     FileTooLarge {
         /// The path as resolved.
         path: PathBuf,
@@ -161,16 +165,28 @@ pub enum ErrorKind {
     },
     /// A path that names something other than a regular file once symlinks are
     /// followed: a folder, a FIFO, a socket or a device such as `/dev/zero`.
-    #[error("{0:?} is not a regular file")]
+    #[error("{:?} is not a regular file", cut_path(.0))]
     NotAFile(PathBuf),
     /// An `<include>` that includes itself, directly or not.
-    #[error("include cycle through {0:?}")]
+    #[error("include cycle through {:?}", cut_path(.0))]
     IncludeCycle(PathBuf),
+    /// An `<include>` of a file the model's include tree already includes (beside it,
+    /// in another branch, or the main file), which MuJoCo refuses too ("File '...'
+    /// already included").
+    #[error(
+        "file {:?} is already included in this model (a file can be included once)",
+        cut_path(.0)
+    )]
+    IncludedTwice(PathBuf),
+    /// An asset model file that brings more files than the reader takes (counting the
+    /// files of the model files it names, each path once).
+    #[error("a model file names more than {0} files (with those of the model files it names)")]
+    TooManyFiles(usize),
     /// An element nested deeper than the reader allows.
     #[error("elements nested deeper than {0} levels")]
     TooDeep(usize),
     /// `include_copy` with override found a same-named element under another parent.
-    #[error("{namespace} '{name}' is already a child of another element")]
+    #[error("{namespace} '{}' is already a child of another element", cut(.name))]
     CopyConflict {
         /// The namespace.
         namespace: Namespace,
@@ -200,7 +216,8 @@ pub enum ErrorKind {
     /// A locator of an element that is not in this model: it was removed, or the
     /// locator comes from another model.
     #[error(
-        "element {id:?} of model '{origin}' is not in this model (removed, or a locator of another model)"
+        "element {id:?} of model '{}' is not in this model (removed, or a locator of another model)",
+        cut(.origin)
     )]
     StaleLocator {
         /// The element's id.
@@ -210,7 +227,8 @@ pub enum ErrorKind {
     },
     /// A name that [`Model::lookup`](crate::Model::lookup) did not find.
     #[error(
-        "no {namespace} named '{name}'{}{}",
+        "no {namespace} named '{}'{}{}",
+        cut(.name),
         in_scope(scope),
         crate::suggest::hint(suggestions)
     )]
@@ -226,16 +244,22 @@ pub enum ErrorKind {
     },
     /// A scope path with a leading or trailing `/` or an empty segment.
     #[error(
-        "invalid scope path '{0}': scope names are separated by single '/', with none at the start or end"
+        "invalid scope path '{}': scope names are separated by single '/', with none at the start or end",
+        cut(.0)
     )]
     InvalidScope(SmolStr),
     /// A freejoint on an attachment frame that does not sit directly in the worldbody.
     #[error(
-        "the frame of '{0}' cannot take a freejoint: only a frame directly in the worldbody can (attach at a site of the worldbody)"
+        "the frame of '{}' cannot take a freejoint: only a frame directly in the worldbody can (attach at a site of the worldbody)",
+        cut(.0)
     )]
     FreejointNotTopLevel(SmolStr),
     /// A global setting that differs between two models being merged.
-    #[error("conflicting values for attribute '{attribute}' of <{tag}>: {ours} vs {theirs}")]
+    #[error(
+        "conflicting values for attribute '{attribute}' of <{tag}>: {} vs {}",
+        cut(.ours),
+        cut(.theirs)
+    )]
     AttributeConflict {
         /// The element's tag.
         tag: &'static str,
@@ -250,7 +274,7 @@ pub enum ErrorKind {
     #[error("cannot attach at a <{0}>: only at a site or the worldbody")]
     InvalidParent(&'static str),
     /// A scope path that names no attachment.
-    #[error("no model is attached at scope '{scope}'{}", attached_list(attached))]
+    #[error("no model is attached at scope '{}'{}", cut(.scope), attached_list(attached))]
     NotAttached {
         /// The scope path asked for.
         scope: SmolStr,
@@ -265,19 +289,55 @@ pub enum ErrorKind {
     SourceHasAttachments,
 }
 
+/// The most characters of one name or value (a tag, an attribute, an identifier, a
+/// scope, a file name, a value) an error message quotes.
+pub(crate) const QUOTE_LIMIT: usize = 200;
+
+/// `s` as error messages quote a name or value: whole up to [`QUOTE_LIMIT`]
+/// characters, else its first [`QUOTE_LIMIT`] and `...`. Every message quoting
+/// something a caller or a file supplied goes through here (or through
+/// [`cut_path`] and [`cut_quoted`], which apply it per name).
+pub(crate) fn cut(s: &str) -> Cow<'_, str> {
+    match s.char_indices().nth(QUOTE_LIMIT) {
+        Some((i, _)) => Cow::Owned(format!("{}...", &s[..i])),
+        None => Cow::Borrowed(s),
+    }
+}
+
+/// A file path as error messages show it: each name in it [`cut`] ([`cut_segments`]).
+pub(crate) fn cut_path(path: &Path) -> String {
+    cut_segments(&path.to_string_lossy()).into_owned()
+}
+
+/// A path (of a file, of an element: `worldbody/body[name=torso]`, of scopes) as
+/// error messages show it: each `/`-separated part [`cut`], so a long path of
+/// ordinary names stays whole and a huge name in it does not.
+pub(crate) fn cut_segments(path: &str) -> Cow<'_, str> {
+    if path.split('/').all(|s| matches!(cut(s), Cow::Borrowed(_))) {
+        return Cow::Borrowed(path);
+    }
+    Cow::Owned(path.split('/').map(cut).collect::<Vec<_>>().join("/"))
+}
+
+/// A message quoting names between backquotes (quick-xml's syntax errors:
+/// ``expected `</a>`, but `</b>` was found``) with each quoted part [`cut`].
+fn cut_quoted(message: &str) -> String {
+    message.split('`').map(cut).collect::<Vec<_>>().join("`")
+}
+
 fn hint_one(suggestion: Option<&str>) -> String {
     crate::suggest::hint(suggestion.as_slice())
 }
 
 fn in_scope(scope: &str) -> String {
-    if scope.is_empty() { String::new() } else { format!(" in scope '{scope}'") }
+    if scope.is_empty() { String::new() } else { format!(" in scope '{}'", cut(scope)) }
 }
 
 fn attached_list(attached: &[SmolStr]) -> String {
     if attached.is_empty() {
         "; nothing is attached there".to_string()
     } else {
-        let list: Vec<String> = attached.iter().map(|s| format!("'{s}'")).collect();
+        let list: Vec<String> = attached.iter().map(|s| format!("'{}'", cut(s))).collect();
         format!("; attached there: {}", list.join(", "))
     }
 }
@@ -324,16 +384,32 @@ pub struct TextPos {
 }
 
 impl TextPos {
-    /// The position of byte offset `offset` in `text`.
+    /// The position of byte offset `offset` in `text`. Lines end as XML ends them
+    /// (XML 1.0 §2.11): at `\n`, `\r\n` or a `\r` alone, each one line break, so a
+    /// place in a file gets one position whichever of the three its lines end with.
+    ///
+    /// Time: O(offset).
     pub(crate) fn of_offset(text: &str, offset: usize) -> TextPos {
         let mut offset = offset.min(text.len());
         while !text.is_char_boundary(offset) {
             offset -= 1;
         }
-        let before = &text[..offset];
-        let line = before.bytes().filter(|b| *b == b'\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let column = before[line_start..].chars().count() + 1;
+        let bytes = text.as_bytes();
+        // The `\n` of a `\r\n` is where its `\r` is: the one place of the break.
+        if offset > 0 && bytes[offset - 1] == b'\r' && bytes.get(offset) == Some(&b'\n') {
+            offset -= 1;
+        }
+        let (mut line, mut line_start) = (1usize, 0usize);
+        for (i, b) in bytes[..offset].iter().enumerate() {
+            // A `\r` followed by `\n` (even past `offset`) is not a break itself: the
+            // `\n` is.
+            let breaks = *b == b'\n' || (*b == b'\r' && bytes.get(i + 1) != Some(&b'\n'));
+            if breaks {
+                line += 1;
+                line_start = i + 1;
+            }
+        }
+        let column = text[line_start..offset].chars().count() + 1;
         TextPos {
             line: line.min(u32::MAX as usize) as u32,
             column: column.min(u32::MAX as usize) as u32,
@@ -390,8 +466,8 @@ impl fmt::Display for ReadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.0.kind)?;
         match (&self.0.file, self.0.pos) {
-            (Some(file), Some(pos)) => write!(f, " at {}:{pos}", file.display()),
-            (Some(file), None) => write!(f, " in {}", file.display()),
+            (Some(file), Some(pos)) => write!(f, " at {}:{pos}", cut_path(file)),
+            (Some(file), None) => write!(f, " in {}", cut_path(file)),
             (None, Some(pos)) => write!(f, " at {pos}"),
             (None, None) => Ok(()),
         }
@@ -441,7 +517,7 @@ impl fmt::Display for EditError {
         if self.0.path.is_empty() {
             write!(f, "{} at <mujoco>", self.0.kind)
         } else {
-            write!(f, "{} at {}", self.0.kind, self.0.path)
+            write!(f, "{} at {}", self.0.kind, cut_segments(&self.0.path))
         }
     }
 }
@@ -458,7 +534,8 @@ impl std::error::Error for EditError {
 pub enum WriteError {
     /// A required reference whose target was removed.
     #[error(
-        "attribute '{attribute}' of <{tag}> at {path} is required, but the element it named was removed"
+        "attribute '{attribute}' of <{tag}> at {} is required, but the element it named was removed",
+        cut_segments(.path)
     )]
     MissingRequired {
         /// The element's tag.
@@ -487,7 +564,8 @@ pub enum WriteError {
     /// only when files are named without their hash (`filename_with_hash: false`), or
     /// an exported file named like the exported MJCF file.
     #[error(
-        "two different files would both be written as '{name}' (name files with their hash to tell them apart)"
+        "two different files would both be written as '{}' (name files with their hash to tell them apart)",
+        cut(.name)
     )]
     FileNameClash {
         /// The file name.
@@ -503,9 +581,20 @@ pub enum ExportError {
     /// name); nothing was written.
     #[error(transparent)]
     Write(#[from] WriteError),
+    /// A folder of a file's path inside the export folder is a symlink: export never
+    /// writes through one (it could lead out of the folder); nothing was written.
+    #[error(
+        "cannot write through {}: it is a symbolic link, and export writes only into real folders inside its folder",
+        cut_path(.path)
+    )]
+    SymlinkedFolder {
+        /// The folder (the export folder joined with the path's components up to it).
+        path: PathBuf,
+    },
     /// A folder or file could not be created or written, or a name is not a plain
-    /// file name (`InvalidInput`).
-    #[error("cannot write {}: {reason}", .path.display())]
+    /// file name or a path inside the folder (`InvalidInput`, before anything is
+    /// written).
+    #[error("cannot write {}: {reason}", cut_path(.path))]
     Io {
         /// The folder, or the file as named in the folder (never a temporary name).
         path: PathBuf,
@@ -545,6 +634,56 @@ mod tests {
         assert_eq!(TextPos::of_offset(t, 3), TextPos { line: 2, column: 1 });
         assert_eq!(TextPos::of_offset(t, 7), TextPos { line: 2, column: 4 });
         assert_eq!(TextPos::of_offset(t, 100), TextPos { line: 3, column: 2 });
+    }
+
+    /// `\n`, `\r\n` and a lone `\r` each end one line: every place of a text gets
+    /// the same position whichever of them the text uses (also a mix of them).
+    #[test]
+    fn positions_are_the_same_for_every_line_ending() {
+        let lines = ["<mujoco>", "  <worldbody>", "", "    <bogus/>", "é</mujoco>"];
+        let texts: Vec<String> = ["\n", "\r\n", "\r"].iter().map(|e| lines.join(e)).collect();
+        // (A `\r` then an empty line then `\n` would be one `\r\n`.)
+        let mixed =
+            format!("{}\r\n{}\n{}\r{}\r\n{}", lines[0], lines[1], lines[2], lines[3], lines[4]);
+        // Each character's position, skipping the line breaks themselves.
+        let positions = |t: &str| -> Vec<TextPos> {
+            t.char_indices()
+                .filter(|(_, c)| !matches!(c, '\r' | '\n'))
+                .map(|(i, _)| TextPos::of_offset(t, i))
+                .collect()
+        };
+        let want = positions(&texts[0]);
+        assert_eq!(want.len(), lines.iter().map(|l| l.chars().count()).sum::<usize>());
+        assert_eq!(want.last(), Some(&TextPos { line: 5, column: 10 }));
+        assert!(want.contains(&TextPos { line: 4, column: 5 }));
+        for t in texts.iter().skip(1).chain([&mixed]) {
+            assert_eq!(positions(t), want, "{t:?}");
+        }
+        // The end of the text, and an offset between the two bytes of a `\r\n`: at
+        // the end of the line, as the offset of the `\n` alone in the `\n` text.
+        assert_eq!(TextPos::of_offset(&texts[1], 9), TextPos::of_offset(&texts[0], 8));
+        assert_eq!(TextPos::of_offset(&texts[1], 9), TextPos { line: 1, column: 9 });
+        for t in &texts {
+            assert_eq!(TextPos::of_offset(t, t.len()), TextPos { line: 5, column: 11 });
+        }
+    }
+
+    #[test]
+    fn names_are_cut_at_200_characters_each() {
+        let at = "é".repeat(200);
+        assert_eq!(cut(&at), at, "200 characters stay whole");
+        assert!(matches!(cut(&at), Cow::Borrowed(_)));
+        assert_eq!(cut(&format!("{at}x")), format!("{at}..."));
+        assert_eq!(cut(&cut(&"y".repeat(1000))), cut(&"y".repeat(1000)));
+        let long = "n".repeat(1000);
+        let path = format!("a/{long}/b");
+        assert_eq!(cut_segments(&path), format!("a/{}.../b", &long[..200]));
+        assert!(matches!(cut_segments("worldbody/body[name=torso]"), Cow::Borrowed(_)));
+        assert_eq!(cut_path(Path::new(&path)), format!("a/{}.../b", &long[..200]));
+        assert_eq!(
+            cut_quoted(&format!("expected `{long}`, found `x`")),
+            format!("expected `{}...`, found `x`", &long[..200])
+        );
     }
 
     #[test]

@@ -116,6 +116,15 @@ pub(crate) fn normalize(path: &str) -> String {
     if s.is_empty() { ".".to_string() } else { s }
 }
 
+/// Where a file named in MJCF is, found but not read yet.
+#[derive(Clone, Debug)]
+pub(crate) enum Located {
+    /// An in-memory file: its contents.
+    Memory { bytes: Arc<[u8]> },
+    /// A file on disk.
+    Disk(DiskPath),
+}
+
 impl FileContext {
     /// Reads the file `path` (as written in MJCF), with the folder setting `basepath`
     /// already chosen by the caller. Returns the path as resolved and the contents.
@@ -124,15 +133,30 @@ impl FileContext {
         basepath: Option<&str>,
         path: &str,
     ) -> Result<(PathBuf, Arc<[u8]>), ErrorKind> {
+        let (full, located) = self.locate(basepath, path)?;
+        match located {
+            Located::Memory { bytes, .. } => Ok((full, bytes)),
+            Located::Disk(path) => Ok((full, self.read_disk(&path)?.into())),
+        }
+    }
+
+    /// Finds the file `path` (as written in MJCF, with the folder setting `basepath`)
+    /// as [`FileContext::read`] does, without reading a file on disk (confinement is
+    /// checked). Returns the path as resolved and where the file is.
+    pub(crate) fn locate(
+        &self,
+        basepath: Option<&str>,
+        path: &str,
+    ) -> Result<(PathBuf, Located), ErrorKind> {
         let joined = join(basepath, path);
         if let Some(assets) = &self.assets {
             if let Some(bytes) = assets.get(path).or_else(|| assets.get(&normalize(&joined))) {
-                return Ok((PathBuf::from(&joined), bytes.clone()));
+                let located = Located::Memory { bytes: bytes.clone() };
+                return Ok((PathBuf::from(&joined), located));
             }
         }
         let path = self.disk_path(&joined)?;
-        let bytes = self.read_disk(&path)?;
-        Ok((path.full, bytes.into()))
+        Ok((path.full.clone(), Located::Disk(path)))
     }
 
     /// Reads a file on disk found by [`FileContext::disk_path`], within the size cap.

@@ -54,7 +54,8 @@ pub(crate) fn hint(suggestions: &[impl AsRef<str>]) -> String {
     if suggestions.is_empty() {
         return String::new();
     }
-    let list: Vec<String> = suggestions.iter().map(|s| format!("'{}'", s.as_ref())).collect();
+    let list: Vec<String> =
+        suggestions.iter().map(|s| format!("'{}'", crate::error::cut(s.as_ref()))).collect();
     format!(" (did you mean {}?)", list.join(", "))
 }
 

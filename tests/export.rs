@@ -203,12 +203,20 @@ fn a_failed_export_names_the_path_and_leaves_no_xml() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "not a folder");
     std::fs::remove_file(&file).unwrap();
 
-    // A file cannot be written (a folder holds its name): the MJCF file is not written,
-    // and an older one under the target name stays as it was.
+    // A file cannot be written (a folder holds its name): refused before anything is
+    // written, and an older MJCF file under the target name stays as it was.
     let dir = temp_path("blocked");
     std::fs::create_dir_all(dir.join("cube.stl")).unwrap();
     let e = r.export(&dir, "robot.xml", &plain()).unwrap_err();
     assert_eq!(io_path(&e), dir.join("cube.stl"));
+    assert!(matches!(e, ExportError::Io { kind: std::io::ErrorKind::IsADirectory, .. }), "{e:?}");
+    // The same for a folder under the MJCF file's name: not even the mesh is written.
+    let xml_blocked = temp_path("xml-blocked");
+    std::fs::create_dir_all(xml_blocked.join("robot.xml")).unwrap();
+    let e = r.export(&xml_blocked, "robot.xml", &plain()).unwrap_err();
+    assert_eq!(io_path(&e), xml_blocked.join("robot.xml"));
+    assert_eq!(listing(&xml_blocked), BTreeSet::from(["robot.xml".to_string()]));
+    std::fs::remove_dir_all(&xml_blocked).unwrap();
     assert_eq!(listing(&dir), BTreeSet::from(["cube.stl".to_string()]), "no temporary files");
     std::fs::write(dir.join("robot.xml"), "old").unwrap();
     r.export(&dir, "robot.xml", &plain()).unwrap_err();
@@ -340,4 +348,203 @@ fn a_file_already_holding_the_same_bytes_is_left_and_any_other_replaced() {
     assert_eq!(std::fs::read(&mesh).unwrap(), b"solid cube");
     std::fs::remove_dir_all(&dir).unwrap();
     std::fs::remove_file(&elsewhere).unwrap();
+}
+
+// ---- writing only inside the folder -------------------------------------------------------
+
+/// A model whose asset `<model>` file names `parts/p.stl` (so export writes
+/// `parts/p.stl` beside it) and, with `deeper`, `parts/deep/q.stl`.
+fn model_with_parts() -> Model {
+    let robot = r#"<mujoco model="r"><asset><mesh file="parts/p.stl"/><mesh file="parts/deep/q.stl"/></asset></mujoco>"#;
+    ReadOptions::new()
+        .asset("robot.xml", robot.as_bytes().to_vec())
+        .asset("parts/p.stl", b"solid p".to_vec())
+        .asset("parts/deep/q.stl", b"solid q".to_vec())
+        .read_str(
+            r#"<mujoco model="scene"><asset><model name="r" file="robot.xml"/></asset></mujoco>"#,
+        )
+        .unwrap()
+}
+
+/// Every file under `dir`, as paths relative to it (symlinks listed, not followed).
+fn tree(dir: &Path) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            let rel = p.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
+            if std::fs::symlink_metadata(&p).unwrap().is_dir() {
+                todo.push(p);
+                out.insert(format!("{rel}/"));
+            } else {
+                out.insert(rel);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_model_files_own_files_are_written_in_real_subfolders() {
+    let m = model_with_parts();
+    let dir = temp_path("parts");
+    m.export(&dir, "scene.xml", &plain()).unwrap();
+    let want =
+        ["parts/", "parts/deep/", "parts/deep/q.stl", "parts/p.stl", "robot.xml", "scene.xml"];
+    assert_eq!(tree(&dir), want.iter().map(|s| s.to_string()).collect());
+    assert!(std::fs::symlink_metadata(dir.join("parts")).unwrap().is_dir());
+    assert_eq!(std::fs::read(dir.join("parts/deep/q.stl")).unwrap(), b"solid q");
+    // Again, into the folders now there.
+    m.export(&dir, "scene.xml", &plain()).unwrap();
+    assert_eq!(tree(&dir).len(), want.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `out/parts` a symlink to a folder outside `out/`: the export would write
+/// `parts/p.stl` there. It is refused before anything is written, and the folder
+/// outside stays empty; the same for a symlink to a folder inside `out/` (export
+/// writes only into real folders) and for a symlink deeper down (`parts/deep`).
+#[cfg(unix)]
+#[test]
+fn a_symlinked_subfolder_is_refused_before_anything_is_written() {
+    let m = model_with_parts();
+    for (link, target_inside) in [("parts", false), ("parts", true), ("parts/deep", false)] {
+        let dir = temp_path("symlinked-parts");
+        let outside = temp_path("outside");
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::create_dir_all(dir.join("real")).unwrap();
+        if link == "parts/deep" {
+            std::fs::create_dir_all(dir.join("parts")).unwrap();
+        }
+        let target = if target_inside { dir.join("real") } else { outside.clone() };
+        std::os::unix::fs::symlink(&target, dir.join(link)).unwrap();
+        let before = tree(&dir);
+        let e = m.export(&dir, "scene.xml", &plain()).unwrap_err();
+        assert_eq!(e, ExportError::SymlinkedFolder { path: dir.join(link) }, "{link}");
+        assert!(e.to_string().contains("symbolic link"), "{e}");
+        assert_eq!(tree(&dir), before, "{link}: nothing written");
+        assert!(tree(&outside).is_empty(), "{link}: nothing written outside");
+        assert!(tree(&dir.join("real")).is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::remove_dir_all(&outside).unwrap();
+    }
+}
+
+/// A file where a folder of a path should be: refused before anything is written.
+#[test]
+fn a_file_in_place_of_a_subfolder_is_refused_before_anything_is_written() {
+    let m = model_with_parts();
+    let dir = temp_path("file-for-folder");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("parts"), "a file").unwrap();
+    let e = m.export(&dir, "scene.xml", &plain()).unwrap_err();
+    assert!(
+        matches!(&e, ExportError::Io { path, kind: std::io::ErrorKind::NotADirectory, .. } if *path == dir.join("parts")),
+        "{e:?}"
+    );
+    assert_eq!(listing(&dir), BTreeSet::from(["parts".to_string()]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The export folder itself is the caller's: given as a symlink (or a path through
+/// one), it is written through, into the folder it points at.
+#[cfg(unix)]
+#[test]
+fn the_export_folder_itself_may_be_a_symlink() {
+    let m = model_with_parts();
+    let real = temp_path("real-out");
+    std::fs::create_dir_all(&real).unwrap();
+    let link = temp_path("link-out");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+    let xml = m.export(link.join("sub"), "scene.xml", &plain()).unwrap();
+    assert_eq!(xml, link.join("sub/scene.xml"));
+    assert!(tree(&real).contains("sub/parts/p.stl"));
+    std::fs::remove_file(&link).unwrap();
+    std::fs::remove_dir_all(&real).unwrap();
+}
+
+/// A bad MJCF file name (NUL, 300 characters) or file name among the model's files
+/// (NUL, a 300-byte stem, a file that is also a folder) is refused before anything
+/// is written: the folder is not even created.
+#[test]
+fn bad_names_are_refused_before_any_file_is_written() {
+    let m = model_with_parts();
+    let dir = temp_path("bad-names");
+    let long = format!("{}.xml", "x".repeat(300));
+    for bad in ["a\0b.xml", long.as_str()] {
+        let e = m.export(&dir, bad, &plain()).unwrap_err();
+        assert!(
+            matches!(&e, ExportError::Io { kind: std::io::ErrorKind::InvalidInput, path, .. } if *path == dir.join(bad)),
+            "{e:?}"
+        );
+        assert!(!dir.exists(), "{bad:?}");
+    }
+    // 255 bytes is fine.
+    let longest = format!("{}.xml", "x".repeat(251));
+    m.export(&dir, &longest, &plain()).unwrap();
+    assert!(dir.join(&longest).is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+
+    // A file of the model under a bad name, beside good ones.
+    let mesh = |m: &Model, i: usize| m.find_all(Namespace::Mesh)[i].clone();
+    let base = ReadOptions::new()
+        .asset("a.stl", b"solid a".to_vec())
+        .asset("b.stl", b"solid b".to_vec())
+        .read_str(r#"<mujoco><asset><mesh file="a.stl"/><mesh file="b.stl"/></asset></mujoco>"#)
+        .unwrap();
+    for stem in ["n\0ul", &"y".repeat(300)] {
+        let file = mjcf::Value::File(mjcf::FileAsset::new(stem, ".stl", b"solid bad".to_vec()));
+        let bad = base.set_attr(&mesh(&base, 1), "file", file).unwrap();
+        for options in [plain(), WriteOptions::default()] {
+            let e = bad.export(&dir, "m.xml", &options).unwrap_err();
+            if stem.contains('\0') {
+                // The writer refuses it in the MJCF already.
+                assert!(
+                    matches!(
+                        e,
+                        ExportError::Write(WriteError::InvalidCharacter { character: '\0', .. })
+                    ),
+                    "{e:?}"
+                );
+            } else {
+                assert!(
+                    matches!(&e, ExportError::Io { kind: std::io::ErrorKind::InvalidInput, reason, .. } if reason.contains("255 bytes")),
+                    "{e:?}"
+                );
+            }
+            assert!(!dir.exists(), "{stem:?}");
+        }
+    }
+    // NUL in a name the writer does not write: a model file's own file (read from
+    // the model file's text, where MuJoCo would report it).
+    let robot = "<mujoco><asset><mesh file=\"p\0.stl\"/><mesh file=\"ok.stl\"/></asset></mujoco>";
+    let nul = ReadOptions::new()
+        .asset("robot.xml", robot.as_bytes().to_vec())
+        .asset("p\0.stl", b"solid p".to_vec())
+        .asset("ok.stl", b"solid ok".to_vec())
+        .read_str(r#"<mujoco><asset><model name="r" file="robot.xml"/></asset></mujoco>"#)
+        .unwrap();
+    let e = nul.export(&dir, "m.xml", &plain()).unwrap_err();
+    assert!(
+        matches!(&e, ExportError::Io { kind: std::io::ErrorKind::InvalidInput, path, .. } if *path == dir.join("p\0.stl")),
+        "{e:?}"
+    );
+    assert!(!dir.exists());
+    // A model file's own file named like another file's folder: `parts` and
+    // `parts/p.stl`.
+    let clash = model_with_parts();
+    let file = mjcf::Value::File(mjcf::FileAsset::new("parts", "", b"a file".to_vec()));
+    let clash = clash
+        .add(&clash.asset(), mjcf::Element::new("hfield").attr("name", "h").attr("size", [1.0; 4]))
+        .unwrap()
+        .0;
+    let h = clash.lookup(Namespace::Hfield, "h").unwrap();
+    let clash = clash.set_attr(&h, "file", file).unwrap();
+    let e = clash.export(&dir, "m.xml", &plain()).unwrap_err();
+    assert!(
+        matches!(&e, ExportError::Io { kind: std::io::ErrorKind::InvalidInput, path, .. } if *path == dir.join("parts")),
+        "{e:?}"
+    );
+    assert!(!dir.exists());
 }

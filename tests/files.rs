@@ -348,6 +348,213 @@ fn file_over_max_file_size_is_too_large() {
     assert!(m.find(Namespace::Mesh, "mem").is_some());
 }
 
+// ---- DAGs of files ----------------------------------------------------------------------
+
+/// A chain of `n` include files on disk, each including the next twice (at the root,
+/// or inside `<worldbody>`), the last adding a geom; returns the first.
+fn includes_twice(d: &TempDir, n: usize, inline: bool) -> PathBuf {
+    for i in 1..=n {
+        let body = if i < n {
+            let inc = format!(r#"<include file="inc{}.xml"/>"#, i + 1);
+            format!("\n{inc}\n{inc}\n")
+        } else {
+            r#"<geom size="1"/>"#.to_string()
+        };
+        let text = match (inline, i < n) {
+            (true, _) => format!("<mujoco>{body}</mujoco>"),
+            (false, true) => format!("<mujoco>{body}</mujoco>"),
+            (false, false) => format!("<mujoco><worldbody>{body}</worldbody></mujoco>"),
+        };
+        d.write(&format!("inc{i}.xml"), &text);
+    }
+    d.path().join("inc1.xml")
+}
+
+/// 30 files each including the next twice would paste 2^29 copies of the last; as
+/// MuJoCo does, the second include of a file already included is refused, at once
+/// (the first include read all 30 files once), naming the file and the place.
+#[test]
+fn includes_each_including_the_next_twice_stop_at_the_first_file_included_twice() {
+    for inline in [false, true] {
+        let d = TempDir::new("include-dag");
+        includes_twice(&d, 30, inline);
+        let main = if inline {
+            d.write(
+                "main.xml",
+                r#"<mujoco><worldbody><include file="inc1.xml"/></worldbody></mujoco>"#,
+            )
+        } else {
+            d.write("main.xml", r#"<mujoco><include file="inc1.xml"/></mujoco>"#)
+        };
+        let err = within(60, move || Model::from_path(main).unwrap_err());
+        assert!(
+            matches!(err.kind(), ErrorKind::IncludedTwice(p) if p.ends_with("inc30.xml")),
+            "{err}"
+        );
+        assert!(err.file().is_some_and(|f| f.ends_with("inc29.xml")), "{err}");
+        assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((3, 1)), "{err}");
+    }
+    // The same from in-memory files.
+    let mut opts = ReadOptions::new();
+    for i in 1..30 {
+        let inc = format!(r#"<include file="inc{}.xml"/>"#, i + 1);
+        opts = opts.asset(
+            &format!("inc{i}.xml"),
+            format!("<mujoco>\n{inc}\n{inc}\n</mujoco>").into_bytes(),
+        );
+    }
+    let opts = opts.asset(
+        "inc30.xml",
+        r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#.as_bytes().to_vec(),
+    );
+    let err = within(60, move || {
+        opts.read_str(r#"<mujoco><include file="inc1.xml"/></mujoco>"#).unwrap_err()
+    });
+    assert!(matches!(err.kind(), ErrorKind::IncludedTwice(p) if p.ends_with("inc30.xml")), "{err}");
+    assert!(err.file().is_some_and(|f| f.ends_with("inc29.xml")), "{err}");
+    assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((3, 1)), "{err}");
+}
+
+/// The files an asset `<model>` brings (its companions), as a set of paths.
+fn companions(m: &Model) -> std::collections::BTreeSet<String> {
+    let loc = &m.find_all(Namespace::Model)[0];
+    let element = m.element(loc).unwrap();
+    let Some(mjcf::Value::File(f)) = element.attr("file") else { panic!("no model file") };
+    f.companions().iter().map(|(p, _)| p.to_string()).collect()
+}
+
+/// The names other than `fK.xml` the next file is named by: symlinks to it on disk,
+/// other keys with the same bytes in memory.
+const ALIASES: [char; 3] = ['g', 'h', 'i'];
+
+/// `f1.xml` … `f{n}.xml`, each naming the next four times as an asset model, by four
+/// paths: `./fK.xml`, `gK.xml`, `hK.xml` and `x/../iK.xml` (and `fK.xml` once more);
+/// the last names a mesh. Returns the files and the paths the first one brings.
+fn model_chain(n: usize) -> (Vec<(String, String)>, std::collections::BTreeSet<String>) {
+    let mut files = Vec::new();
+    let mut want = std::collections::BTreeSet::from(["m.stl".to_string()]);
+    for i in 1..=n {
+        let text = if i < n {
+            let k = i + 1;
+            want.extend(["f", "g", "h", "i"].map(|c| format!("{c}{k}.xml")));
+            format!(
+                r#"<mujoco><asset><model name="a" file="./f{k}.xml"/><model name="b" file="g{k}.xml"/><model name="c" file="h{k}.xml"/><model name="d" file="x/../i{k}.xml"/><model name="e" file="f{k}.xml"/></asset></mujoco>"#
+            )
+        } else {
+            r#"<mujoco><asset><mesh file="m.stl"/></asset></mujoco>"#.to_string()
+        };
+        files.push((format!("f{i}.xml"), text));
+    }
+    (files, want)
+}
+
+const MAIN_WITH_MODEL: &str = r#"<mujoco><asset><model name="m" file="f1.xml"/></asset></mujoco>"#;
+
+/// Each model file names the next four times, by four paths (three of them symlinks):
+/// 16 levels, as deep as model files go, would read the last file 4^15 times. Each
+/// file is read once per read (by canonical path, or by contents for in-memory files),
+/// and brings each path once. An edit that sets the file reads it the same way.
+#[cfg(unix)]
+#[test]
+fn asset_model_files_naming_the_next_four_times_are_read_once_each() {
+    let (files, want) = model_chain(16);
+    assert_eq!(want.len(), 61);
+    let d = TempDir::new("model-dag");
+    d.write("m.stl", STL);
+    d.write("x/.keep", "");
+    for (name, text) in &files {
+        d.write(name, text);
+        if name != "f1.xml" {
+            for c in ALIASES {
+                d.symlink(name, &name.replacen('f', &c.to_string(), 1));
+            }
+        }
+    }
+    let main = d.write("main.xml", MAIN_WITH_MODEL);
+    let m = within(60, move || Model::from_path(main).unwrap());
+    assert_eq!(companions(&m), want);
+    // Through an edit: the model file set again, from the same folder.
+    let loc = m.find_all(Namespace::Model)[0].clone();
+    let edited = within(60, move || m.set_attr(&loc, "file", "./f1.xml").unwrap());
+    assert_eq!(companions(&edited), want);
+
+    // In memory, `gK.xml` being another key with the same bytes.
+    let mut opts = ReadOptions::new().asset("m.stl", STL.as_bytes().to_vec());
+    for (name, text) in &files {
+        opts = opts.asset(name, text.as_bytes().to_vec());
+        for c in ALIASES {
+            opts = opts.asset(&name.replacen('f', &c.to_string(), 1), text.as_bytes().to_vec());
+        }
+    }
+    let m = within(60, move || opts.read_str(MAIN_WITH_MODEL).unwrap());
+    assert_eq!(companions(&m), want);
+}
+
+/// Model files nest at most 16 deep. Whether a file read before (and not read again)
+/// reaches too deep from where it is named again does not depend on the order: a file
+/// 12 levels deep is refused named 6 levels down, also after it was read from the top.
+#[test]
+fn the_model_file_depth_limit_does_not_depend_on_what_was_read_first() {
+    let (files, _) = model_chain(12);
+    let mut opts = ReadOptions::new().asset("m.stl", STL.as_bytes().to_vec());
+    for (name, text) in &files {
+        opts = opts.asset(&name.replacen('f', "q", 1), text.as_bytes().to_vec());
+        for c in ALIASES {
+            opts = opts.asset(&name.replacen('f', &c.to_string(), 1), text.as_bytes().to_vec());
+        }
+    }
+    // p1 … p6 lead to q1 (the chain's first file), six levels down.
+    for i in 1..=6 {
+        let next = if i < 6 { format!("p{}.xml", i + 1) } else { "q1.xml".to_string() };
+        let text = format!(r#"<mujoco><asset><model name="n" file="{next}"/></asset></mujoco>"#);
+        opts = opts.asset(&format!("p{i}.xml"), text.into_bytes());
+    }
+    // The chain from the top, alone: 12 levels, fine. Its first file is q1.xml; the
+    // files name f*.xml and the aliases, which hold the same bytes as the q*.xml files.
+    for (name, text) in &files {
+        opts = opts.asset(name, text.as_bytes().to_vec());
+    }
+    let top = r#"<model name="top" file="q1.xml"/>"#;
+    let deep = r#"<model name="deep" file="p1.xml"/>"#;
+    let read = |assets: &str| opts.read_str(&format!("<mujoco><asset>{assets}</asset></mujoco>"));
+    assert!(read(top).is_ok());
+    for assets in [deep.to_string(), format!("{top}{deep}"), format!("{deep}{top}")] {
+        let err = read(&assets).unwrap_err();
+        assert_eq!(err.kind(), &ErrorKind::TooDeep(16), "{assets}: {err}");
+    }
+}
+
+/// Folders that are symlinks to their own folder make each model file's files reachable
+/// under ever more paths (`d1/d2/…/f.xml`): a file is still read once, and a model
+/// file that brings more than 100,000 paths is refused with a typed error, at once.
+#[cfg(unix)]
+#[test]
+fn model_files_reached_under_exponentially_many_paths_are_refused() {
+    let d = TempDir::new("model-paths");
+    for link in ["d1", "d2", "d3", "d4"] {
+        d.symlink(".", link);
+    }
+    for i in 1..=16 {
+        let text = if i < 16 {
+            let k = i + 1;
+            format!(
+                r#"<mujoco><asset><model name="a" file="d1/f{k}.xml"/><model name="b" file="d2/f{k}.xml"/><model name="c" file="d3/f{k}.xml"/><model name="d" file="d4/f{k}.xml"/></asset></mujoco>"#
+            )
+        } else {
+            "<mujoco/>".to_string()
+        };
+        d.write(&format!("f{i}.xml"), &text);
+    }
+    let main = d.write("main.xml", MAIN_WITH_MODEL);
+    let err = within(60, move || Model::from_path(main).unwrap_err());
+    assert_eq!(err.kind(), &ErrorKind::TooManyFiles(100_000), "{err}");
+    // Fewer paths are fine: 4 + 16 + 64 + 256 from four levels.
+    d.write("f5.xml", "<mujoco/>");
+    let main = d.path().join("main.xml");
+    let m = within(60, move || Model::from_path(main).unwrap());
+    assert_eq!(companions(&m).len(), 4 + 16 + 64 + 256);
+}
+
 // ---- model names ---------------------------------------------------------------------------
 
 fn invalid_character(e: &mjcf::EditError) -> Option<char> {

@@ -58,27 +58,163 @@ fn include_cycle_a_b_a_is_an_error_in_memory() {
     assert!(matches!(err.kind(), ErrorKind::IncludeCycle(p) if p.ends_with("a.xml")), "{err}");
 }
 
+/// The kind, file name and line:column of the error reading `main` (a path).
+fn where_refused(main: &Path) -> (ErrorKind, String, (u32, u32)) {
+    let err = Model::from_path(main).unwrap_err();
+    let file = err.file().and_then(Path::file_name).unwrap().to_string_lossy().into_owned();
+    (err.kind().clone(), file, err.pos().map(|p| (p.line, p.column)).unwrap())
+}
+
+/// MuJoCo 4.0 refuses a file included twice within one model's include tree ("File
+/// 'a.xml' already included"), wherever the two includes are: side by side, in other
+/// elements, in other branches of the tree, spelled differently (`./a.xml`,
+/// `sub/../a.xml`), or the main file itself (a cycle). Each case below was compiled
+/// with MuJoCo 4.0 from files like these, and refused.
 #[test]
-fn a_file_included_twice_without_a_cycle_is_fine() {
-    let dir = temp_dir("diamond");
-    let main = write(
-        &dir,
-        "main.xml",
-        r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#,
+fn a_file_included_twice_in_one_include_tree_is_refused_as_mujoco_does() {
+    let geoms = r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#;
+    let twice = |main: &str| {
+        let dir = temp_dir("twice");
+        write(&dir, "a.xml", geoms);
+        write(&dir, "g.xml", r#"<mujoco><geom size="1"/></mujoco>"#);
+        write(&dir, "e.xml", r#"<mujoco><site name="s"/></mujoco>"#);
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        where_refused(&write(&dir, "main.xml", main))
+    };
+    for (main, twice_included, pos) in [
+        // Side by side at the root, and spelled otherwise.
+        (
+            "<mujoco>\n<include file=\"a.xml\"/>\n<include file=\"a.xml\"/></mujoco>",
+            "a.xml",
+            (3, 1),
+        ),
+        (
+            "<mujoco>\n<include file=\"a.xml\"/><include file=\"./a.xml\"/></mujoco>",
+            "a.xml",
+            (2, 24),
+        ),
+        (
+            "<mujoco><include file=\"a.xml\"/><include file=\"sub/../a.xml\"/></mujoco>",
+            "a.xml",
+            (1, 32),
+        ),
+        // Inside an element, and in two different elements.
+        (
+            "<mujoco><worldbody>\n  <include file=\"g.xml\"/>\n  <include file=\"g.xml\"/></worldbody></mujoco>",
+            "g.xml",
+            (3, 3),
+        ),
+        // One inside an element, one at the root.
+        (
+            "<mujoco><worldbody><include file=\"e.xml\"/></worldbody><include file=\"e.xml\"/></mujoco>",
+            "e.xml",
+            (1, 55),
+        ),
+    ] {
+        let (kind, file, at) = twice(main);
+        assert!(
+            matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with(twice_included)),
+            "{main}: {kind}"
+        );
+        assert_eq!((file.as_str(), at), ("main.xml", pos), "{main}");
+    }
+    let (kind, file, at) = twice(
+        r#"<mujoco><worldbody><body><include file="g.xml"/></body><body><include file="g.xml"/></body></worldbody></mujoco>"#,
     );
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("g.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("main.xml", (1, 62)));
+
+    // In two branches: main includes x and y, each includes common; refused in y.
+    let dir = temp_dir("branches");
     write(
         &dir,
         "x.xml",
         r#"<mujoco><include file="common.xml"/><worldbody><body name="x"/></worldbody></mujoco>"#,
     );
-    write(
-        &dir,
-        "y.xml",
-        r#"<mujoco><include file="common.xml"/><worldbody><body name="y"/></worldbody></mujoco>"#,
-    );
+    write(&dir, "y.xml", "<mujoco>\n  <include file=\"common.xml\"/></mujoco>");
     write(&dir, "common.xml", r#"<mujoco><compiler angle="radian"/></mujoco>"#);
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="x.xml"/><include file="y.xml"/></mujoco>"#,
+    );
+    let (kind, file, at) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("common.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("y.xml", (2, 3)));
+    // The message says which file, and where.
+    let err = Model::from_path(&main).unwrap_err().to_string();
+    assert!(
+        err.contains("common.xml")
+            && err.contains("already included")
+            && err.ends_with("y.xml:2:3"),
+        "{err}"
+    );
+
+    // The main file included again from an included file is a cycle.
+    let dir = temp_dir("main-again");
+    write(&dir, "b.xml", r#"<mujoco><include file="main.xml"/></mujoco>"#);
+    let main = write(&dir, "main.xml", r#"<mujoco><include file="b.xml"/></mujoco>"#);
+    let (kind, file, _) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludeCycle(p) if p.ends_with("main.xml")), "{kind}");
+    assert_eq!(file, "b.xml");
+
+    // In-memory files follow the same rule (by their path as written, normalised).
+    for main in [
+        r#"<mujoco><include file="a.xml"/><include file="a.xml"/></mujoco>"#,
+        r#"<mujoco><include file="a.xml"/><include file="./a.xml"/></mujoco>"#,
+        r#"<mujoco><include file="a.xml"/><include file="b.xml"/></mujoco>"#,
+    ] {
+        let err = ReadOptions::new()
+            .asset("a.xml", geoms.as_bytes().to_vec())
+            .asset("./a.xml", geoms.as_bytes().to_vec())
+            .asset("b.xml", br#"<mujoco><include file="a.xml"/></mujoco>"#.to_vec())
+            .read_str(main)
+            .unwrap_err();
+        assert!(
+            matches!(err.kind(), ErrorKind::IncludedTwice(p) if p.ends_with("a.xml")),
+            "{main}: {err}"
+        );
+    }
+}
+
+/// What MuJoCo 4.0 accepts stays accepted: one file included once and also named as
+/// an asset `<model>` (its own include tree), two asset models that each include the
+/// same file, and a file included by one model read twice.
+#[test]
+fn a_file_in_several_include_trees_is_fine() {
+    let dir = temp_dir("trees");
+    write(&dir, "a.xml", r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#);
+    write(&dir, "b.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    write(&dir, "c.xml", r#"<mujoco><include file="a.xml"/></mujoco>"#);
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="a.xml"/><asset><model name="m1" file="b.xml"/><model name="m2" file="c.xml"/><model name="m3" file="a.xml"/></asset></mujoco>"#,
+    );
     let m = Model::from_path(&main).unwrap();
-    assert!(m.find(Namespace::Body, "x").is_some() && m.find(Namespace::Body, "y").is_some());
+    assert_eq!(m.find_all(Namespace::Geom).len(), 1);
+    assert_eq!(m.find_all(Namespace::Model).len(), 3);
+    // Reading again is a new include tree.
+    assert_eq!(Model::from_path(&main).unwrap(), m);
+}
+
+/// Told apart by canonical path, a file reached through a symlink is the file it
+/// points at: included under both names it is refused (MuJoCo compares the paths as
+/// written and reads it twice), so that no spelling reads a file twice.
+#[cfg(unix)]
+#[test]
+fn a_file_included_again_through_a_symlink_is_included_twice() {
+    let dir = temp_dir("symlinked-include");
+    write(&dir, "a.xml", r#"<mujoco><worldbody><geom size="1"/></worldbody></mujoco>"#);
+    std::os::unix::fs::symlink("a.xml", dir.join("l.xml")).unwrap();
+    let main = write(
+        &dir,
+        "main.xml",
+        r#"<mujoco><include file="a.xml"/><include file="l.xml"/></mujoco>"#,
+    );
+    let (kind, file, at) = where_refused(&main);
+    assert!(matches!(&kind, ErrorKind::IncludedTwice(p) if p.ends_with("l.xml")), "{kind}");
+    assert_eq!((file.as_str(), at), ("main.xml", (1, 32)));
 }
 
 /// A chain main → inc1 → … → incN, each adding one body.
@@ -510,4 +646,152 @@ fn include_copy_merges_a_20_000_deep_chain_without_overflow() {
     assert!(matches!(err.kind(), ErrorKind::DuplicateIdentifier { .. }), "{err}");
     let copied = Model::new("m").include_copy(&deep, false).unwrap();
     assert_eq!(copied.find_all(Namespace::Body).len(), 20_000);
+}
+
+// ---- line endings -----------------------------------------------------------------------
+
+/// The position of the error reading `lines` joined by each of `\n`, `\r\n` and a lone
+/// `\r`: the same for all three (asserted), returned with its kind.
+fn position_for_every_line_ending(lines: &[&str]) -> (ErrorKind, (u32, u32)) {
+    let mut seen: Vec<(ErrorKind, (u32, u32))> = Vec::new();
+    for ending in ["\n", "\r\n", "\r"] {
+        let text = lines.join(ending);
+        let err = ReadOptions::new()
+            .asset("inc.xml", text.clone().into_bytes())
+            .read_bytes(text.as_bytes())
+            .unwrap_err();
+        let pos = err.pos().map(|p| (p.line, p.column)).expect("a position");
+        seen.push((err.kind().clone(), pos));
+        // The same text as an included file: the same position, in that file.
+        let err = ReadOptions::new()
+            .asset("inc.xml", text.into_bytes())
+            .read_str("<mujoco>\n<include file=\"inc.xml\"/></mujoco>")
+            .unwrap_err();
+        assert!(err.file().is_some_and(|f| f.ends_with("inc.xml")), "{err}");
+        seen.push((err.kind().clone(), err.pos().map(|p| (p.line, p.column)).unwrap()));
+    }
+    assert!(seen.windows(2).all(|w| w[0] == w[1]), "{lines:?}: {seen:?}");
+    seen.swap_remove(0)
+}
+
+#[test]
+fn error_positions_are_the_same_for_lf_crlf_and_cr_line_endings() {
+    // A syntax error (quick-xml's position), an unknown attribute, a bad value, an
+    // invalid child, a duplicate name, invalid UTF-8 and an unclosed element (at the
+    // end of the text), each after lines of every kind, one of them empty.
+    let head = ["<mujoco>", "", "  <worldbody>", "    <body name=\"é\">"];
+    let cases: [(&str, (u32, u32)); 5] = [
+        ("      <geom size=\"1\"></body>", (5, 22)),
+        ("      <geom bogus=\"1\"/>", (5, 7)),
+        ("      <geom size=\"1 x\"/>", (5, 7)),
+        ("      <bogus/>", (5, 7)),
+        ("      <body name=\"é\"/>", (5, 7)),
+    ];
+    for (line, want) in cases {
+        let mut lines = head.to_vec();
+        lines.extend([line, "    </body>", "  </worldbody>", "</mujoco>"]);
+        let (kind, pos) = position_for_every_line_ending(&lines);
+        assert_eq!(pos, want, "{line}: {kind}");
+    }
+    let (kind, pos) = position_for_every_line_ending(&head);
+    assert!(matches!(kind, ErrorKind::Syntax(_)), "{kind}");
+    assert_eq!(pos, (4, 20), "{kind}");
+    // Invalid UTF-8 (found before any XML is read).
+    for ending in ["\n", "\r\n", "\r"] {
+        let mut bytes = head.join(ending).into_bytes();
+        bytes.extend_from_slice(ending.as_bytes());
+        bytes.extend_from_slice(b"  <geom name=\"");
+        bytes.push(0xff);
+        let err = ReadOptions::new().read_bytes(&bytes).unwrap_err();
+        assert_eq!(err.kind(), &ErrorKind::InvalidUtf8);
+        assert_eq!(err.pos().map(|p| (p.line, p.column)), Some((5, 15)), "{ending:?}");
+    }
+}
+
+// ---- error messages -----------------------------------------------------------------------
+
+/// Every error message quotes a huge name or value (a tag, an attribute, an
+/// identifier, a scope, a model name, a file name, a value) cut to its first 200
+/// characters and `...`, as values always were: the message stays short and still
+/// says which name.
+#[test]
+fn error_messages_cut_every_huge_name_at_200_characters() {
+    let n = "n".repeat(1_000_000);
+    // The name's first 200 characters (less what is quoted with it, such as `</`),
+    // never more, and the mark of the cut.
+    let check = |what: &str, message: String| {
+        assert!(message.len() < 1500, "{what}: {} bytes: {}", message.len(), &message[..300]);
+        assert!(message.contains(&format!("{}...", &n[..190])), "{what}: {message}");
+        assert!(!message.contains(&n[..201]), "{what}: {message}");
+    };
+    let read = |text: String| Model::from_xml_str(&text).unwrap_err().to_string();
+    let reads = [
+        ("root tag", format!("<{n}/>")),
+        ("child tag", format!("<mujoco><{n}/></mujoco>")),
+        ("attribute", format!(r#"<mujoco><worldbody><geom {n}="1"/></worldbody></mujoco>"#)),
+        ("value", format!(r#"<mujoco><worldbody><geom size="{n}"/></worldbody></mujoco>"#)),
+        ("keyword", format!(r#"<mujoco><worldbody><geom type="{n}"/></worldbody></mujoco>"#)),
+        (
+            "identifier",
+            format!(
+                r#"<mujoco><worldbody><body name="{n}"/><body name="{n}"/></worldbody></mujoco>"#
+            ),
+        ),
+        ("end tag", format!("<mujoco></{n}>")),
+        ("entity", format!(r#"<mujoco model="&{n};"/>"#)),
+        ("file", format!(r#"<mujoco><asset><mesh file="{n}.stl"/></asset></mujoco>"#)),
+        ("include", format!(r#"<mujoco><include file="{n}.xml"/></mujoco>"#)),
+    ];
+    for (what, text) in reads {
+        check(what, read(text));
+    }
+    // A file included twice, under a huge in-memory name.
+    let err = ReadOptions::new()
+        .asset(&n, b"<mujoco/>".to_vec())
+        .read_str(&format!(r#"<mujoco><include file="{n}"/><include file="{n}"/></mujoco>"#))
+        .unwrap_err();
+    check("included twice", err.to_string());
+
+    // Edits.
+    let m = Model::new("m");
+    let world = m.worldbody();
+    check("lookup", m.lookup(Namespace::Body, &n).unwrap_err().to_string());
+    check("added tag", m.add(&world, Element::new(&n)).unwrap_err().to_string());
+    let e = m.add(&world, Element::new("geom").attr(n.as_str(), 1.0)).unwrap_err();
+    check("added attribute", e.to_string());
+    let (named, _) = m.add(&world, Element::new("body").attr("name", n.as_str())).unwrap();
+    let e =
+        named.add(&named.worldbody(), Element::new("body").attr("name", n.as_str())).unwrap_err();
+    check("added identifier", e.to_string());
+    // The element path of an edit error names the element by its (cut) name.
+    let body = named.lookup(Namespace::Body, &n).unwrap();
+    let e = named.add(&body, Element::new("bogus")).unwrap_err();
+    check("element path", e.to_string());
+    check("scope", m.detach(&n).unwrap_err().to_string());
+    check("scope path", m.detach(format!("{n}//x")).unwrap_err().to_string());
+    // A locator of a model with a huge name, used on another model.
+    let other = Model::new(&n);
+    let (other, g) = other.add(&other.worldbody(), Element::new("geom")).unwrap();
+    check("model name", m.remove(&g).unwrap_err().to_string());
+    // A freejoint on the frame of a robot with a huge name, attached inside a body.
+    let (arena, site) = {
+        let a = Model::new("arena");
+        let (a, b) = a.add(&a.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+        let (a, s) = a.add(&b, Element::new("site").attr("name", "s")).unwrap();
+        (a, s)
+    };
+    let (arena, frame) = arena.attach(&site, &other).unwrap();
+    let e = arena.add(&frame.frame().clone(), Element::new("freejoint")).unwrap_err();
+    check("frame scope", e.to_string());
+
+    // Writing and exporting.
+    let file = |bytes: &[u8]| Value::File(mjcf::FileAsset::new(&n, ".stl", bytes.to_vec()));
+    let plain = mjcf::WriteOptions { filename_with_hash: false, ..mjcf::WriteOptions::default() };
+    let (x, _) =
+        m.add(&m.asset(), Element::new("mesh").attr("name", "a").attr("file", file(b"a"))).unwrap();
+    let (x, _) =
+        x.add(&x.asset(), Element::new("mesh").attr("name", "b").attr("file", file(b"b"))).unwrap();
+    check("file name clash", x.assets(&plain).unwrap_err().to_string());
+    let dir = temp_dir("long-names");
+    check("export name", m.export(&dir, &n, &plain).unwrap_err().to_string());
 }

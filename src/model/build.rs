@@ -5,12 +5,16 @@
 //! model, where every problem becomes one [`EditError`](crate::EditError) naming the
 //! element's path. So builder calls chain without a `?` after each setter.
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
 use crate::seq::Seq;
 use smol_str::SmolStr;
 
 use super::tree::{Attr, ElementId, Node};
 use crate::error::{ErrorKind, ValueError};
-use crate::files::FileContext;
+use crate::files::{FileContext, Located};
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
 use crate::value::{self, AttrInput, FileAsset, Value};
 
@@ -264,6 +268,8 @@ impl Basepaths {
 pub(crate) struct ValueCtx<'a> {
     pub(crate) files: &'a FileContext,
     pub(crate) basepaths: &'a Basepaths,
+    /// The asset model files read so far by this read or edit.
+    pub(crate) model_files: &'a ModelFiles,
 }
 
 /// An attribute value as given: text (read from XML, or given as text through the
@@ -340,14 +346,12 @@ impl ValueCtx<'_> {
             }
             if let AttrType::File { path_namespace } = spec.ty {
                 let base = self.basepaths.for_namespace(path_namespace);
-                let (full, contents) = self.files.read(base, text)?;
-                let mut asset = FileAsset::from_path_and_contents(text, contents);
-                if kind.tag() == "model" {
+                let asset = if kind.tag() == "model" {
                     // A model file brings the files it names (exported beside it).
-                    let ctx = self.files.for_included(&full);
-                    asset =
-                        asset.with_companions(model_file_companions(&ctx, asset.contents(), 0)?);
-                }
+                    self.model_files.read(self.files, base, text, 0)?.0
+                } else {
+                    FileAsset::from_path_and_contents(text, self.files.read(base, text)?.1)
+                };
                 if kind.tag() == "mesh"
                     && !matches!(
                         asset.extension().to_ascii_lowercase().as_str(),
@@ -370,68 +374,199 @@ impl ValueCtx<'_> {
 /// How deep model files may name model files.
 const MAX_MODEL_FILE_DEPTH: usize = 16;
 
-/// The files an MJCF model file names (read from `ctx`, its folder), by their paths
-/// relative to it as MuJoCo resolves them: `file` attributes, with the compiler's
-/// `meshdir` (meshes, height fields, skins, flexcomps), `texturedir` (textures) and
-/// `assetdir` (both), the last setting of each applying to every file as MuJoCo's
-/// compiler settings do; model files and includes it names bring theirs in turn.
-/// A file that is not UTF-8 or not well-formed has none (MuJoCo reports it).
-fn model_file_companions(
-    ctx: &FileContext,
-    bytes: &[u8],
-    depth: usize,
-) -> Result<Vec<(SmolStr, FileAsset)>, ErrorKind> {
-    use quick_xml::events::Event;
-    let Ok(text) = std::str::from_utf8(bytes) else { return Ok(Vec::new()) };
-    if depth >= MAX_MODEL_FILE_DEPTH {
-        return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
-    }
-    // (tag, file) of every element with a file, and the compiler's folders.
-    let mut refs: Vec<(String, String)> = Vec::new();
-    let mut dirs: [Option<String>; 3] = [None, None, None];
-    let mut reader = quick_xml::Reader::from_str(text);
-    loop {
-        let tag = match reader.read_event() {
-            Ok(Event::Start(t) | Event::Empty(t)) => t,
-            Ok(Event::Eof) | Err(_) => break,
-            Ok(_) => continue,
+/// The most files one model file may bring (with those of the model files it names,
+/// each path once).
+pub(crate) const MAX_MODEL_FILE_COMPANIONS: usize = 100_000;
+
+/// The asset model files (`<model file>`, and the model files and includes they name
+/// in turn) that one read or one edit has read, each read once however often it is
+/// named: a folder of files that each name the next several times costs one read of
+/// each file, not one per path through them.
+#[derive(Debug, Default)]
+pub(crate) struct ModelFiles(RefCell<HashMap<FileKey, ModelFile>>);
+
+/// A model file, told apart by what its companions depend on: on disk, its canonical
+/// path and the canonical folder its own files resolve in (they differ for a
+/// symlinked file, whose files are found beside the link); in memory, its contents (by
+/// their SHA-1: one file under two keys is one file) and the folder its files on disk
+/// resolve in.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum FileKey {
+    Disk(PathBuf, PathBuf),
+    Memory(String, Option<PathBuf>),
+}
+
+/// A model file read: the asset (its companions set) and how many model files deep
+/// it goes (1 for a file naming none, 0 for one that is not UTF-8, which has none).
+#[derive(Clone, Debug)]
+struct ModelFile {
+    asset: FileAsset,
+    levels: usize,
+}
+
+impl ModelFiles {
+    /// The model file `file` (as written, with the folder setting `dir`) found from
+    /// `ctx`, at `depth` model files below the model being read, with the files it
+    /// names (its companions), and how many levels deep it goes. Read and scanned once
+    /// per [`ModelFiles`]; a file met again is only named again (and refused as
+    /// [`ErrorKind::TooDeep`] if its levels reach too deep from here, as reading it
+    /// again would).
+    ///
+    /// Time: O(1) lookups for a file met before, plus O(length of `file`) to name it;
+    /// else reading and scanning it (and, once each, the model files it names).
+    fn read(
+        &self,
+        ctx: &FileContext,
+        dir: Option<&str>,
+        file: &str,
+        depth: usize,
+    ) -> Result<(FileAsset, usize), ErrorKind> {
+        let (full, located) = ctx.locate(dir, file)?;
+        let inner = ctx.for_included(&full);
+        let key = match &located {
+            Located::Memory { bytes, .. } => {
+                let sha1 = sha1_smol::Sha1::from(&bytes[..]).digest().to_string();
+                FileKey::Memory(sha1, inner.base_dir.clone())
+            }
+            Located::Disk(path) => {
+                let folder = inner.base_dir.as_deref().unwrap_or(Path::new("."));
+                FileKey::Disk(canonical_or_same(&path.open), canonical_or_same(folder))
+            }
         };
-        let name = tag.name().as_ref().to_string();
-        for a in tag.attributes().flatten() {
-            let Ok(v) = a.normalized_value(quick_xml::XmlVersion::default()) else { continue };
-            match (name.as_str(), a.key.as_ref()) {
-                ("compiler", "meshdir") => dirs[0] = Some(v.into_owned()),
-                ("compiler", "texturedir") => dirs[1] = Some(v.into_owned()),
-                ("compiler", "assetdir") => dirs[2] = Some(v.into_owned()),
-                (_, "file") if !v.is_empty() => refs.push((name.clone(), v.into_owned())),
-                _ => {}
+        let named = |m: &ModelFile| (m.asset.named_as(file), m.levels);
+        if let Some(m) = self.0.borrow().get(&key) {
+            if m.levels > 0 && depth + m.levels > MAX_MODEL_FILE_DEPTH {
+                return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
+            }
+            return Ok(named(m));
+        }
+        let bytes = match located {
+            Located::Memory { bytes, .. } => bytes,
+            Located::Disk(path) => ctx.read_disk(&path)?.into(),
+        };
+        let (companions, levels) = self.companions(&inner, &bytes, depth)?;
+        let asset = FileAsset::from_path_and_contents(file, bytes).with_companions(companions);
+        let m = ModelFile { asset, levels };
+        let out = named(&m);
+        self.0.borrow_mut().insert(key, m);
+        Ok(out)
+    }
+
+    /// The files an MJCF model file names (read from `ctx`, its folder), by their
+    /// paths relative to it as MuJoCo resolves them: `file` attributes, with the
+    /// compiler's `meshdir` (meshes, height fields, skins, flexcomps), `texturedir`
+    /// (textures) and `assetdir` (both), the last setting of each applying to every
+    /// file as MuJoCo's compiler settings do; model files and includes it names bring
+    /// theirs in turn. Each path once (a path named again names the same file). A file
+    /// that is not UTF-8 or not well-formed has none (MuJoCo reports it). Also how many
+    /// model files deep it goes.
+    ///
+    /// Time: O(size of the file + its companions), plus reading the files it names
+    /// (each model file once per [`ModelFiles`]).
+    fn companions(
+        &self,
+        ctx: &FileContext,
+        bytes: &[u8],
+        depth: usize,
+    ) -> Result<(Vec<(SmolStr, FileAsset)>, usize), ErrorKind> {
+        use quick_xml::events::Event;
+        let Ok(text) = std::str::from_utf8(bytes) else { return Ok((Vec::new(), 0)) };
+        if depth >= MAX_MODEL_FILE_DEPTH {
+            return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
+        }
+        // (tag, file) of every element with a file, and the compiler's folders.
+        let mut refs: Vec<(String, String)> = Vec::new();
+        let mut dirs: [Option<String>; 3] = [None, None, None];
+        let mut reader = quick_xml::Reader::from_str(text);
+        loop {
+            let tag = match reader.read_event() {
+                Ok(Event::Start(t) | Event::Empty(t)) => t,
+                Ok(Event::Eof) | Err(_) => break,
+                Ok(_) => continue,
+            };
+            let name = tag.name().as_ref().to_string();
+            for a in tag.attributes().flatten() {
+                let Ok(v) = a.normalized_value(quick_xml::XmlVersion::default()) else {
+                    continue;
+                };
+                match (name.as_str(), a.key.as_ref()) {
+                    ("compiler", "meshdir") => dirs[0] = Some(v.into_owned()),
+                    ("compiler", "texturedir") => dirs[1] = Some(v.into_owned()),
+                    ("compiler", "assetdir") => dirs[2] = Some(v.into_owned()),
+                    (_, "file") if !v.is_empty() => refs.push((name.clone(), v.into_owned())),
+                    _ => {}
+                }
             }
         }
+        let [meshdir, texturedir, assetdir] = dirs;
+        let mut out = Companions::default();
+        let mut levels = 1;
+        for (tag, file) in refs {
+            let dir = match tag.as_str() {
+                "mesh" | "hfield" | "skin" | "flexcomp" => {
+                    meshdir.as_deref().or(assetdir.as_deref())
+                }
+                "texture" => texturedir.as_deref().or(assetdir.as_deref()),
+                _ => None,
+            };
+            let joined = SmolStr::from(crate::files::normalize(&crate::files::join(dir, &file)));
+            if out.has(&joined) {
+                // Named again: the same file, with the same files of its own.
+                continue;
+            }
+            let asset = if matches!(tag.as_str(), "model" | "include") {
+                let (asset, below) = self.read(ctx, dir, &file, depth + 1)?;
+                levels = levels.max(below + 1);
+                // Its files, relative to it: relative to this one, under its folder.
+                let folder = joined.rsplit_once('/').map_or("", |(d, _)| d);
+                for (path, f) in asset.companions() {
+                    let path = crate::files::normalize(&crate::files::join(Some(folder), path));
+                    out.push(path.into(), f)?;
+                }
+                asset.named_as(&joined).with_companions(Vec::new())
+            } else {
+                FileAsset::from_path_and_contents(&joined, ctx.read(dir, &file)?.1)
+            };
+            out.push(joined, &asset)?;
+        }
+        Ok((out.list, levels))
     }
-    let [meshdir, texturedir, assetdir] = dirs;
-    let mut out = Vec::new();
-    for (tag, file) in refs {
-        let dir = match tag.as_str() {
-            "mesh" | "hfield" | "skin" | "flexcomp" => meshdir.as_deref().or(assetdir.as_deref()),
-            "texture" => texturedir.as_deref().or(assetdir.as_deref()),
-            _ => None,
-        };
-        let joined = crate::files::normalize(&crate::files::join(dir, &file));
-        let (full, contents) = ctx.read(dir, &file)?;
-        let asset = FileAsset::from_path_and_contents(&joined, contents);
-        if matches!(tag.as_str(), "model" | "include") {
-            // Its files, relative to it: relative to this one, under its folder.
-            let folder = joined.rsplit_once('/').map_or("", |(d, _)| d);
-            for (path, f) in
-                model_file_companions(&ctx.for_included(&full), asset.contents(), depth + 1)?
-            {
-                let path = crate::files::normalize(&crate::files::join(Some(folder), &path));
-                out.push((SmolStr::from(path), f));
+}
+
+/// The files a model file brings, each path once (a second file under one path, with
+/// other contents, is kept, for export to report the clash), at most
+/// [`MAX_MODEL_FILE_COMPANIONS`].
+#[derive(Default)]
+struct Companions {
+    list: Vec<(SmolStr, FileAsset)>,
+    /// Paths in `list`, with the position of the first file under each.
+    at: HashMap<SmolStr, usize>,
+}
+
+impl Companions {
+    fn has(&self, path: &str) -> bool {
+        self.at.contains_key(path)
+    }
+
+    fn push(&mut self, path: SmolStr, file: &FileAsset) -> Result<(), ErrorKind> {
+        if let Some(&i) = self.at.get(&path) {
+            if self.list[i].1 == *file {
+                return Ok(());
             }
         }
-        out.push((SmolStr::from(joined), asset));
+        if self.list.len() >= MAX_MODEL_FILE_COMPANIONS {
+            return Err(ErrorKind::TooManyFiles(MAX_MODEL_FILE_COMPANIONS));
+        }
+        self.at.entry(path.clone()).or_insert(self.list.len());
+        self.list.push((path, file.clone()));
+        Ok(())
     }
-    Ok(out)
+}
+
+/// The canonical path of `p` (symlinks followed), or `p` itself if it has none (a
+/// file that does not exist; reading it reports that).
+fn canonical_or_same(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
 /// The text of an input, for error messages (cut to 200 characters).
@@ -446,11 +581,9 @@ pub(crate) fn input_text(input: &AttrInput) -> String {
     cut(&s)
 }
 
+/// A value as errors keep it: [`crate::error::cut`], owned.
 pub(crate) fn cut(s: &str) -> String {
-    match s.char_indices().nth(200) {
-        Some((i, _)) => format!("{}...", &s[..i]),
-        None => s.to_string(),
-    }
+    crate::error::cut(s).into_owned()
 }
 
 /// Applies assignments to an attribute list, keeping schema order. Returns the

@@ -169,7 +169,10 @@ impl Model {
     /// The changes that turn `self` (the old version) into `other` (the new one).
     ///
     /// Elements are matched by their stable [`crate::ElementId`]: an element of both
-    /// versions is compared (attributes, attachment, children), one of only one version
+    /// versions is compared (attributes, attachment, children; attribute values as
+    /// [`Value`](crate::Value)'s `==` compares them, floats by their bits with every
+    /// NaN one value, so setting NaN again is no change and `0` to `-0` is one), one
+    /// of only one version
     /// is `Added` or `Removed` (its subtree's top only), one with another parent or
     /// out of order among its siblings is [`Change::Moved`]. An attachment frame is
     /// `Attached`, `Detached` or `RenamedScope`d, and when the model it holds differs,

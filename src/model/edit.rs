@@ -12,7 +12,7 @@ use crate::error::{EditError, ErrorKind};
 use crate::schema::{AttrType, Multiplicity};
 use crate::value::{AttrInput, Value};
 
-use super::build::{self, Input, ValueCtx, apply_attrs, check_class_named, empty_node};
+use super::build::{self, Input, ModelFiles, ValueCtx, apply_attrs, check_class_named, empty_node};
 use super::frame::{check_frame_child, frame_settable};
 use super::settings::is_settings_section;
 use super::tree::{ElementId, Node};
@@ -187,7 +187,8 @@ impl Model {
         };
         let parent_node = self.node_at(&path).ok_or_else(|| self.stale(loc))?;
         let basepaths = self.basepaths();
-        let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
+        let model_files = ModelFiles::default();
+        let ctx = ValueCtx { files: &self.files, basepaths: &basepaths, model_files: &model_files };
         let node = build::build(&ctx, parent_node.kind(), element, &mut sub)
             .map_err(|k| EditError::new(k, at(self, &sub)))?;
         if let Some(a) = parent_node.attached() {
@@ -382,6 +383,7 @@ impl Model {
         let kind = node.kind();
         let mut basepaths = self.basepaths();
         let mut changes = Vec::with_capacity(attrs.len());
+        let model_files = ModelFiles::default();
         for (name, input) in attrs.items() {
             if node.attached().is_some() && !frame_settable(name) {
                 let valid = super::frame::FRAME_ATTRS.iter().copied().chain(["mocap"]);
@@ -391,7 +393,8 @@ impl Model {
                     suggestion: crate::suggest::closest(name, valid),
                 }));
             }
-            let ctx = ValueCtx { files: &self.files, basepaths: &basepaths };
+            let ctx =
+                ValueCtx { files: &self.files, basepaths: &basepaths, model_files: &model_files };
             let change = ctx.assign(kind, name, input.as_ref().map(Input::Given)).map_err(err)?;
             // A folder setting applies to file attributes set after it in the same call.
             if let AttrType::Basepath { path_namespace } = kind.attr(change.0).ty {

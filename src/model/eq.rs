@@ -34,6 +34,61 @@ pub(crate) fn equal(a: &Model, b: &Model) -> bool {
     equal_with_stats(a, b).0
 }
 
+/// A hash of `model`'s content, consistent with [`equal`]: equal models hash alike.
+/// It covers the name, the tree (kinds, attributes, children in order) and the
+/// attachments (scope names and the attached models' hashes), floats by their bits
+/// with every NaN one value (as `Value`'s equality compares them); a resolved
+/// reference counts only as one (its target's id differs between equal models), and
+/// the attach order is left out.
+///
+/// Time: O(n) for the n elements of the distinct model values of the composition
+/// (each attached value once, however often it is attached). Iterative.
+pub(crate) fn content_hash(model: &Model) -> u64 {
+    use std::hash::{Hash, Hasher};
+    // The distinct models of the composition, each after the models attached in it.
+    let mut order: Vec<&Model> = Vec::new();
+    let mut seen: HashSet<*const ()> = HashSet::new();
+    let mut stack: Vec<(&Model, bool)> = vec![(model, false)];
+    while let Some((m, done)) = stack.pop() {
+        if done {
+            order.push(m);
+            continue;
+        }
+        if !seen.insert(m.root.as_ptr()) {
+            continue;
+        }
+        stack.push((m, true));
+        for node in m.root.descendants() {
+            if let Some(a) = node.attached() {
+                stack.push((&a.model, false));
+            }
+        }
+    }
+    let mut hashes: HashMap<*const (), u64> = HashMap::with_capacity(order.len());
+    for m in order {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        m.name().hash(&mut h);
+        for node in m.root.descendants() {
+            node.kind().hash(&mut h);
+            h.write_usize(node.attrs().len());
+            for (i, v) in node.attrs() {
+                h.write_u16(*i);
+                match v {
+                    Value::Reference(Reference::Element(_)) => h.write_u8(0xff),
+                    _ => v.hash(&mut h),
+                }
+            }
+            h.write_usize(node.children().len());
+            if let Some(a) = node.attached() {
+                a.scope.hash(&mut h);
+                h.write_u64(hashes.get(&a.model.root.as_ptr()).copied().unwrap_or(0));
+            }
+        }
+        hashes.insert(m.root.as_ptr(), h.finish());
+    }
+    hashes.get(&model.root.as_ptr()).copied().unwrap_or(0)
+}
+
 /// What a comparison looked at, for tests of its cost.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct EqStats {
@@ -266,6 +321,78 @@ mod tests {
         assert_ne!(a, b.rename_scope("robot_6/gripper", "hand").unwrap());
         assert_ne!(a, b.with_name("other"));
         assert_ne!(a, b.detach("robot_6/gripper").unwrap());
+    }
+
+    fn hash_of<T: std::hash::Hash>(x: &T) -> u64 {
+        use std::hash::Hasher;
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        x.hash(&mut h);
+        h.finish()
+    }
+
+    /// Floats compare as the writer writes them, in `==`, `Hash` and `diff` alike:
+    /// every NaN (any payload, either sign) is one value, so two versions that set
+    /// NaN are equal, hash alike and differ in nothing; `0` and `-0` (written `0` and
+    /// `-0`) differ.
+    #[test]
+    fn floats_compare_by_their_bits_with_every_nan_one_value_in_eq_hash_and_diff() {
+        let base = Model::from_xml_str(
+            r#"<mujoco><worldbody><geom name="g" size="1"/></worldbody></mujoco>"#,
+        )
+        .unwrap();
+        let g = base.find(Namespace::Geom, "g").unwrap();
+        let nans = [f64::NAN, -f64::NAN, f64::from_bits(0x7ff8_0000_0000_0001)];
+        let set =
+            |x: f64| base.set_attr(&g, "size", [x, 1.0]).unwrap().set_attr(&g, "mass", x).unwrap();
+        let first = set(f64::NAN);
+        for x in nans {
+            let other = set(x);
+            assert!(!other.ptr_eq(&first));
+            assert_eq!(other, first, "{x:?}");
+            assert_eq!(hash_of(&other), hash_of(&first), "{x:?}");
+            assert_eq!(other.diff(&first), [], "{x:?}");
+            assert_eq!(other.to_xml_string().unwrap(), first.to_xml_string().unwrap());
+        }
+        // Two models read from one text with NaN: equal, with one hash.
+        let text = r#"<mujoco><worldbody><geom size="nan 1" mass="nan"/></worldbody></mujoco>"#;
+        let (a, b) = (Model::from_xml_str(text).unwrap(), Model::from_xml_str(text).unwrap());
+        assert_eq!(a, b);
+        assert_eq!(hash_of(&a), hash_of(&b));
+        // `0` and `-0` are written differently: unequal, and a change.
+        let (zero, minus) = (set(0.0), set(-0.0));
+        assert_ne!(zero.to_xml_string().unwrap(), minus.to_xml_string().unwrap());
+        assert_ne!(zero, minus);
+        assert_ne!(hash_of(&zero), hash_of(&minus));
+        let changes = zero.diff(&minus);
+        assert_eq!(changes.len(), 2, "{changes:?}");
+        assert!(changes.iter().all(|c| matches!(c, crate::Change::AttrChanged { .. })));
+        // Values and the builder's inputs follow the same rule.
+        assert_eq!(Value::Float(f64::NAN), Value::Float(-f64::NAN));
+        assert_eq!(hash_of(&Value::Float(f64::NAN)), hash_of(&Value::Float(-f64::NAN)));
+        assert_ne!(Value::Float(0.0), Value::Float(-0.0));
+        assert_eq!(
+            Element::new("geom").attr("size", [f64::NAN]),
+            Element::new("geom").attr("size", [-f64::NAN])
+        );
+    }
+
+    /// Equal models hash alike, however they were built (two threads, other ids,
+    /// attached models shared or not); a change of one attribute changes the hash.
+    #[test]
+    fn equal_models_hash_alike() {
+        let (a, b) = on_two_threads(scene);
+        assert_eq!(a, b);
+        assert_eq!(hash_of(&a), hash_of(&b));
+        let geom = b.find(Namespace::Geom, "robot_6/gripper/torso").unwrap();
+        let c = b.set_attr(&geom, "size", [0.3]).unwrap();
+        assert_ne!(hash_of(&a), hash_of(&c));
+        let (a, b) = on_two_threads(|| Model::from_xml_str(XML).unwrap());
+        assert_eq!(hash_of(&a), hash_of(&b));
+        // The index's cache of merged settings is the interior mutability clippy sees;
+        // it takes no part in equality or the hash.
+        #[allow(clippy::mutable_key_type)]
+        let set: std::collections::HashSet<Model> = [a, b, c].into_iter().collect();
+        assert_eq!(set.len(), 2);
     }
 
     #[test]

@@ -35,8 +35,8 @@ use tree::{ElementId, Node};
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
 pub(crate) use build::{
-    Basepaths, Input, ValueCtx, check_class_named, check_required, empty_node, empty_node_with_id,
-    name_from_file,
+    Basepaths, Input, ModelFiles, ValueCtx, check_class_named, check_required, empty_node,
+    empty_node_with_id, name_from_file,
 };
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
@@ -594,12 +594,32 @@ impl PartialEq for Model {
     /// name, tree (kinds, attributes, children in order) and attachments (scope names,
     /// attach order, attached models, recursively). Element ids are not compared, but
     /// resolved references must point at corresponding elements (a dead reference
-    /// matches only a dead one).
+    /// matches only a dead one). Floats compare as the writer writes them: by their
+    /// bits, every NaN being one value (two versions that set the same NaN are
+    /// equal; `0` and `-0` differ), as [`Value`]'s equality, [`Hash`] and
+    /// [`Model::diff`] do.
     ///
     /// Time: proportional to what differs for versions of one model (shared subtrees
     /// are skipped unexamined); O(n) for models built separately (`model/eq.rs`).
     fn eq(&self, other: &Model) -> bool {
         eq::equal(self, other)
+    }
+}
+
+/// Content equality is an equivalence: every value equals itself (NaN included).
+impl Eq for Model {}
+
+impl std::hash::Hash for Model {
+    /// A hash of the content, consistent with `==` (equal models hash alike): the
+    /// name, the tree, the attachments (scope names and attached models), floats by
+    /// their bits with every NaN one value. Resolved references count without their
+    /// targets and the attach order is left out, so models that differ only there
+    /// hash alike (and compare unequal). Not cached: each call walks the model.
+    ///
+    /// Time: O(n) for the n elements of the distinct model values of the composition
+    /// (each attached value once, however often it is attached).
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        state.write_u64(eq::content_hash(self));
     }
 }
 

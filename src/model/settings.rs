@@ -243,9 +243,12 @@ pub(crate) fn combine(
 }
 
 /// Equality as the reference checks it: exact, with a one-entry array agreeing with
-/// any array made only of that entry.
+/// any array made only of that entry; floats compared as numbers, as the reference
+/// compares them (`0` agrees with `-0`, NaN with nothing), not as `Value`'s equality
+/// does.
 fn values_agree(a: &Value, b: &Value) -> bool {
     match (a, b) {
+        (Value::Float(x), Value::Float(y)) => x == y,
         (Value::Floats(x), Value::Floats(y)) => {
             x == y
                 || (x.len() == 1 && y.iter().all(|v| *v == x[0]))

@@ -180,6 +180,11 @@ impl Node {
     }
 
     /// Whether both are the same shared node.
+    /// The node's address, for telling shared nodes apart while they are borrowed.
+    pub(crate) fn as_ptr(&self) -> *const () {
+        Arc::as_ptr(&self.0).cast()
+    }
+
     pub(crate) fn ptr_eq(&self, other: &Node) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
     }

@@ -50,20 +50,34 @@ impl FileAsset {
     ///
     /// Time: as [`FileAsset::new`].
     pub fn from_path_and_contents(path: &str, contents: impl Into<Arc<[u8]>>) -> FileAsset {
+        FileAsset::new("", "", contents).named_as(path)
+    }
+
+    /// The same file (contents, hash, companions) under the name `path` gives it, as
+    /// [`FileAsset::from_path_and_contents`] names a file; the contents are not hashed
+    /// again.
+    ///
+    /// Time: O(length of `path`), and a copy of the companions' list handle.
+    pub(crate) fn named_as(&self, path: &str) -> FileAsset {
         let file = path.rsplit(['/', '\\']).next().unwrap_or(path);
         let (stem, ext) = match file.rfind('.') {
             Some(i) if i > 0 => (&file[..i], &file[i..]),
             _ => (file, ""),
         };
-        let asset = FileAsset::new(stem, ext, contents);
         // A name this crate (or dm_control) wrote, `stem-<sha1 of the contents>`, is
         // read as `stem`, so writing it again gives the same name, not a second hash.
-        match stem.strip_suffix(asset.sha1_hex()).and_then(|s| s.strip_suffix('-')) {
-            Some(original) if !original.is_empty() => {
-                FileAsset(Arc::new(FileData { stem: original.into(), ..FileData::clone(&asset.0) }))
-            }
-            _ => asset,
+        let stem = match stem.strip_suffix(self.sha1_hex()).and_then(|s| s.strip_suffix('-')) {
+            Some(original) if !original.is_empty() => original,
+            _ => stem,
+        };
+        if *self.0.stem == *stem && *self.0.extension == *ext {
+            return self.clone();
         }
+        FileAsset(Arc::new(FileData {
+            stem: stem.into(),
+            extension: ext.into(),
+            ..FileData::clone(&self.0)
+        }))
     }
 
     /// For a model file (an asset `<model file="child.xml">`), the files the model
@@ -77,7 +91,10 @@ impl FileAsset {
     }
 
     /// The same file with these companions.
-    pub(crate) fn with_companions(&self, companions: Vec<(SmolStr, FileAsset)>) -> FileAsset {
+    pub(crate) fn with_companions(
+        &self,
+        companions: impl Into<Arc<[(SmolStr, FileAsset)]>>,
+    ) -> FileAsset {
         FileAsset(Arc::new(FileData { companions: companions.into(), ..FileData::clone(&self.0) }))
     }
 
@@ -138,6 +155,17 @@ impl PartialEq for FileAsset {
             || (self.0.sha1 == other.0.sha1
                 && self.0.stem == other.0.stem
                 && self.0.extension == other.0.extension)
+    }
+}
+
+impl Eq for FileAsset {}
+
+impl std::hash::Hash for FileAsset {
+    /// Consistent with equality: the name and the contents' hash.
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.0.sha1.hash(state);
+        self.0.stem.hash(state);
+        self.0.extension.hash(state);
     }
 }
 

@@ -40,7 +40,13 @@ pub use file::FileAsset;
 pub(crate) use number::FloatStyle;
 
 /// The value of one attribute.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Equality and hashing compare floats as the writer writes them: by their bits
+/// (`0.0` and `-0.0`, written `0` and `-0`, differ), every NaN being one value (each
+/// is written `nan`). So `Value` is [`Eq`] and [`Hash`], a value set twice to NaN is
+/// equal to itself, and [`Model`](crate::Model)'s equality, hashing and
+/// [`diff`](crate::Model::diff) follow the same rule.
+#[derive(Clone, Debug)]
 pub enum Value {
     /// A float attribute.
     Float(f64),
@@ -84,7 +90,9 @@ pub enum Reference {
 /// Anything that converts into it can be passed to [`crate::Element::attr`] and
 /// [`crate::Attrs::set`]: text (`"0 0 1"`), numbers, arrays and slices of numbers,
 /// `bool` (for `true`/`false` keywords) and [`Value`].
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Equality compares numbers as [`Value`] does: by their bits, every NaN one value.
+#[derive(Clone, Debug)]
 pub enum AttrInput {
     /// XML text, parsed by the attribute's type.
     Text(SmolStr),
@@ -96,6 +104,78 @@ pub enum AttrInput {
     Bool(bool),
     /// A typed value, used as is when its type fits.
     Value(Value),
+}
+
+/// Whether two floats are the same value as the writer writes them: the same bits,
+/// or both NaN.
+pub(crate) fn same_float(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+}
+
+fn same_floats(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same_float(*x, *y))
+}
+
+/// The bits [`same_float`] compares: every NaN gives the bits of one NaN.
+fn float_bits(x: f64) -> u64 {
+    if x.is_nan() { f64::NAN.to_bits() } else { x.to_bits() }
+}
+
+impl PartialEq for Value {
+    /// Equality with floats compared by their bits, every NaN one value (see
+    /// [`Value`]).
+    fn eq(&self, other: &Value) -> bool {
+        match (self, other) {
+            (Value::Float(a), Value::Float(b)) => same_float(*a, *b),
+            (Value::Floats(a), Value::Floats(b)) => Arc::ptr_eq(a, b) || same_floats(a, b),
+            (Value::Int(a), Value::Int(b)) => a == b,
+            (Value::Ints(a), Value::Ints(b)) => a == b,
+            (Value::String(a), Value::String(b)) => a == b,
+            (Value::Keyword(a), Value::Keyword(b)) => a == b,
+            (Value::Identifier(a), Value::Identifier(b)) => a == b,
+            (Value::Reference(a), Value::Reference(b)) => a == b,
+            (Value::File(a), Value::File(b)) => a == b,
+            (Value::Basepath(a), Value::Basepath(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
+impl Eq for Value {}
+
+impl std::hash::Hash for Value {
+    /// Consistent with equality: floats by their bits, every NaN hashed as one.
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        std::mem::discriminant(self).hash(state);
+        match self {
+            Value::Float(x) => state.write_u64(float_bits(*x)),
+            Value::Floats(xs) => {
+                state.write_usize(xs.len());
+                xs.iter().for_each(|x| state.write_u64(float_bits(*x)));
+            }
+            Value::Int(x) => x.hash(state),
+            Value::Ints(xs) => xs.hash(state),
+            Value::String(t) | Value::Identifier(t) | Value::Basepath(t) => t.hash(state),
+            Value::Keyword(k) => k.hash(state),
+            Value::Reference(r) => r.hash(state),
+            Value::File(f) => f.hash(state),
+        }
+    }
+}
+
+impl PartialEq for AttrInput {
+    /// Equality with numbers compared by their bits, every NaN one value (see
+    /// [`Value`]).
+    fn eq(&self, other: &AttrInput) -> bool {
+        match (self, other) {
+            (AttrInput::Text(a), AttrInput::Text(b)) => a == b,
+            (AttrInput::Number(a), AttrInput::Number(b)) => same_float(*a, *b),
+            (AttrInput::Numbers(a), AttrInput::Numbers(b)) => same_floats(a, b),
+            (AttrInput::Bool(a), AttrInput::Bool(b)) => a == b,
+            (AttrInput::Value(a), AttrInput::Value(b)) => a == b,
+            _ => false,
+        }
+    }
 }
 
 impl From<&str> for AttrInput {

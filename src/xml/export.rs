@@ -10,7 +10,7 @@
 // - Attached model values are told apart by their root node (`Model::ptr_eq`), found
 //   by the root's id first: a value attached many times is scanned once.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::io;
 use std::path::{Component, Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -103,23 +103,42 @@ impl Model {
     /// into one folder share their meshes, written once). Returns the path of the MJCF
     /// file.
     ///
-    /// Each file is written under a temporary name in `dir` and then renamed, and the
-    /// MJCF file comes last: an export that fails leaves no MJCF file under
+    /// Every name is checked before anything is written: the MJCF file's name must be
+    /// one plain file name, a file's name a file name or a relative path inside `dir`
+    /// (a model file's own files keep their folders: `parts/arm.stl`), none holding
+    /// NUL or a component over 255 bytes (the limit of common file systems), none
+    /// both a file and a folder. Export writes only inside `dir`: the folders of a
+    /// path inside it are real folders, found or created (never through a symlink,
+    /// which could lead out of `dir`), and a file is written under a fresh temporary
+    /// name (never opening an existing file or link) and then renamed into place (a
+    /// symlink under the final name is replaced, not followed). `dir` itself is the
+    /// caller's to choose: it may be, or pass through, a symlink. (These checks see
+    /// the folder as it is; another process changing it during the export is not
+    /// guarded against.)
+    ///
+    /// The MJCF file comes last: an export that fails leaves no MJCF file under
     /// `xml_file_name` (a file there before stays as it was), and no partly written
     /// file under any name the MJCF uses. Exports of several models into one folder
     /// may run concurrently.
     ///
     /// Time: O(n + f log f) as [`Model::assets`], plus writing the MJCF text and the
-    /// bytes of every distinct file.
+    /// bytes of every distinct file, plus O(p) file-system checks for the p folder
+    /// components of the files' paths.
     ///
     /// # Errors
+    /// Before anything is written (the folder not even created):
     /// [`ExportError::Write`] when the model cannot be written
     /// ([`Model::to_xml_string_with`]) or two files would get one name
-    /// ([`Model::assets`]; also a file named `xml_file_name`); nothing is written then.
-    /// [`ExportError::Io`], naming the folder or file and the operating system's
-    /// reason, when `dir` cannot be created or a file cannot be written there;
-    /// `xml_file_name` or a file's name that is not a plain file name (a path, `..`)
-    /// is refused the same way (kind `InvalidInput`) before anything is written.
+    /// ([`Model::assets`]; also a file named `xml_file_name`);
+    /// [`ExportError::Io`] of kind `InvalidInput` for a name that is not a plain file
+    /// name (`xml_file_name`) or a relative path inside `dir` (`..`, an absolute path,
+    /// NUL, a component over 255 bytes, a file that is also another file's folder);
+    /// [`ExportError::SymlinkedFolder`] when a folder of a file's path inside `dir` is
+    /// a symlink; [`ExportError::Io`] of kind `NotADirectory` when it is a file, and
+    /// of kind `IsADirectory` when a folder is there under a file's name.
+    /// While writing: [`ExportError::Io`], naming the folder or file and the
+    /// operating system's reason, when `dir` or a folder in it cannot be created or a
+    /// file cannot be written there.
     ///
     /// # Examples
     /// ```
@@ -144,7 +163,7 @@ impl Model {
         options: &WriteOptions,
     ) -> Result<PathBuf, ExportError> {
         let dir = dir.as_ref();
-        let xml_path = plain_file(dir, xml_file_name)?;
+        let xml_path = checked_name(dir, xml_file_name, false)?;
         let xml = self.to_xml_string_with(options)?;
         let assets = self.assets(options)?;
         if assets.contains_key(xml_file_name) {
@@ -152,18 +171,45 @@ impl Model {
         }
         let files = assets
             .iter()
-            .map(|(name, file)| Ok((relative_file(dir, name)?, file.contents())))
+            .map(|(name, file)| {
+                Ok((name.as_str(), checked_name(dir, name, true)?, file.contents()))
+            })
             .collect::<Result<Vec<_>, ExportError>>()?;
-        std::fs::create_dir_all(dir).map_err(|e| io_error(dir, &e))?;
-        for (path, contents) in files {
-            if let Some(folder) = path.parent().filter(|f| *f != dir) {
-                std::fs::create_dir_all(folder).map_err(|e| io_error(folder, &e))?;
-            }
-            if !holds(&path, contents) {
-                write_by_rename(dir, &path, contents)?;
+        // The folders the files need, each once, outer ones first (`a` before `a/b`).
+        let mut folders: BTreeSet<&str> = BTreeSet::new();
+        for (name, _, _) in &files {
+            folders.extend(name.match_indices('/').map(|(i, _)| &name[..i]));
+        }
+        if let Some(both) = std::iter::once(xml_file_name)
+            .chain(files.iter().map(|(name, _, _)| *name))
+            .find(|name| folders.contains(name))
+        {
+            return Err(invalid(dir.join(both), "both a file and a folder of another file"));
+        }
+        // Those already there must be real folders (checked again when created), and
+        // no file may have a folder under its name.
+        for folder in &folders {
+            real_folder(&dir.join(folder), false)?;
+        }
+        for path in files.iter().map(|(_, path, _)| path).chain([&xml_path]) {
+            if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+                return Err(ExportError::Io {
+                    path: path.clone(),
+                    kind: io::ErrorKind::IsADirectory,
+                    reason: "a folder has this name".to_string(),
+                });
             }
         }
-        write_by_rename(dir, &xml_path, xml.as_bytes())?;
+        std::fs::create_dir_all(dir).map_err(|e| io_error(dir, &e))?;
+        for folder in &folders {
+            real_folder(&dir.join(folder), true)?;
+        }
+        for (_, path, contents) in files {
+            if !holds(&path, contents) {
+                write_by_rename(&path, contents)?;
+            }
+        }
+        write_by_rename(&xml_path, xml.as_bytes())?;
         Ok(xml_path)
     }
 }
@@ -191,33 +237,79 @@ fn add_file(
     Ok(())
 }
 
-/// `dir/name`, if `name` is one plain file name (no folder, not `.` or `..`).
-fn plain_file(dir: &Path, name: &str) -> Result<PathBuf, ExportError> {
-    let mut parts = Path::new(name).components();
-    match (parts.next(), parts.next()) {
-        (Some(Component::Normal(n)), None) if n == name => Ok(dir.join(name)),
-        _ => Err(ExportError::Io {
-            path: dir.join(name),
-            kind: io::ErrorKind::InvalidInput,
-            reason: "not a plain file name".to_string(),
-        }),
+/// The longest name of one file or folder (`NAME_MAX` of common file systems), in bytes.
+const MAX_NAME_BYTES: usize = 255;
+
+/// The longest path given to the operating system, in bytes (Linux's `PATH_MAX`, with
+/// the terminating NUL).
+const MAX_PATH_BYTES: usize = 4095;
+
+/// `dir/name` for a name checked to be one plain file name, or (`nested`) a relative
+/// path inside `dir` (components separated by `/`, none empty, `.` or `..`); no NUL,
+/// no component over [`MAX_NAME_BYTES`], and the whole path within [`MAX_PATH_BYTES`].
+fn checked_name(dir: &Path, name: &str, nested: bool) -> Result<PathBuf, ExportError> {
+    let path = dir.join(name);
+    let reason = if name.contains('\0') {
+        Some("a name cannot hold NUL")
+    } else if !nested && name.contains('/') {
+        Some("not a plain file name")
+    } else if name.split('/').any(|c| c.is_empty() || c == "." || c == "..") {
+        Some(if nested {
+            "not a file name or a path inside the folder"
+        } else {
+            "not a plain file name"
+        })
+    } else if name.split('/').any(|c| c.len() > MAX_NAME_BYTES) {
+        Some("a file name longer than 255 bytes")
+    } else if path.as_os_str().len() > MAX_PATH_BYTES {
+        Some("a path longer than 4095 bytes")
+    } else {
+        // A name that is a path on its own (`/x` on Unix, `C:x` on Windows).
+        let plain = Path::new(name).components().all(|c| matches!(c, Component::Normal(_)));
+        (!plain).then_some("not a file name or a path inside the folder")
+    };
+    match reason {
+        Some(reason) => Err(invalid(path, reason)),
+        None => Ok(path),
     }
 }
 
-/// `dir/name` for a file name or a relative path inside `dir` (a model file's own
-/// files keep their folders: `assets/arm.stl`); no `..`, no absolute path.
-fn relative_file(dir: &Path, name: &str) -> Result<PathBuf, ExportError> {
-    let inside =
-        !name.is_empty() && Path::new(name).components().all(|c| matches!(c, Component::Normal(_)));
-    if inside {
-        Ok(dir.join(name))
-    } else {
-        Err(ExportError::Io {
-            path: dir.join(name),
-            kind: io::ErrorKind::InvalidInput,
-            reason: "not a file name or a path inside the folder".to_string(),
-        })
+fn invalid(path: PathBuf, reason: &str) -> ExportError {
+    ExportError::Io { path, kind: io::ErrorKind::InvalidInput, reason: reason.to_string() }
+}
+
+/// Checks that `folder` is a real folder (not a symlink, whatever it points at),
+/// creating it if missing and `create`; without `create`, a missing folder is fine.
+fn real_folder(folder: &Path, create: bool) -> Result<(), ExportError> {
+    // Twice at most: a folder another export creates between the check and ours is
+    // checked again.
+    for _ in 0..2 {
+        match std::fs::symlink_metadata(folder) {
+            Ok(m) if m.file_type().is_symlink() => {
+                return Err(ExportError::SymlinkedFolder { path: folder.to_path_buf() });
+            }
+            Ok(m) if m.is_dir() => return Ok(()),
+            Ok(_) => {
+                return Err(ExportError::Io {
+                    path: folder.to_path_buf(),
+                    kind: io::ErrorKind::NotADirectory,
+                    reason: "not a folder".to_string(),
+                });
+            }
+            Err(e) if e.kind() == io::ErrorKind::NotFound && !create => return Ok(()),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => match std::fs::create_dir(folder) {
+                Ok(()) => return Ok(()),
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
+                Err(e) => return Err(io_error(folder, &e)),
+            },
+            Err(e) => return Err(io_error(folder, &e)),
+        }
     }
+    Err(ExportError::Io {
+        path: folder.to_path_buf(),
+        kind: io::ErrorKind::AlreadyExists,
+        reason: "changed while it was created".to_string(),
+    })
 }
 
 fn io_error(path: &Path, e: &io::Error) -> ExportError {
@@ -231,17 +323,62 @@ fn holds(path: &Path, contents: &[u8]) -> bool {
         && std::fs::read(path).is_ok_and(|b| b == contents)
 }
 
-/// Writes `contents` to a fresh temporary file in `dir`, then renames it to `path`
-/// (which is in `dir`); on failure the temporary file is removed and the error names
-/// `path`.
-fn write_by_rename(dir: &Path, path: &Path, contents: &[u8]) -> Result<(), ExportError> {
-    static NEXT: AtomicU64 = AtomicU64::new(0);
-    let n = NEXT.fetch_add(1, Ordering::Relaxed);
-    // Short, so that it fits wherever the final name fits.
-    let tmp = dir.join(format!(".mjcf-export-{}-{n}.tmp", std::process::id()));
-    let result = std::fs::write(&tmp, contents).and_then(|()| std::fs::rename(&tmp, path));
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io_error(path, &e)
-    })
+/// The number of the next temporary file of this process.
+static NEXT: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `contents` to a fresh temporary file beside `path` (created new: never an
+/// existing file or link), then renames it to `path`; on failure the temporary file
+/// is removed and the error names `path`.
+fn write_by_rename(path: &Path, contents: &[u8]) -> Result<(), ExportError> {
+    use std::io::Write;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    loop {
+        let n = NEXT.fetch_add(1, Ordering::Relaxed);
+        // Short, so that it fits wherever the final name fits.
+        let tmp = folder.join(format!(".mjcf-export-{}-{n}.tmp", std::process::id()));
+        let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp);
+        let mut file = match file {
+            // Left by an earlier process of the same id: take the next number.
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(io_error(path, &e)),
+            Ok(f) => f,
+        };
+        let result = file.write_all(contents).and_then(|()| {
+            drop(file);
+            std::fs::rename(&tmp, path)
+        });
+        return result.map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            io_error(path, &e)
+        });
+    }
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    /// Links placed at the temporary names the next writes would take (say, by
+    /// another user of a shared folder) are never opened: each write takes a name
+    /// that does not exist yet, and the file the links point at stays as it was.
+    #[test]
+    fn temporary_files_never_open_an_existing_link() {
+        let dir = std::env::temp_dir().join(format!("mjcf-export-unit-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let target = dir.with_extension("target");
+        std::fs::write(&target, b"keep").unwrap();
+        let first = NEXT.load(Ordering::Relaxed);
+        for n in first..first + 20 {
+            let tmp = dir.join(format!(".mjcf-export-{}-{n}.tmp", std::process::id()));
+            std::os::unix::fs::symlink(&target, tmp).unwrap();
+        }
+        write_by_rename(&dir.join("a.stl"), b"new").unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"keep");
+        assert_eq!(std::fs::read(dir.join("a.stl")).unwrap(), b"new");
+        assert!(std::fs::symlink_metadata(dir.join("a.stl")).unwrap().file_type().is_file());
+        assert!(NEXT.load(Ordering::Relaxed) > first + 20);
+        std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::remove_file(&target).unwrap();
+    }
 }

@@ -9,6 +9,7 @@
 //! - a singleton tag given twice merges (later values win per attribute);
 //! - root-level `<include file=…>` is read as its own model (relative to the including
 //!   file's folder) and merged with [`Model::include_copy`] after the main content;
+//!   one model's include tree includes each file once (MuJoCo's rule);
 //! - file attributes are read at once, relative to the model's folder and the
 //!   `compiler` folder settings seen so far; a nameless mesh, texture or height field
 //!   is named after its file;
@@ -19,7 +20,7 @@
 // no recursion) and turned into nodes bottom-up at the end; children always come after
 // their parent in the arena.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -31,8 +32,8 @@ use crate::error::{ErrorKind, ReadError, TextPos};
 use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, Node, no_attrs, take_attrs};
 use crate::model::{
-    Basepaths, Input, Model, ReadIndex, ValueCtx, check_class_named, check_required, empty_node,
-    empty_node_with_id, name_from_file,
+    Basepaths, Input, Model, ModelFiles, ReadIndex, ValueCtx, check_class_named, check_required,
+    empty_node, empty_node_with_id, name_from_file,
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
 use crate::value::{Reference, Value};
@@ -153,7 +154,9 @@ impl ReadOptions {
     /// Reads a model from MJCF text.
     ///
     /// Time: O(L + n · log n) for `L` bytes of text holding `n` elements, plus reading
-    /// and hashing the files it names, plus O(in-memory files) to copy their table
+    /// and hashing the files it names (each asset model file, and the files it names
+    /// in turn, read once however often it is named; each include file at most once,
+    /// as one model includes a file once), plus O(in-memory files) to copy their table
     /// for the model. Each root-level `<include>` is read the same way and
     /// merged by [`Model::include_copy`] (O(n · log n) each); a model with includes
     /// then resolves references by name again, and a reference that names nothing
@@ -176,14 +179,22 @@ impl ReadOptions {
     ///   include that cannot be read, or (confined) lies outside the model's folder;
     /// - [`ErrorKind::InvalidUtf8`]: an included file that is not UTF-8;
     /// - [`ErrorKind::IncludeCycle`]: an include that includes itself;
+    /// - [`ErrorKind::IncludedTwice`]: an include of a file the model's include tree
+    ///   already includes (anywhere in it, by its canonical path; in-memory files by
+    ///   their path as written, normalised), as MuJoCo refuses it;
+    /// - [`ErrorKind::TooManyFiles`]: an asset `<model>` file that brings more than
+    ///   100,000 files (counting the model files it names, each path once);
     /// - [`ErrorKind::TooDeep`]: elements nested deeper than
-    ///   [`max_depth`](ReadOptions::max_depth), or includes more than 100 deep;
+    ///   [`max_depth`](ReadOptions::max_depth), includes more than 100 deep, or asset
+    ///   model files naming model files more than 16 deep;
     /// - [`ErrorKind::AttributeConflict`]: an include whose global settings disagree
     ///   with the including model's.
     pub fn read_str(&self, text: &str) -> Result<Model, ReadError> {
         let ctx = self.context(self.base_dir.clone());
-        // The main text takes the first place in the include stack, as a file does.
-        read_document(text, None, ctx, self.max_depth, &mut vec![PathBuf::from("<main text>")])
+        // The main text takes the first place in the include tree, as a file does.
+        let mut tree = Includes::new(PathBuf::from("<main text>"));
+        let model_files = ModelFiles::default();
+        read_document(text, None, ctx, self.max_depth, &mut tree, &model_files)
     }
 
     /// Reads a model from MJCF bytes (which must be UTF-8).
@@ -213,8 +224,10 @@ impl ReadOptions {
         let text = utf8(&bytes, Some(path))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let ctx = self.context(Some(dir));
-        let mut stack = vec![canonical(path)];
-        read_document(text, Some(path.to_path_buf()), ctx, self.max_depth, &mut stack)
+        let mut tree = Includes::new(canonical(path));
+        let model_files = ModelFiles::default();
+        let file = Some(path.to_path_buf());
+        read_document(text, file, ctx, self.max_depth, &mut tree, &model_files)
     }
 }
 
@@ -265,6 +278,45 @@ impl Model {
     /// ```
     pub fn from_path(path: impl AsRef<Path>) -> Result<Model, ReadError> {
         ReadOptions::new().read_path(path)
+    }
+}
+
+/// The files of one model's include tree, for the rules on them: a file includes
+/// neither itself (a cycle) nor a file the tree already includes (MuJoCo includes
+/// each file once per model), and includes nest at most [`MAX_INCLUDE_DEPTH`] deep.
+/// Files are told apart by their canonical path (symlinks followed), in-memory files
+/// by their path as written, normalised.
+struct Includes {
+    /// The main file and the includes above the one being read.
+    stack: Vec<PathBuf>,
+    /// Every file of the tree so far, the main file too.
+    seen: HashSet<PathBuf>,
+}
+
+impl Includes {
+    fn new(main: PathBuf) -> Includes {
+        Includes { seen: HashSet::from([main.clone()]), stack: vec![main] }
+    }
+
+    /// Enters the file `key` (checked by [`include_source`]).
+    fn push(&mut self, key: PathBuf) {
+        self.seen.insert(key.clone());
+        self.stack.push(key);
+    }
+
+    fn pop(&mut self) {
+        self.stack.pop();
+    }
+
+    /// The error for including `key` (shown as `shown`) here, if any.
+    fn refuse(&self, key: &Path, shown: &Path) -> Option<ErrorKind> {
+        if self.stack.iter().any(|k| k == key) {
+            Some(ErrorKind::IncludeCycle(shown.to_path_buf()))
+        } else if self.seen.contains(key) {
+            Some(ErrorKind::IncludedTwice(shown.to_path_buf()))
+        } else {
+            None
+        }
     }
 }
 
@@ -364,6 +416,8 @@ struct Reader<'t> {
     text: &'t str,
     file: Option<PathBuf>,
     ctx: FileContext,
+    /// The asset model files this read has read.
+    model_files: &'t ModelFiles,
     arena: Vec<Pending>,
     basepaths: Basepaths,
     /// Where each global setting (an attribute of an element inside `compiler`,
@@ -419,7 +473,11 @@ impl Reader<'_> {
             let Some(index) = found else {
                 return Err(self.err(ErrorKind::unknown_attribute(kind, name), offset));
             };
-            let ctx = ValueCtx { files: &self.ctx, basepaths: &self.basepaths };
+            let ctx = ValueCtx {
+                files: &self.ctx,
+                basepaths: &self.basepaths,
+                model_files: self.model_files,
+            };
             let value = ctx
                 .assign_at(kind, index, Some(Input::Text(&raw)))
                 .map_err(|k| self.err(k, offset))?;
@@ -488,7 +546,7 @@ fn parse(
     r: &mut Reader<'_>,
     root_kind: ElementKind,
     max_depth: usize,
-    include_stack: &mut Vec<PathBuf>,
+    tree: &mut Includes,
 ) -> Result<Parsed, ReadError> {
     let mut stack: Vec<usize> = Vec::new();
     let mut xml = quick_xml::Reader::from_str(r.text);
@@ -557,14 +615,14 @@ fn parse(
         {
             // Inside an element (MuJoCo accepts `<include>` anywhere): the included
             // file's root's children are read in its place.
-            inline_include(r, &tag, offset, parent, max_depth, include_stack)?;
+            inline_include(r, &tag, offset, parent, max_depth, tree)?;
             if !empty {
                 stack.push(usize::MAX);
             }
             continue;
         }
         if parent == 0 && name == "include" {
-            let inc = read_include(r, &tag, offset, max_depth, include_stack)?;
+            let inc = read_include(r, &tag, offset, max_depth, tree)?;
             // The compiler's folders are global in MuJoCo: those the included file
             // sets apply to the files named after the include here too.
             let folders = inc.basepaths();
@@ -653,19 +711,20 @@ fn read_document(
     file: Option<PathBuf>,
     ctx: FileContext,
     max_depth: usize,
-    include_stack: &mut Vec<PathBuf>,
+    tree: &mut Includes,
+    model_files: &ModelFiles,
 ) -> Result<Model, ReadError> {
     let mut r = Reader {
         text,
         file,
         ctx,
+        model_files,
         arena: Vec::new(),
         basepaths: Basepaths::default(),
         settings_set_at: HashMap::new(),
         scratch: Vec::new(),
     };
-    let Parsed { includes, model_name } =
-        parse(&mut r, ElementKind::ROOT, max_depth, include_stack)?;
+    let Parsed { includes, model_name } = parse(&mut r, ElementKind::ROOT, max_depth, tree)?;
     let model = finish(&mut r, model_name)?;
     if includes.is_empty() {
         return Ok(model);
@@ -689,7 +748,7 @@ fn include_source(
     r: &Reader<'_>,
     tag: &BytesStart<'_>,
     offset: usize,
-    include_stack: &[PathBuf],
+    tree: &Includes,
 ) -> Result<IncludeSource, ReadError> {
     let mut file: Option<String> = None;
     for a in tag.attributes() {
@@ -715,14 +774,14 @@ fn include_source(
         return Err(r.err(ErrorKind::MissingRequired { tag: "include", attribute: "file" }, offset));
     };
     // The stack holds the main file and the includes above this one.
-    if include_stack.len() > MAX_INCLUDE_DEPTH {
+    if tree.stack.len() > MAX_INCLUDE_DEPTH {
         return Err(r.err(ErrorKind::TooDeep(MAX_INCLUDE_DEPTH), offset));
     }
     // From the in-memory files first (then relative to nothing), else from disk.
     if let Some(bytes) = r.ctx.assets.as_ref().and_then(|a| a.get(&file)).cloned() {
-        let key = PathBuf::from(format!("<asset>{file}"));
-        if include_stack.contains(&key) {
-            return Err(r.err(ErrorKind::IncludeCycle(PathBuf::from(&file)), offset));
+        let key = PathBuf::from(format!("<asset>{}", files::normalize(&file)));
+        if let Some(refused) = tree.refuse(&key, Path::new(&file)) {
+            return Err(r.err(refused, offset));
         }
         let ctx = FileContext { base_dir: None, ..r.ctx.clone() };
         return Ok((bytes, PathBuf::from(&file), ctx, key));
@@ -732,8 +791,8 @@ fn include_source(
     let path = r.ctx.disk_path(&file).map_err(|k| r.err(k, offset))?;
     let full = path.full.clone();
     let key = canonical(&full);
-    if include_stack.contains(&key) {
-        return Err(r.err(ErrorKind::IncludeCycle(full), offset));
+    if let Some(refused) = tree.refuse(&key, &full) {
+        return Err(r.err(refused, offset));
     }
     let bytes = r.ctx.read_disk(&path).map_err(|k| r.err(k, offset))?;
     let ctx = r.ctx.for_included(&full);
@@ -746,13 +805,13 @@ fn read_include(
     tag: &BytesStart<'_>,
     offset: usize,
     max_depth: usize,
-    include_stack: &mut Vec<PathBuf>,
+    tree: &mut Includes,
 ) -> Result<Model, ReadError> {
-    let (bytes, file, ctx, key) = include_source(r, tag, offset, include_stack)?;
+    let (bytes, file, ctx, key) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
-    include_stack.push(key);
-    let res = read_document(text, Some(file.clone()), ctx, max_depth, include_stack);
-    include_stack.pop();
+    tree.push(key);
+    let res = read_document(text, Some(file.clone()), ctx, max_depth, tree, r.model_files);
+    tree.pop();
     res
 }
 
@@ -765,22 +824,23 @@ fn inline_include(
     offset: usize,
     parent: usize,
     max_depth: usize,
-    include_stack: &mut Vec<PathBuf>,
+    tree: &mut Includes,
 ) -> Result<(), ReadError> {
-    let (bytes, file, ctx, key) = include_source(r, tag, offset, include_stack)?;
+    let (bytes, file, ctx, key) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
     let mut sub = Reader {
         text,
         file: Some(file),
         ctx,
+        model_files: r.model_files,
         arena: Vec::new(),
         basepaths: r.basepaths.clone(),
         settings_set_at: HashMap::new(),
         scratch: Vec::new(),
     };
-    include_stack.push(key);
-    let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, include_stack);
-    include_stack.pop();
+    tree.push(key);
+    let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, tree);
+    tree.pop();
     let parsed = parsed?;
     if !parsed.includes.is_empty() {
         // Root-level includes of a file included inside an element cannot happen:

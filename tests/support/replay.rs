@@ -47,7 +47,9 @@ pub(crate) fn category(kind: &ErrorKind) -> &'static str {
         | ErrorKind::InvalidUtf8
         | ErrorKind::WrongRoot(_)
         | ErrorKind::TooDeep(_) => "parse_error",
-        ErrorKind::IncludeCycle(_) => "parse_error",
+        ErrorKind::IncludeCycle(_) | ErrorKind::IncludedTwice(_) | ErrorKind::TooManyFiles(_) => {
+            "parse_error"
+        }
         ErrorKind::InvalidChild { .. } | ErrorKind::FreejointNotTopLevel(_) => "invalid_child",
         ErrorKind::DuplicateChild(_) => "duplicate_child",
         ErrorKind::UnknownAttribute { .. } => "invalid_attribute",
