@@ -67,6 +67,26 @@ pub enum ProblemKind {
         /// The length the key has.
         found: usize,
     },
+    /// An array shorter than MuJoCo accepts (`pos="1 2"`: MuJoCo refuses it, "does not
+    /// have enough data"); the minimums are MuJoCo's, probed from MuJoCo 4.0.0.
+    ArrayTooShort {
+        /// The attribute.
+        attribute: &'static str,
+        /// The fewest numbers MuJoCo accepts.
+        minimum: usize,
+        /// The numbers it has.
+        found: usize,
+    },
+    /// Mesh data whose length is not a multiple of what one item takes (`vertex` and
+    /// `face` by 3, `texcoord` by 2); MuJoCo refuses it.
+    ArrayNotMultiple {
+        /// The attribute.
+        attribute: &'static str,
+        /// What its length must be a multiple of.
+        of: usize,
+        /// The numbers it has.
+        found: usize,
+    },
 }
 
 impl fmt::Display for Problem {
@@ -93,6 +113,16 @@ impl fmt::Display for Problem {
             ProblemKind::KeyLength { attribute, expected, found } => write!(
                 f,
                 "{}: '{attribute}' has {found} values, the composed model needs {expected}",
+                self.path
+            ),
+            ProblemKind::ArrayTooShort { attribute, minimum, found } => write!(
+                f,
+                "{}: '{attribute}' has {found} numbers, MuJoCo needs at least {minimum}",
+                self.path
+            ),
+            ProblemKind::ArrayNotMultiple { attribute, of, found } => write!(
+                f,
+                "{}: '{attribute}' has {found} numbers, MuJoCo needs a multiple of {of}",
                 self.path
             ),
         }
@@ -147,8 +177,9 @@ impl Model {
     /// references that name nothing in their model (the `joint="hinj"` typo, with the
     /// nearest names), references whose element was removed, moving bodies
     /// and attachment frames without mass (no inertial, no geom, no massive body
-    /// welded below), and keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
-    /// composed model. Empty when none is found; this is not a full MuJoCo compile
+    /// welded below), keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
+    /// composed model, and arrays shorter than MuJoCo accepts (`pos="1 2"`; the
+    /// minimums probed from MuJoCo 4.0.0). Empty when none is found; this is not a full MuJoCo compile
     /// (classes are followed for joint types only; `act`, `mpos` and `mquat` of keys
     /// are not checked).
     ///
@@ -369,6 +400,7 @@ impl Model {
                 }
             }
         }
+        self.short_arrays(&mut problems);
         problems
     }
 

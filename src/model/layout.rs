@@ -215,9 +215,19 @@ pub(crate) fn effective<'m>(
     attr: &str,
 ) -> Option<&'m Value> {
     let kind = node.kind();
-    if let Some(v) = kind.attr_index(attr).and_then(|i| node.attr(i)) {
-        return Some(v);
-    }
+    kind.attr_index(attr)
+        .and_then(|i| node.attr(i))
+        .or_else(|| from_classes(model, kind, class, attr))
+}
+
+/// The value of `attr` the defaults of `kind`'s tag in `class` and the classes above it
+/// give.
+pub(crate) fn from_classes<'m>(
+    model: &'m Model,
+    kind: ElementKind,
+    class: Option<ElementId>,
+    attr: &str,
+) -> Option<&'m Value> {
     let mut cur = class;
     while let Some(id) = cur {
         let class_node = model.node_by_id(id)?;

@@ -4,6 +4,7 @@
 //! every subtree the edit did not touch. Elements are named by a [`Loc`], which keeps
 //! pointing at the same element across versions (it holds the element's stable id).
 
+mod arrays;
 mod build;
 pub(crate) mod check;
 mod cursor;

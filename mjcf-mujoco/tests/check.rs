@@ -1,0 +1,120 @@
+//! MuJoCo judges `Model::check`: over generated scenes and their mutants (a reference
+//! that names nothing, an array shorter than MuJoCo accepts, a moving body without
+//! mass, a free joint beside another joint), `check()` reports a problem exactly when
+//! MuJoCo refuses the model.
+
+mod support;
+
+use mjcf::{AttrType, Event, Model, ProblemKind, Value, element};
+use mjcf_mujoco::{Error, MuJoCo};
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+use support::mujoco;
+
+/// Whether MuJoCo refuses the model; other failures are the test's.
+fn refused(mujoco: &MuJoCo, m: &Model) -> Result<bool, String> {
+    match mujoco.compile(m) {
+        Ok(_) => Ok(false),
+        Err(Error::Compile(_)) => Ok(true),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// The mutants of `m`: (what, model), a few of each kind.
+fn mutants(m: &Model) -> Vec<(String, Model)> {
+    let mut out = Vec::new();
+    let (mut refs, mut arrays) = (0, 0);
+    for event in m.walk() {
+        let Event::Enter(e) = event else { continue };
+        // Elements of attached models and default classes are left alone (a
+        // default's reference or array is checked where it is used).
+        if !e.scope().is_empty() || e.parent().is_some_and(|p| p.tag() == "default") {
+            continue;
+        }
+        for (name, value) in e.attrs() {
+            let i = e.kind().attr_index(name).unwrap_or(0);
+            let ty = &e.kind().attr(i).ty;
+            if refs < 3
+                && matches!(ty, AttrType::Reference(_))
+                && name != "class"
+                && name != "childclass"
+            {
+                if let Ok(v) = m.set_attr(&e.loc(), name, "no_such_name") {
+                    out.push((format!("<{}> {name}=\"no_such_name\"", e.tag()), v));
+                    refs += 1;
+                }
+            }
+            let len = match value {
+                Value::Floats(xs) => xs.len(),
+                _ => continue,
+            };
+            if arrays < 3 && len > 1 {
+                let shorter: Vec<f64> = value.as_floats().unwrap()[..len - 1].to_vec();
+                if let Ok(v) = m.set_attr(&e.loc(), name, shorter) {
+                    out.push((format!("<{}> {name} cut to {} numbers", e.tag(), len - 1), v));
+                    arrays += 1;
+                }
+            }
+        }
+    }
+    let w = m.worldbody();
+    let body = element!("body", name = "mutant_massless", pos = [0.0, 0.0, 5.0])
+        .child(element!("joint", name = "mutant_hinge"));
+    if let Ok((v, _)) = m.add(&w, body) {
+        out.push(("a moving body without mass".into(), v));
+    }
+    let body = element!("body", name = "mutant_free", pos = [0.0, 0.0, 5.0])
+        .child(element!("joint", name = "mutant_slide", type = "slide"))
+        .child(element!("freejoint", name = "mutant_freejoint"))
+        .child(element!("geom", size = [0.1]));
+    if let Ok((v, _)) = m.add(&w, body) {
+        out.push(("a free joint beside another joint".into(), v));
+    }
+    out
+}
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn check_reports_a_problem_exactly_when_mujoco_refuses() {
+    let mujoco = mujoco();
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &[11; 32]);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let scenes = mjcf::generate::strategy::scene_recipe();
+    let (mut judged, mut caught, mut disagreements) = (0, 0, Vec::new());
+    let mut by_kind = std::collections::BTreeMap::<&str, usize>::new();
+    for i in 0..150 {
+        let m = scenes.new_tree(&mut runner).unwrap().current().build();
+        assert!(m.check().is_empty() && !refused(&mujoco, &m).unwrap(), "generated {i}");
+        for (what, v) in mutants(&m) {
+            judged += 1;
+            let problems = v.check();
+            let refuses = refused(&mujoco, &v).unwrap();
+            caught += usize::from(refuses);
+            for p in &problems {
+                let kind = match p.kind {
+                    ProblemKind::DanglingReference { .. } => "dangling reference",
+                    ProblemKind::ArrayTooShort { .. } => "array too short",
+                    ProblemKind::MasslessMovingBody => "massless moving body",
+                    _ => "other",
+                };
+                *by_kind.entry(kind).or_default() += 1;
+            }
+            if problems.is_empty() == refuses {
+                disagreements.push(format!(
+                    "generated {i}, {what}: check says {:?}, MuJoCo {}",
+                    problems.iter().map(|p| p.to_string()).collect::<Vec<_>>(),
+                    if refuses { "refuses it" } else { "compiles it" }
+                ));
+            }
+        }
+    }
+    eprintln!(
+        "{judged} mutants of 150 generated scenes judged, {caught} refused by MuJoCo; check found {by_kind:?}; {} disagreements",
+        disagreements.len()
+    );
+    assert!(
+        disagreements.is_empty(),
+        "{}",
+        disagreements[..disagreements.len().min(20)].join("\n")
+    );
+}

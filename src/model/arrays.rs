@@ -1,0 +1,202 @@
+//! The shortest arrays MuJoCo accepts ([`ProblemKind::ArrayTooShort`]).
+//!
+//! The reader accepts an array shorter than its schema length, as dm_control does
+//! (`pos="1 2"`), but MuJoCo refuses many ("attribute 'pos' does not have enough
+//! data"). Which, and how short, is MuJoCo's: the table
+//! `schema/mujoco-4.0-array-minimums.txt` was probed from MuJoCo 4.0.0, and the
+//! binding crate's tests probe MuJoCo again and require the table to be exactly that.
+//! Elements inside default classes are not held to it (MuJoCo reads them alike, but
+//! the table was probed where elements are used). Beside the table, two length rules
+//! MuJoCo's compiler has, each checked against MuJoCo by the binding crate's tests: a
+//! geom's `size` needs as many numbers as its type uses (its classes' numbers fill
+//! in where it gives fewer), and mesh data comes in whole vertices, normals, faces
+//! and texture coordinates.
+
+use std::collections::HashMap;
+use std::sync::OnceLock;
+
+use crate::model::check::{Problem, ProblemKind};
+use crate::model::layout::{class_of, effective, from_classes};
+use crate::model::tree::ElementId;
+use crate::model::{Loc, Model, Step, Walk};
+use crate::schema::{AttrType, ElementKind};
+use crate::value::Value;
+
+const TABLE: &str = include_str!("../../schema/mujoco-4.0-array-minimums.txt");
+
+/// The tags from `<mujoco>` down to `kind`, joined with `/` (the table's paths).
+fn path(kind: ElementKind) -> String {
+    let mut tags = vec![kind.tag()];
+    let mut cur = kind.spec().parent;
+    while let Some(p) = cur {
+        tags.push(p.tag());
+        cur = p.spec().parent;
+    }
+    tags.reverse();
+    tags.join("/")
+}
+
+/// The minimum length of attribute `attr` of `kind`, where the table has one.
+pub(crate) fn minimum(kind: ElementKind, attr: usize) -> Option<usize> {
+    static MINIMUMS: OnceLock<HashMap<(ElementKind, usize), usize>> = OnceLock::new();
+    let table = MINIMUMS.get_or_init(|| {
+        let by_path: HashMap<String, ElementKind> =
+            ElementKind::all().map(|k| (path(k), k)).collect();
+        let mut out = HashMap::new();
+        for line in TABLE.lines().filter(|l| !l.starts_with('#')) {
+            let mut words = line.split_whitespace();
+            let (Some(p), Some(a), Some(n)) = (words.next(), words.next(), words.next()) else {
+                continue;
+            };
+            let (Some(kind), Ok(n)) = (by_path.get(p), n.parse()) else { continue };
+            if let Some(i) = kind.attr_index(a) {
+                out.insert((*kind, i), n);
+            }
+        }
+        out
+    });
+    table.get(&(kind, attr)).copied()
+}
+
+/// The numbers MuJoCo needs in a geom's `size` for its type (a `fromto` gives the
+/// length), each above 0: MuJoCo refuses fewer ("size 2 must be positive").
+fn geom_size_needed(geom_type: &str, fromto: bool) -> usize {
+    match geom_type {
+        "sphere" => 1,
+        "capsule" | "cylinder" => {
+            if fromto {
+                1
+            } else {
+                2
+            }
+        }
+        "box" | "ellipsoid" => {
+            if fromto {
+                1
+            } else {
+                3
+            }
+        }
+        "plane" => 3,
+        _ => 0,
+    }
+}
+
+/// The mesh arrays whose length must be a multiple: MuJoCo refuses others ("vertex
+/// data must be a multiple of 3").
+const MULTIPLES: [(&str, &str, usize); 4] =
+    [("mesh", "vertex", 3), ("mesh", "normal", 3), ("mesh", "face", 3), ("mesh", "texcoord", 2)];
+
+fn array_len(v: &Value) -> Option<usize> {
+    match v {
+        Value::Floats(xs) => Some(xs.len()),
+        Value::Ints(xs) => Some(xs.len()),
+        _ => None,
+    }
+}
+
+impl Model {
+    /// The arrays of the composed model that MuJoCo refuses for their length: shorter
+    /// than MuJoCo reads (the table), a geom `size` with fewer numbers than its type
+    /// needs (counting those its classes give), mesh data not a multiple of 3 (or 2).
+    pub(crate) fn short_arrays(&self, problems: &mut Vec<Problem>) {
+        let name = self.name();
+        let mut walk = Walk::new(self);
+        // Per open element: its instance and the `childclass` in force for its content.
+        let mut open: Vec<(usize, Option<ElementId>)> = Vec::new();
+        while let Some(step) = walk.next() {
+            let item = match step {
+                Step::Enter(item) => item,
+                Step::Leave(_) => {
+                    open.pop();
+                    continue;
+                }
+            };
+            let node = item.node;
+            let kind = node.kind();
+            let inherited = open.last().filter(|(i, _)| *i == item.inst).and_then(|(_, c)| *c);
+            let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
+                Some(Value::Reference(crate::value::Reference::Element(id))) => Some(*id),
+                _ => None,
+            });
+            open.push((item.inst, childclass.or(inherited)));
+            let inst = &walk.insts.list[item.inst];
+            let mut found_problems: Vec<ProblemKind> = Vec::new();
+            for (i, v) in node.attrs() {
+                let i = *i as usize;
+                let (Some(found), AttrType::Array { .. }) = (array_len(v), &kind.attr(i).ty) else {
+                    continue;
+                };
+                let attribute = kind.attr(i).name;
+                if let Some(minimum) = minimum(kind, i).filter(|m| found < *m) {
+                    found_problems.push(ProblemKind::ArrayTooShort { attribute, minimum, found });
+                }
+                if let Some((_, _, of)) =
+                    MULTIPLES.iter().find(|(t, a, _)| *t == kind.tag() && *a == attribute)
+                {
+                    if found % of != 0 {
+                        found_problems.push(ProblemKind::ArrayNotMultiple {
+                            attribute,
+                            of: *of,
+                            found,
+                        });
+                    }
+                }
+            }
+            let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
+            if kind.tag() == "geom" && !in_default {
+                let m = inst.model;
+                let class = class_of(node).or(inherited).or_else(|| {
+                    m.root.child_of_kind(ElementKind::ROOT.child("default")?).map(|n| n.id())
+                });
+                let ty =
+                    effective(m, node, class, "type").and_then(Value::as_str).unwrap_or("sphere");
+                let needed = geom_size_needed(ty, effective(m, node, class, "fromto").is_some());
+                let own = kind.attr_index("size").and_then(|i| node.attr(i)).and_then(array_len);
+                let given = from_classes(m, kind, class, "size").and_then(array_len);
+                let found = own.unwrap_or(0).max(given.unwrap_or(0));
+                if found < needed && (own.is_some() || given.is_some()) {
+                    found_problems.push(ProblemKind::ArrayTooShort {
+                        attribute: "size",
+                        minimum: needed,
+                        found,
+                    });
+                }
+            }
+            if found_problems.is_empty() {
+                continue;
+            }
+            let loc = Loc::scoped(inst.frames.clone(), node.id(), name);
+            let path = self.element(&loc).and_then(|e| e.full_name()).unwrap_or_else(|| {
+                let scope = self.scope_path(&loc).unwrap_or_default();
+                if scope.is_empty() {
+                    kind.tag().to_string()
+                } else {
+                    format!("{scope}/{}", kind.tag())
+                }
+            });
+            for kind in found_problems {
+                problems.push(Problem { loc: loc.clone(), path: path.clone(), kind });
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_names_only_elements_and_attributes_of_the_schema() {
+        let mut entries = 0;
+        for line in TABLE.lines().filter(|l| !l.starts_with('#')) {
+            let w: Vec<&str> = line.split_whitespace().collect();
+            let kind =
+                ElementKind::all().find(|k| path(*k) == w[0]).unwrap_or_else(|| panic!("{line}"));
+            let i = kind.attr_index(w[1]).unwrap_or_else(|| panic!("{line}"));
+            assert_eq!(minimum(kind, i), Some(w[2].parse().unwrap()), "{line}");
+            entries += 1;
+        }
+        assert!(entries > 200, "{entries}");
+    }
+}
