@@ -1,7 +1,7 @@
 //! Reference checks before MuJoCo (`Model::check`), who refers to an element
 //! (`references_to`), and the names MuJoCo will see (`full_name`, `from_full_name`).
 
-use mjcf::{EditError, Model, Namespace, ProblemKind, element};
+use mjcf::{EditError, Model, Namespace, ProblemKind, WriteOptions, element};
 
 #[path = "support/robot.rs"]
 mod robot;
@@ -96,22 +96,38 @@ fn a_moving_frame_without_mass_is_reported() -> Result<(), EditError> {
 }
 
 #[test]
-fn keys_that_do_not_fit_the_composed_model_are_reported() -> Result<(), EditError> {
+fn keys_are_held_to_the_model_they_will_be_written_for() -> Result<(), EditError> {
     // The robot's own key fits the robot (one hinge, one motor) ...
     let mut r = robot("robot");
-    r.add_mut(
-        &r.section("keyframe").unwrap(),
-        element!("key", name = "home", qpos = [0.5], ctrl = [0.0]),
-    )?;
+    let keys = r.section("keyframe").unwrap();
+    r.add_mut(&keys, element!("key", name = "home", qpos = [0.5], ctrl = [0.0]))?;
     assert_eq!(r.check(), vec![]);
-    // ... but not a scene of two robots on free frames (nq = 2 * (7 + 1)).
+    // ... and in a scene of two robots on free frames (nq = 2 * (7 + 1)) MuJoCo takes
+    // it (a shorter key is padded), but written as it is its values would fall on the
+    // first free joint: check says so, and what to do.
     let mut scene = Model::new("scene");
     for _ in 0..2 {
         let a = scene.attach_mut(&scene.worldbody(), &r)?;
         scene.add_mut(a.frame(), element!("freejoint"))?;
     }
-    let lengths: Vec<(&str, usize, usize)> = scene
-        .check()
+    // (The frames move without mass: the other problem found here.)
+    let keys = |problems: Vec<mjcf::Problem>| -> Vec<mjcf::Problem> {
+        problems
+            .into_iter()
+            .filter(|p| !matches!(p.kind, ProblemKind::MasslessMovingBody))
+            .collect()
+    };
+    let kinds: Vec<ProblemKind> = keys(scene.check()).into_iter().map(|p| p.kind).collect();
+    assert_eq!(kinds, [ProblemKind::UncomposedKey, ProblemKind::UncomposedKey]);
+    assert!(keys(scene.check())[0].to_string().contains("merge_keyframes"));
+    // Composed (merge_keyframes), each robot's key fits its robot.
+    let merged = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
+    assert_eq!(keys(scene.check_with(&merged)), vec![]);
+    // A key with more values than there is room for: MuJoCo refuses it.
+    let long = r.set_attr(&r.find(Namespace::Key, "home").unwrap(), "qpos", [0.5, 0.1])?;
+    let a = scene.attach(&scene.worldbody(), &long)?.0;
+    let lengths: Vec<(&str, usize, usize)> = a
+        .check_with(&merged)
         .iter()
         .filter_map(|p| match p.kind {
             ProblemKind::KeyLength { attribute, expected, found } => {
@@ -120,7 +136,14 @@ fn keys_that_do_not_fit_the_composed_model_are_reported() -> Result<(), EditErro
             _ => None,
         })
         .collect();
-    assert_eq!(lengths, [("qpos", 16, 1), ("ctrl", 2, 1), ("qpos", 16, 1), ("ctrl", 2, 1)]);
+    assert_eq!(lengths, [("qpos", 1, 2)]);
+    let own = scene.add(&scene.section("keyframe").unwrap(), element!("key", qpos = [0.0; 17]))?.0;
+    let lengths: Vec<_> = own
+        .check()
+        .into_iter()
+        .filter(|p| matches!(p.kind, ProblemKind::KeyLength { .. }))
+        .collect();
+    assert_eq!(lengths.len(), 1, "{lengths:?}");
     Ok(())
 }
 

@@ -1,7 +1,8 @@
 //! MuJoCo judges `Model::check`: over generated scenes and their mutants (a reference
 //! that names nothing, an array shorter than MuJoCo accepts, a moving body without
-//! mass, a free joint beside another joint), `check()` reports a problem exactly when
-//! MuJoCo refuses the model.
+//! mass, a free joint beside another joint, a key longer than the model), `check()`
+//! reports a problem of a kind MuJoCo refuses exactly when MuJoCo refuses the model.
+//! (`UncomposedKey` is no such kind: MuJoCo compiles the key, on the wrong joints.)
 
 mod support;
 
@@ -70,7 +71,19 @@ fn mutants(m: &Model) -> Vec<(String, Model)> {
     if let Ok((v, _)) = m.add(&w, body) {
         out.push(("a free joint beside another joint".into(), v));
     }
+    let nq = m.layout().nq;
+    let keys = m.section("keyframe").unwrap();
+    if let Ok((v, _)) =
+        m.add(&keys, element!("key", name = "mutant_long", qpos = vec![0.0; nq + 1]))
+    {
+        out.push((format!("a key with {} positions for {nq}", nq + 1), v));
+    }
     out
+}
+
+/// The problems of kinds MuJoCo refuses.
+fn refusals(m: &Model) -> Vec<mjcf::Problem> {
+    m.check().into_iter().filter(|p| !matches!(p.kind, ProblemKind::UncomposedKey)).collect()
 }
 
 #[test]
@@ -84,10 +97,10 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
     let mut by_kind = std::collections::BTreeMap::<&str, usize>::new();
     for i in 0..150 {
         let m = scenes.new_tree(&mut runner).unwrap().current().build();
-        assert!(m.check().is_empty() && !refused(&mujoco, &m).unwrap(), "generated {i}");
+        assert!(refusals(&m).is_empty() && !refused(&mujoco, &m).unwrap(), "generated {i}");
         for (what, v) in mutants(&m) {
             judged += 1;
-            let problems = v.check();
+            let problems = refusals(&v);
             let refuses = refused(&mujoco, &v).unwrap();
             caught += usize::from(refuses);
             for p in &problems {

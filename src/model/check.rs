@@ -6,8 +6,9 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, ElementKind, Namespace};
+use crate::schema::{AttrType, Namespace};
 use crate::value::{Reference, Value};
+use crate::xml::WriteOptions;
 
 use super::cursor::{Step, Walk};
 use super::tree::{ElementId, Node};
@@ -58,15 +59,23 @@ pub enum ProblemKind {
     /// joint between) with mass. MuJoCo refuses it ("mass and inertia of moving bodies
     /// must be larger than mjMINVAL").
     MasslessMovingBody,
-    /// A keyframe whose array does not fit the composed model.
+    /// A keyframe array with more values than the model has room for (MuJoCo refuses
+    /// it, "invalid qpos size"; a shorter one it pads with zeros): the composed
+    /// model's, or with [`WriteOptions::merge_keyframes`] the key's own model's.
     KeyLength {
-        /// `qpos`, `qvel` or `ctrl`.
+        /// `qpos`, `qvel`, `act`, `ctrl`, `mpos` or `mquat`.
         attribute: &'static str,
-        /// The length the composed model needs.
+        /// The most values there is room for.
         expected: usize,
         /// The length the key has.
         found: usize,
     },
+    /// A key of an attached model, written as it is (without
+    /// [`WriteOptions::merge_keyframes`]): MuJoCo compiles it, but its values fall on
+    /// the composed model's first joints and actuators (the parent's), not on the
+    /// attached model's. Write with `merge_keyframes`, which carries each attached
+    /// model's key to its own joints and through its attachment frame.
+    UncomposedKey,
     /// An array shorter than MuJoCo accepts (`pos="1 2"`: MuJoCo refuses it, "does not
     /// have enough data"); the minimums are MuJoCo's, probed from MuJoCo 4.0.0.
     ArrayTooShort {
@@ -112,7 +121,13 @@ impl fmt::Display for Problem {
             ),
             ProblemKind::KeyLength { attribute, expected, found } => write!(
                 f,
-                "{}: '{attribute}' has {found} values, the composed model needs {expected}",
+                "{}: '{attribute}' has {found} values, the model has room for {expected}",
+                self.path
+            ),
+            ProblemKind::UncomposedKey => write!(
+                f,
+                "{}: a key of an attached model, written as it is, sets the composed model's \
+                 first joints, not this model's; write with WriteOptions::merge_keyframes",
                 self.path
             ),
             ProblemKind::ArrayTooShort { attribute, minimum, found } => write!(
@@ -201,17 +216,22 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn check(&self) -> Vec<Problem> {
+        self.check_with(&WriteOptions::default())
+    }
+
+    /// [`Model::check`] of the model as it will be written with `options`: with
+    /// [`WriteOptions::merge_keyframes`], each model's keys are held to that model's
+    /// own joints and actuators (the composed key takes its part from each); without,
+    /// every key is written as it is and held to the composed model.
+    ///
+    /// Time: as [`Model::check`].
+    pub fn check_with(&self, options: &WriteOptions) -> Vec<Problem> {
         let mut problems = Vec::new();
         let name = self.name();
         let mut walk = Walk::new(self);
         // Per open element: (instance, node, whether it moves, whether it or anything
         // below has mass so far).
         let mut open: Vec<(usize, &Node, bool, bool)> = Vec::new();
-        let (mut nq, mut nv, mut nu) = (0usize, 0usize, 0usize);
-        let mut keys: Vec<(usize, &Node)> = Vec::new();
-        // The class in force per instance: (childclass stack) is approximated by the
-        // element's own class, else the nearest `childclass` above, else the root.
-        let mut childclass: Vec<Option<ElementId>> = Vec::new();
         while let Some(step) = walk.next() {
             match step {
                 Step::Enter(item) => {
@@ -276,44 +296,13 @@ impl Model {
                             _ => {}
                         }
                     }
-                    // Degrees of freedom, actuators, keys.
-                    let parent_tag = open.last().map(|(_, p, _, _)| p.kind().tag());
-                    let in_section = |tag: &str| {
-                        kind.spec().parent.is_some_and(|p| p.tag() == tag)
-                            && parent_tag == Some(tag)
-                    };
+                    // Moving bodies.
                     if matches!(kind.tag(), "joint" | "freejoint")
                         && open.last().is_some_and(|(_, p, _, _)| p.kind().tag() == "body")
                     {
-                        let class = node
-                            .kind()
-                            .class_attr()
-                            .and_then(|c| match node.attr(c) {
-                                Some(Value::Reference(Reference::Element(id))) => Some(*id),
-                                _ => None,
-                            })
-                            .or(childclass.last().copied().flatten())
-                            .or_else(|| {
-                                m.root
-                                    .child_of_kind(ElementKind::ROOT.child("default")?)
-                                    .map(Node::id)
-                            });
-                        let (q, v) = match joint_type(m, node, class) {
-                            "free" => (7, 6),
-                            "ball" => (4, 3),
-                            _ => (1, 1),
-                        };
-                        nq += q;
-                        nv += v;
                         if let Some(top) = open.last_mut() {
                             top.2 = true;
                         }
-                    }
-                    if in_section("actuator") {
-                        nu += 1;
-                    }
-                    if in_section("keyframe") {
-                        keys.push((item.inst, node));
                     }
                     // Mass: an inertial with mass, or a geom (MuJoCo gives geoms a
                     // density) that does not set its mass to 0.
@@ -334,20 +323,9 @@ impl Model {
                             top.3 = true;
                         }
                     }
-                    let cc = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
-                        Some(Value::Reference(Reference::Element(id))) => Some(*id),
-                        _ => None,
-                    });
-                    let inherited = if item.inst == open.last().map_or(0, |o| o.0) {
-                        childclass.last().copied().flatten()
-                    } else {
-                        None
-                    };
-                    childclass.push(cc.or(inherited));
                     open.push((item.inst, node, false, false));
                 }
                 Step::Leave(item) => {
-                    childclass.pop();
                     let Some((inst, node, moves, massive)) = open.pop() else { continue };
                     let is_body = node.kind().tag() == "body"
                         && node.kind().spec().parent.is_some_and(|p| p.tag() != "default");
@@ -372,34 +350,7 @@ impl Model {
                 }
             }
         }
-        for (inst, key) in keys {
-            let i = &walk.insts.list[inst];
-            let loc = Loc::scoped(i.frames.clone(), key.id(), name);
-            for (attribute, expected) in [("qpos", nq), ("qvel", nv), ("ctrl", nu)] {
-                let found = key
-                    .kind()
-                    .attr_index(attribute)
-                    .and_then(|a| key.attr(a))
-                    .and_then(Value::as_floats);
-                if let Some(values) = found {
-                    if values.len() != expected {
-                        let path = self
-                            .element(&loc)
-                            .and_then(|e| e.full_name())
-                            .unwrap_or_else(|| "key".into());
-                        problems.push(Problem {
-                            loc: loc.clone(),
-                            path,
-                            kind: ProblemKind::KeyLength {
-                                attribute,
-                                expected,
-                                found: values.len(),
-                            },
-                        });
-                    }
-                }
-            }
-        }
+        self.key_lengths(options, &mut problems);
         self.short_arrays(&mut problems);
         problems
     }

@@ -147,7 +147,7 @@ pub struct Layout<'a> {
     /// (`<attach>`, `<composite>`, `<flexcomp>`): the layout is exact when empty.
     pub unexpanded: Vec<Loc>,
     /// The keys, with the instance each belongs to, in document order.
-    pub(crate) keys: Vec<(usize, &'a Node)>,
+    pub(crate) keys: Vec<(usize, &'a Node, Loc)>,
     /// Per instance: the pose of its model's world in the composed world (the pose of
     /// the attachment frame it hangs from; identity for the root model).
     pub(crate) origins: HashMap<usize, Pose>,
@@ -422,7 +422,7 @@ impl Model {
                 });
             }
             if parent_tag == Some("keyframe") && kind.tag() == "key" {
-                out.keys.push((item.inst, node));
+                out.keys.push((item.inst, node, loc()));
             }
             let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
                 Some(Value::Reference(Reference::Element(id))) => Some(*id),
