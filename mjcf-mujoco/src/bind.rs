@@ -61,6 +61,33 @@ pub enum ObjKind {
 }
 
 impl ObjKind {
+    /// Every kind.
+    pub const ALL: [ObjKind; 23] = [
+        ObjKind::Body,
+        ObjKind::Joint,
+        ObjKind::Geom,
+        ObjKind::Site,
+        ObjKind::Camera,
+        ObjKind::Light,
+        ObjKind::Flex,
+        ObjKind::Mesh,
+        ObjKind::Skin,
+        ObjKind::Hfield,
+        ObjKind::Texture,
+        ObjKind::Material,
+        ObjKind::Pair,
+        ObjKind::Exclude,
+        ObjKind::Equality,
+        ObjKind::Tendon,
+        ObjKind::Actuator,
+        ObjKind::Sensor,
+        ObjKind::Numeric,
+        ObjKind::Text,
+        ObjKind::Tuple,
+        ObjKind::Key,
+        ObjKind::Plugin,
+    ];
+
     /// MuJoCo's `mjtObj` value.
     pub(crate) fn raw(self) -> c_int {
         (match self {

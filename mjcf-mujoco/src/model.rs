@@ -163,6 +163,38 @@ impl Compiled {
         }
     }
 
+    /// How many elements of `kind` the compiled model has.
+    ///
+    /// Time: O(1).
+    pub fn count(&self, kind: ObjKind) -> usize {
+        let m = self.raw();
+        count(match kind {
+            ObjKind::Body => m.nbody,
+            ObjKind::Joint => m.njnt,
+            ObjKind::Geom => m.ngeom,
+            ObjKind::Site => m.nsite,
+            ObjKind::Camera => m.ncam,
+            ObjKind::Light => m.nlight,
+            ObjKind::Flex => m.nflex,
+            ObjKind::Mesh => m.nmesh,
+            ObjKind::Skin => m.nskin,
+            ObjKind::Hfield => m.nhfield,
+            ObjKind::Texture => m.ntex,
+            ObjKind::Material => m.nmat,
+            ObjKind::Pair => m.npair,
+            ObjKind::Exclude => m.nexclude,
+            ObjKind::Equality => m.neq,
+            ObjKind::Tendon => m.ntendon,
+            ObjKind::Actuator => m.nactuator,
+            ObjKind::Sensor => m.nsensor,
+            ObjKind::Numeric => m.nnumeric,
+            ObjKind::Text => m.ntext,
+            ObjKind::Tuple => m.ntuple,
+            ObjKind::Key => m.nkey,
+            ObjKind::Plugin => m.nplugin,
+        })
+    }
+
     /// MuJoCo's id of the element of `kind` named `name` (`mj_name2id`), if any.
     ///
     /// Time: O(1) expected (MuJoCo's name hash).
@@ -234,6 +266,30 @@ impl Compiled {
         let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
         // SAFETY: the field's pointer and size come from the model's own tables.
         unsafe { raw.floats(field) }
+    }
+
+    /// The model field `name` as single-precision numbers (`geom_rgba`,
+    /// `mat_rgba`, ...).
+    ///
+    /// Time: O(f), as [`Compiled::floats`].
+    ///
+    /// # Errors
+    /// As [`Compiled::floats`].
+    pub fn floats32(&self, name: &str) -> Result<&[f32], BindError> {
+        let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
+        if field.scalar != Scalar::F32 {
+            return Err(BindError::WrongType {
+                field: field.name,
+                holds: field.scalar.name(),
+                asked: "f32",
+            });
+        }
+        let len = raw.rows * raw.cols;
+        if len == 0 || raw.ptr.is_null() {
+            return Ok(&[]);
+        }
+        // SAFETY: a float field of the model, of that many numbers, borrowed from it.
+        Ok(unsafe { std::slice::from_raw_parts(raw.ptr.cast::<f32>(), len) })
     }
 
     /// The model field `name` as integers (`jnt_qposadr`, `body_parentid`, ...).

@@ -9,6 +9,9 @@
 //!   `jnt_dofadr`, `jnt_type`; each actuator's control and activation addresses are
 //!   `actuator_ctrladr`, `actuator_actadr`; `nq`, `nv`, `nu`, `na` agree.
 //!
+//! - read-back: what the written text reads back as compiles to the same model (sizes,
+//!   names in order, positions, masses, sizes, ranges, gains, default poses, keys).
+//!
 //! Each test prints its counts; a model MuJoCo refuses is counted apart (the corpus
 //! holds a few whose reference output does not compile either) and never as passed.
 
@@ -35,6 +38,8 @@ struct Tally {
     names: usize,
     joints: usize,
     actuators: usize,
+    /// Models whose read-back compiles to the same model.
+    read_back: usize,
     /// Elements inside a `<replicate>`, whose copies MuJoCo names itself.
     replicated: usize,
     /// Models with elements the layout does not expand (`<attach>`, ...).
@@ -46,13 +51,15 @@ impl Tally {
     fn report(&self, what: &str) {
         eprintln!(
             "{what}: {} models ({} refused by MuJoCo, {} with unexpanded elements), {} names, {} joints, \
-             {} actuators judged; {} replicated elements not judged by name; {} failures",
+             {} actuators judged, {} read back to the same compiled model; {} replicated elements \
+             not judged by name; {} failures",
             self.models,
             self.refused,
             self.unexpanded,
             self.names,
             self.joints,
             self.actuators,
+            self.read_back,
             self.replicated,
             self.failures.len()
         );
@@ -93,6 +100,36 @@ fn judge(mujoco: &MuJoCo, label: &str, model: &Model, options: &WriteOptions, ta
     };
     judge_names(label, model, &compiled, tally);
     judge_layout(label, model, &compiled, tally);
+    judge_read_back(mujoco, label, model, options, &compiled, tally);
+}
+
+/// What the written text reads back as compiles to the same model (what
+/// tools/readback_check.py checked).
+fn judge_read_back(
+    mujoco: &MuJoCo,
+    label: &str,
+    model: &Model,
+    options: &WriteOptions,
+    compiled: &Compiled,
+    tally: &mut Tally,
+) {
+    let mut read = mjcf::ReadOptions::new();
+    for (name, file) in model.assets(options).unwrap() {
+        read = read.asset(&name, file.contents().to_vec());
+    }
+    let back = match read.read_str(compiled.written().unwrap().xml()) {
+        Ok(back) => back,
+        Err(e) => return tally.failures.push(format!("{label}: does not read back: {e}")),
+    };
+    match mujoco.compile_with(&back, options) {
+        Ok(again) => match support::compiled_difference(compiled, &again) {
+            None => tally.read_back += 1,
+            Some(d) => {
+                tally.failures.push(format!("{label}: its read-back compiles otherwise: {d}"))
+            }
+        },
+        Err(e) => tally.failures.push(format!("{label}: its read-back does not compile: {e}")),
+    }
 }
 
 fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tally) {
