@@ -12,6 +12,8 @@
 mod case;
 #[path = "../tests/support/compare.rs"]
 mod compare;
+#[path = "../tests/support/names.rs"]
+mod names;
 #[path = "../tests/support/replay.rs"]
 mod replay;
 

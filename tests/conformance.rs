@@ -23,6 +23,8 @@
 mod case;
 #[path = "support/compare.rs"]
 mod compare;
+#[path = "support/names.rs"]
+mod names;
 #[path = "support/replay.rs"]
 mod replay;
 

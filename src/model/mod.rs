@@ -13,6 +13,7 @@ mod elems;
 mod eq;
 pub(crate) mod frame;
 mod index;
+pub(crate) mod naming;
 mod scope;
 pub(crate) mod settings;
 pub(crate) mod tree;
@@ -37,9 +38,9 @@ pub(crate) use build::{
 };
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
-pub(crate) use cursor::{Item, Step, Walk};
+pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;
-pub(crate) use index::{Entry, Index, MergedCache, ReadIndex};
+pub(crate) use index::{Entry, Index, MergedCache, ReadIndex, slashed_segment};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 

@@ -830,6 +830,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // arena), each element's identifier kept for its index entry, and which elements
     // hold named references.
     let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
+    // The names holding a `/`, by the part before it (`Index::slashed`).
+    let mut slashed: imbl::HashMap<SmolStr, u32> = imbl::HashMap::new();
     let mut idents: Vec<Option<SmolStr>> = Vec::with_capacity(r.arena.len());
     let mut with_refs: Vec<usize> = Vec::new();
     for (i, p) in r.arena.iter_mut().enumerate() {
@@ -847,6 +849,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                 let (kind, offset) =
                     (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
                 return Err(r.err(kind, offset));
+            }
+            if let Some(segment) = crate::model::slashed_segment(n) {
+                *slashed.entry(segment.into()).or_insert(0) += 1;
             }
         }
         if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
@@ -966,7 +971,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // The arena is spent: freed before the index is built, which can reuse its memory.
     drop(std::mem::take(&mut r.arena));
     drop(built);
-    let index = index.finish(&root, names);
+    let index = index.finish(&root, names, slashed);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 

@@ -1,7 +1,8 @@
 //! Replays a conformance case against the library (the adapter).
 //!
 //! Shared by `tests/conformance.rs` and `examples/conformance.rs`; include it next to
-//! `case.rs` and `compare.rs` as sibling modules named `case`, `compare` and `replay`.
+//! `case.rs`, `compare.rs` and `names.rs` as sibling modules named `case`, `compare`,
+//! `names` and `replay`.
 //! The rules are those of `tests/conformance/README.md`: case-local variables, locators,
 //! expected error categories, and the meaning of `deviation` marks.
 
@@ -15,6 +16,7 @@ use mjcf::{
 
 use super::case::{self, AttachSite, AttrValue, Case, Op, OpKind};
 use super::compare;
+use super::names;
 
 /// The result of one case.
 #[derive(Debug, Clone, PartialEq)]
@@ -526,6 +528,9 @@ impl State<'_> {
                 };
                 let m = self.model(model)?;
                 let xml = m.to_xml_string_with(&opts).map_err(write_err)?;
+                // Every name written is the element's full name, and no name twice.
+                names::check_names(m, &xml)
+                    .map_err(|e| OpError::new("names", format!("{file}: {e}")))?;
                 let back = read_back(m, &xml, &opts)
                     .map_err(|e| OpError::new("read_back", format!("{file}: {e}")))?;
                 if let Some(out) = self.actual_dir {
