@@ -7,6 +7,7 @@
 mod build;
 pub(crate) mod check;
 mod cursor;
+pub(crate) mod defaults;
 pub(crate) mod diff;
 mod edit;
 mod elems;
