@@ -6,20 +6,32 @@ thread_local! {
     static COMPARED: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
-/// The edit distance (insertions, deletions, substitutions) between `a` and `b`,
-/// case-insensitive. Time: O(|a| · |b|).
-fn distance(a: &str, b: &str) -> usize {
+/// The characters of `s`, lowercased (distances are case-insensitive).
+fn lower(s: &str) -> Vec<char> {
+    s.chars().flat_map(char::to_lowercase).collect()
+}
+
+/// The edit distance (insertions, deletions, substitutions) between `a` and `b`
+/// (lowercased), or some number above `bound` once it is known to be above it; `row`
+/// is a buffer. Time: O(|a| · |b|).
+fn distance(a: &[char], b: &[char], bound: usize, row: &mut Vec<usize>) -> usize {
     #[cfg(test)]
     COMPARED.with(|c| c.set(c.get() + 1));
-    let b: Vec<char> = b.chars().flat_map(char::to_lowercase).collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().flat_map(char::to_lowercase).enumerate() {
+    row.clear();
+    row.extend(0..=b.len());
+    for (i, ca) in a.iter().enumerate() {
         let mut diag = row[0];
         row[0] = i + 1;
+        let mut least = row[0];
         for (j, cb) in b.iter().enumerate() {
             let up = row[j + 1];
-            row[j + 1] = (diag + usize::from(ca != *cb)).min(up + 1).min(row[j] + 1);
+            row[j + 1] = (diag + usize::from(ca != cb)).min(up + 1).min(row[j] + 1);
             diag = up;
+            least = least.min(row[j + 1]);
+        }
+        // Every later row is at least this row's least value.
+        if least > bound {
+            return least;
         }
     }
     row[b.len()]
@@ -28,7 +40,7 @@ fn distance(a: &str, b: &str) -> usize {
 /// How many candidates next to a word, on each side, in each of the two orders a
 /// [`Suggester`] keeps, are compared with it: at most `4 * NEIGHBOURS` per word,
 /// however many candidates there are.
-const NEIGHBOURS: usize = 16;
+const NEIGHBOURS: usize = 4;
 
 /// Words longer than this (in bytes) are not compared (a 100 MB attribute name).
 const LONGEST: usize = 256;
@@ -43,8 +55,9 @@ const LONGEST: usize = 256;
 /// many misspelt references is checked in O(r log c) comparisons, not O(r · c).
 /// With at most `2 * NEIGHBOURS` candidates, every one is compared.
 pub(crate) struct Suggester<'a> {
-    /// The candidates (each once, at most `LONGEST` bytes) in the order given.
-    candidates: Vec<&'a str>,
+    /// The candidates (each once, at most `LONGEST` bytes) in the order given, with
+    /// their lowercased characters.
+    candidates: Vec<(&'a str, Vec<char>)>,
     /// Positions in `candidates`, sorted by lowercased text.
     forward: Vec<(String, usize)>,
     /// Positions in `candidates`, sorted by lowercased reversed text.
@@ -55,10 +68,13 @@ impl<'a> Suggester<'a> {
     /// Ranks `candidates`. Time: O(c log c) for `c` candidates.
     pub(crate) fn new(candidates: impl IntoIterator<Item = &'a str>) -> Suggester<'a> {
         let mut seen = std::collections::HashSet::new();
-        let candidates: Vec<&'a str> =
-            candidates.into_iter().filter(|c| c.len() <= LONGEST && seen.insert(*c)).collect();
+        let candidates: Vec<(&'a str, Vec<char>)> = candidates
+            .into_iter()
+            .filter(|c| c.len() <= LONGEST && seen.insert(*c))
+            .map(|c| (c, lower(c)))
+            .collect();
         let mut forward: Vec<(String, usize)> =
-            candidates.iter().enumerate().map(|(i, c)| (c.to_lowercase(), i)).collect();
+            candidates.iter().enumerate().map(|(i, (_, l))| (l.iter().collect(), i)).collect();
         forward.sort();
         let mut backward: Vec<(String, usize)> =
             forward.iter().map(|(k, i)| (k.chars().rev().collect(), *i)).collect();
@@ -74,8 +90,9 @@ impl<'a> Suggester<'a> {
         if word.len() > LONGEST {
             return Vec::new();
         }
-        let key = word.to_lowercase();
-        let rkey: String = key.chars().rev().collect();
+        let chars = lower(word);
+        let key: String = chars.iter().collect();
+        let rkey: String = chars.iter().rev().collect();
         let mut near: Vec<usize> = Vec::with_capacity(4 * NEIGHBOURS);
         for (order, k) in [(&self.forward, &key), (&self.backward, &rkey)] {
             let at = order.partition_point(|(t, _)| t < k);
@@ -85,22 +102,29 @@ impl<'a> Suggester<'a> {
         }
         near.sort_unstable();
         near.dedup();
-        let len = word.chars().count();
+        let mut row = Vec::new();
         let mut found: Vec<(usize, usize)> = near
             .into_iter()
-            .map(|i| (distance(word, self.candidates[i]), i))
-            .filter(|(d, i)| {
-                *d > 0 && *d <= len.max(self.candidates[*i].chars().count()).div_ceil(3)
+            .filter_map(|i| {
+                let other = &self.candidates[i].1;
+                // Close enough: about a third of the longer word's length at most (a
+                // length that differs by more is further than that).
+                let bound = chars.len().max(other.len()).div_ceil(3);
+                if chars.len().abs_diff(other.len()) > bound {
+                    return None;
+                }
+                let d = distance(&chars, other, bound, &mut row);
+                (d > 0 && d <= bound).then_some((d, i))
             })
             .collect();
         found.sort_unstable();
-        found.into_iter().take(n).map(|(_, i)| self.candidates[i]).collect()
+        found.into_iter().take(n).map(|(_, i)| self.candidates[i].0).collect()
     }
 }
 
 /// Up to `n` candidates close enough to `word` to be what was meant, nearest first
-/// (see [`Suggester::nearest`]). Time: O(c log c) for `c` candidates, and at most
-/// `4 * NEIGHBOURS` comparisons of `word` with one.
+/// (see [`Suggester::nearest`]). Time: O(c log c) for `c` candidates (ranking them),
+/// and at most `4 * NEIGHBOURS` edit distances.
 pub(crate) fn nearest<'a>(
     word: &str,
     candidates: impl IntoIterator<Item = &'a str>,
@@ -135,7 +159,8 @@ mod tests {
 
     #[test]
     fn finds_typos() {
-        assert_eq!(distance("hinj", "hinge"), 2);
+        assert_eq!(distance(&lower("hinj"), &lower("Hinge"), 5, &mut Vec::new()), 2);
+        assert!(distance(&lower("abcdef"), &lower("uvwxyz"), 1, &mut Vec::new()) > 1);
         assert_eq!(closest("hinj", ["slide", "hinge", "ball"]), Some("hinge"));
         assert_eq!(closest("rgb", ["rgba", "size"]), Some("rgba"));
         assert_eq!(closest("zzzzzz", ["rgba", "size"]), None);

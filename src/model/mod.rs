@@ -397,8 +397,10 @@ impl Model {
     /// there ("did you mean").
     ///
     /// Time: O(log n) for a name of this model, O(levels · depth · log n) for one with
-    /// a scope path; a miss also ranks the names for suggestions: O(named elements of
-    /// the model looked in) string comparisons.
+    /// a scope path; a miss also ranks the `c` names of that namespace in the model
+    /// looked in for suggestions, O(c log c), and compares the name with at most 16
+    /// of them (those next to it in alphabetical order, of the texts and of the
+    /// texts reversed).
     ///
     /// # Errors
     /// [`ErrorKind::UnknownName`] when nothing has that name;

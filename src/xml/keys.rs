@@ -337,21 +337,24 @@ pub(crate) fn merged_keys(model: &Model, compiler: Option<&Node>) -> Vec<MergedK
             }
         }
     }
-    // Key names in order of first appearance; the parent's unnamed keys by position.
+    // Key names in order of first appearance (each found again by a hash: a scan of
+    // the names so far made 100,000 keys quadratic); the parent's unnamed keys by
+    // position.
     let mut order: Vec<Option<SmolStr>> = Vec::new();
+    let mut slots: HashMap<SmolStr, usize> = HashMap::new();
     let mut by_name: Vec<HashMap<usize, &Node>> = Vec::new();
     for (inst, key) in &keys {
         let name = key.identifier().map(SmolStr::from);
         if name.is_none() && *inst != 0 {
             continue;
         }
-        let slot = match &name {
-            Some(n) => order.iter().position(|o| o.as_ref() == Some(n)),
-            None => None,
-        };
+        let slot = name.as_ref().and_then(|n| slots.get(n).copied());
         let i = match slot {
             Some(i) => i,
             None => {
+                if let Some(n) = &name {
+                    slots.insert(n.clone(), order.len());
+                }
                 order.push(name.clone());
                 by_name.push(HashMap::new());
                 order.len() - 1
