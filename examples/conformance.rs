@@ -16,6 +16,8 @@ mod compare;
 mod names;
 #[path = "../tests/support/replay.rs"]
 mod replay;
+#[path = "../tests/support/text.rs"]
+mod text;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -27,6 +27,8 @@ mod compare;
 mod names;
 #[path = "support/replay.rs"]
 mod replay;
+#[path = "support/text.rs"]
+mod text;
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;

@@ -295,3 +295,25 @@ fn automatic_names_avoid_literal_automatic_names() {
     assert_eq!(outer.full_name(g).as_deref(), Some("inner//unnamed_geom_0~1"));
     names_hold(&outer);
 }
+
+/// Item 4: a composed model written, read and written again is the same text: an
+/// attachment frame's name is written at its schema place (first), as the body (or
+/// MuJoCo `<frame>`, DESIGN D10) it reads back as is written, not after the pose
+/// copied from its site.
+#[test]
+fn a_composed_model_written_read_and_written_again_is_the_same_text() {
+    let mut ball = Model::new("ball");
+    let b = ball.add_mut(&ball.worldbody(), element!("body", name = "ball")).unwrap();
+    ball.add_mut(&b, Element::new("freejoint")).unwrap();
+    ball.add_mut(&b, element!("geom", size = [0.1])).unwrap();
+    let mut scene = Model::new("scene");
+    let s = element!("site", name = "s", pos = [1, 2, 3], euler = [0, 0, 90]);
+    let s = scene.add_mut(&scene.worldbody(), s).unwrap();
+    let a = scene.attach_mut(&s, &robot("robot")).unwrap();
+    scene.add_mut(a.frame(), element!("joint", name = "root", type = "slide")).unwrap();
+    scene.add_mut(a.frame(), inertial()).unwrap();
+    scene.attach_mut(&s, &ball).unwrap();
+    let xml = names_hold(&scene);
+    assert!(xml.contains(r#"<body name="robot/" pos="1 2 3" euler="0 0 90">"#), "{xml}");
+    assert!(xml.contains(r#"<frame name="ball/" pos="1 2 3" euler="0 0 90">"#), "{xml}");
+}

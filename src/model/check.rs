@@ -19,8 +19,9 @@ use super::{Loc, Model};
 pub struct Problem {
     /// The element.
     pub loc: Loc,
-    /// The element as MuJoCo will name it (`robot_1/torso`), or its tag and
-    /// position for an unnamed element without a namespace.
+    /// The element as the writer names it (`robot_1/torso`, `//unnamed_actuator_3`:
+    /// [`ElementRef::full_name`](crate::ElementRef::full_name)), or, for an element
+    /// without a namespace, its scope prefix and tag.
     pub path: String,
     /// What is wrong.
     pub kind: ProblemKind,

@@ -661,10 +661,12 @@ impl<'a> ElementRef<'a> {
         self.top.scope_path(&self.loc()).unwrap_or_default()
     }
 
-    /// The name MuJoCo will give the element in the written model: the identifier
-    /// with its scope prefix (`robot_1/torso`), an attachment frame's scope
-    /// (`robot_1/`), or the automatic name of an unnamed element (`//unnamed_geom_0`,
-    /// `robot//unnamed_geom_2`); `None` for elements without a namespace.
+    /// The name MuJoCo will give the element in the written model, exactly as the
+    /// writer writes it (both follow one set of rules: README "Names"): the
+    /// identifier with its scope prefix (`robot_1/torso`), an attachment frame's scope
+    /// (`robot_1/`), a frame joint's (`robot_1/root/`), or the automatic name of an
+    /// unnamed element (`//unnamed_geom_0`, `robot//unnamed_geom_2`, `//unnamed_geom_1_`
+    /// inside a `<replicate>`); `None` for elements without a namespace.
     ///
     /// Time: O(levels · depth · log n) for named elements and frames; O(n) more for
     /// unnamed ones (n of the element's model), whose number is their position.

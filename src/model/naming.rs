@@ -331,9 +331,10 @@ impl Written<'_> {
     }
 }
 
-/// The kind of the root default class.
+/// The kind of the root default class (looked up once: every element named asks).
 pub(crate) fn root_default_kind() -> Option<ElementKind> {
-    ElementKind::ROOT.child("default")
+    static KIND: std::sync::OnceLock<Option<ElementKind>> = std::sync::OnceLock::new();
+    *KIND.get_or_init(|| ElementKind::ROOT.child("default"))
 }
 
 fn root_default(model: &Model) -> Option<&Node> {
