@@ -48,6 +48,9 @@ pub(crate) struct Inst<'a> {
     pub(crate) frame: Option<&'a Node>,
     /// Its prefix and how its root class is written.
     pub(crate) names: InstNames,
+    /// The name of its root default class (what an element without a class of its
+    /// own is written with).
+    root_class: Written<'a>,
     /// Per namespace (`ns as usize`), how many of the model's elements of it the walk
     /// has entered.
     counters: Vec<u32>,
@@ -63,7 +66,13 @@ impl<'a> Inst<'a> {
         frame: Option<&'a Node>,
         names: InstNames,
     ) -> Inst<'a> {
-        Inst { model, frames, frame, names, counters: Vec::new(), auto: OnceCell::new() }
+        let root_class = section(model, "default")
+            .and_then(|r| {
+                names.name_of(model, Named::of_node(r), &ElemCtx::default(), || (0, false))
+            })
+            .unwrap_or(Written::RootClass);
+        let (counters, auto) = (Vec::new(), OnceCell::new());
+        Inst { model, frames, frame, names, root_class, counters, auto }
     }
 
     /// The position of the next element of `ns` (counted).
@@ -118,20 +127,22 @@ impl<'a> Insts<'a> {
     /// The name of instance `inst`'s root default class (what an element without a
     /// class of its own is written with).
     pub(crate) fn root_class_name(&self, inst: usize) -> Written<'a> {
-        let i = &self.list[inst];
-        let root = section(i.model, "default");
-        root.and_then(|r| {
-            i.names.name_of(i.model, Named::of_node(r), &ElemCtx::default(), || (0, false))
-        })
-        .unwrap_or(Written::RootClass)
+        self.list[inst].root_class
     }
 
     /// The name `item` (entered by the walk) is written with, `None` for elements
     /// without a namespace.
+    #[inline]
     pub(crate) fn name_of_item(&self, item: &Item<'a>) -> Option<Written<'a>> {
         let inst = &self.list[item.inst];
-        let ctx =
-            ElemCtx { frame: item.frame, first_unnamed: item.first_unnamed, enclosing: inst.frame };
+        // A frame's joint: its frame (the walk keeps items small: this is rare).
+        let frame = if item.in_frame {
+            let m = inst.model;
+            m.index.parent(item.node.id()).and_then(|p| m.node_by_id(p))
+        } else {
+            None
+        };
+        let ctx = ElemCtx { frame, first_unnamed: item.first_unnamed, enclosing: inst.frame };
         inst.names
             .name_of(inst.model, Named::of_node(item.node), &ctx, || (item.auto, item.replicated))
     }
@@ -208,27 +219,22 @@ pub(crate) struct Item<'a> {
     pub(crate) node: &'a Node,
     /// 0 for the root, 1 for sections (and attached root default classes), ...
     pub(crate) depth: usize,
-    /// For an own child of an attachment frame (a frame's joint or inertial): the
-    /// frame.
-    pub(crate) frame: Option<&'a Node>,
+    /// Whether it is an own child of an attachment frame (a frame's joint or
+    /// inertial).
+    pub(crate) in_frame: bool,
     /// For a frame's joint: whether it is the first unnamed one of its frame.
     pub(crate) first_unnamed: bool,
+    /// Whether a `<replicate>` of its own model is above it.
+    pub(crate) replicated: bool,
     /// Its position among its model's elements of its namespace, in document order
     /// (set when the walk enters it; 0 for elements without a namespace).
     pub(crate) auto: u32,
-    /// Whether a `<replicate>` of its own model is above it.
-    pub(crate) replicated: bool,
 }
 
 impl<'a> Item<'a> {
     /// An item with no frame, counted later.
     fn plain(inst: usize, node: &'a Node, depth: usize, replicated: bool) -> Item<'a> {
-        Item { inst, node, depth, frame: None, first_unnamed: false, auto: 0, replicated }
-    }
-
-    /// Whether it is an own child of an attachment frame.
-    pub(crate) fn in_frame(&self) -> bool {
-        self.frame.is_some()
+        Item { inst, node, depth, in_frame: false, first_unnamed: false, replicated, auto: 0 }
     }
 }
 
@@ -305,7 +311,7 @@ impl<'a> Walk<'a> {
         if node.attached().is_some() {
             let first_unnamed = first_unnamed_joint(node);
             out.extend(node.children().iter().map(|c| Item {
-                frame: Some(node),
+                in_frame: true,
                 first_unnamed: first_unnamed == Some(c.id()),
                 ..Item::plain(inst, c, depth + 1, below)
             }));

@@ -125,6 +125,7 @@ impl InstNames {
     /// (`None` for elements without a namespace). `ctx` says where it is; `auto`
     /// gives its automatic-name position and whether a `<replicate>` of the model is
     /// above it (asked only for an element written with its automatic name).
+    #[inline]
     pub(crate) fn name_of<'n>(
         &self,
         model: &Model,
@@ -137,7 +138,14 @@ impl InstNames {
         }
         let ns = elem.kind.namespace()?;
         let ident = elem.ident.filter(|n| !n.is_empty());
-        if Some(elem.kind) == root_default_kind() {
+        // (The root default class is the one element with a namespace directly in
+        // the root.)
+        let root_class = elem.kind.spec().parent == Some(ElementKind::ROOT);
+        // Most elements: their own name.
+        if let (Some(n), None, false) = (ident, ctx.frame, root_class) {
+            return Some(Written::Own(n));
+        }
+        if root_class {
             return Some(match (self.root_class, ident) {
                 (RootClass::Own, Some(n)) => Written::Own(n),
                 (RootClass::Main, _) => Written::Main,
@@ -162,8 +170,6 @@ impl InstNames {
                 }
                 None => {}
             }
-        } else if let Some(n) = ident {
-            return Some(Written::Own(n));
         }
         let (index, replicated) = auto();
         let replicated = replicated || self.in_replicate;
@@ -360,4 +366,49 @@ fn top_root_class(model: &Model) -> RootClass {
     }
     let k = (1u32..).find(|k| !taken(&format!("/{k}"))).unwrap_or(1);
     RootClass::Numbered(k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Walk::own` counts a model's automatic names as the composed walk does, which
+    /// enters the outermost model's settings sections and no attached model's: so no
+    /// element with a namespace may sit in a settings section.
+    #[test]
+    fn settings_sections_hold_no_element_with_a_namespace() {
+        for section in ElementKind::ROOT.spec().children {
+            if !super::super::settings::is_settings_section(*section) {
+                continue;
+            }
+            let mut stack = vec![*section];
+            while let Some(k) = stack.pop() {
+                assert!(k.namespace().is_none(), "{} in {}", k.tag(), section.tag());
+                stack.extend(k.spec().children.iter().copied().filter(|c| *c != k));
+            }
+        }
+    }
+
+    /// Every name is spelt by `Written::write`, in the outermost model and in an
+    /// attached one.
+    #[test]
+    fn written_names_are_spelt_once() {
+        let auto =
+            |clash, replicated| Written::Auto { ns: Namespace::Geom, index: 3, clash, replicated };
+        let cases: [(Written<'_>, &str, &str); 10] = [
+            (Written::Own("torso"), "", "torso"),
+            (Written::Own("torso"), "robot/", "robot/torso"),
+            (Written::Frame("hand"), "robot/", "robot/hand/"),
+            (Written::FrameJoint("hand", "root"), "", "hand/root/"),
+            (auto(0, false), "", "//unnamed_geom_3"),
+            (auto(2, true), "robot/", "robot//unnamed_geom_3~2_"),
+            (Written::RootClass, "", "/"),
+            (Written::RootClass, "robot/", "robot/"),
+            (Written::Main, "robot/", "main"),
+            (Written::RootNumbered(1), "", "/1"),
+        ];
+        for (w, prefix, want) in cases {
+            assert_eq!(w.to_string_in(prefix), want);
+        }
+    }
 }

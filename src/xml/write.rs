@@ -442,7 +442,7 @@ impl<'a> Writer<'a> {
         if top && kind.tag() == "worldbody" && !emits(node) {
             return Ok(false);
         }
-        if !top && depth > 0 && !item.in_frame() && node.attached().is_none() && !emits(node) {
+        if !top && depth > 0 && !item.in_frame && node.attached().is_none() && !emits(node) {
             return Ok(false);
         }
         // The written depth: sections and the root classes at the wrapper's level,
