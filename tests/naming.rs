@@ -248,15 +248,22 @@ fn a_class_named_slash_leaves_the_root_class_another_name() {
     assert!(xml.contains(r#"<geom name="//unnamed_geom_0" class="/1" size="1"/>"#), "{xml}");
 }
 
-/// A root class named `main` (DESIGN D9) with attached models is a class `/`, a
-/// sibling of theirs: written as MuJoCo's main class, the `<default>` itself, the
-/// attached root classes inside it inherited its defaults.
+/// A root class named `main` (DESIGN D9) is written as MuJoCo's main class, the
+/// `<default class="main">` itself; with attached models it is a class `/`, a sibling
+/// of theirs: written as the main class, the attached root classes inside it
+/// inherited its defaults.
 #[test]
 fn a_root_class_named_main_passes_nothing_on_to_attached_models() {
     let arena = read(
         r#"<mujoco model="arena"><default class="main"><geom rgba="1 0 0 1"/></default><worldbody><geom size="1"/></worldbody></mujoco>"#,
     );
-    assert!(write(&arena).starts_with("<mujoco model=\"arena\">\n  <default>\n    <geom rgba"));
+    // Alone, as MuJoCo's main class, named so (written, read and written again, the
+    // same text).
+    let xml = names_hold(&arena);
+    assert!(
+        xml.starts_with("<mujoco model=\"arena\">\n  <default class=\"main\">\n    <geom rgba"),
+        "{xml}"
+    );
     let mut scene = arena.clone();
     scene.attach_mut(&scene.worldbody(), &robot("robot")).unwrap();
     let xml = names_hold(&scene);

@@ -417,12 +417,17 @@ impl<'a> Writer<'a> {
             if is_default && !self.in_default {
                 self.finish_parent(insts)?;
                 self.indent(1);
-                // A root class written as MuJoCo's main class whose one class is
-                // named `/` says so on the wrapper: `<default><default class="/">`
-                // alone reads back as dm_control's shape, `/` folded into the root
-                // class (`xml::read`), and the references to `main` would then take
-                // `/`'s defaults.
-                if inst == 0 && names.root_class == RootClass::Main && lone_slash_class(node) {
+                // A root class written as MuJoCo's main class says so on the wrapper
+                // when it is named `main` (so that it reads back named so, and the
+                // text written again is the same), or when its one class is named
+                // `/`: `<default><default class="/">` alone reads back as
+                // dm_control's shape, `/` folded into the root class (`xml::read`),
+                // and the references to `main` would then take `/`'s defaults.
+                let named_main = node.identifier() == Some("main");
+                if inst == 0
+                    && names.root_class == RootClass::Main
+                    && (named_main || lone_slash_class(node))
+                {
                     self.out.push_str("<default class=\"main\">");
                 } else {
                     self.out.push_str("<default>");

@@ -529,11 +529,10 @@ impl State<'_> {
                 };
                 let m = self.model(model)?;
                 let xml = m.to_xml_string_with(&opts).map_err(write_err)?;
-                // Every name written is the element's full name, and no name twice.
-                names::check_names(m, &xml)
-                    .map_err(|e| OpError::new("names", format!("{file}: {e}")))?;
                 let back = read_back(m, &xml, &opts)
-                    .map_err(|e| OpError::new("read_back", format!("{file}: {e}")))?;
+                    .map_err(|e| OpError::new("read_back", format!("{file}: {e}")));
+                // Written out first, so that MuJoCo can judge an output that fails a
+                // check below.
                 if let Some(out) = self.actual_dir {
                     let d = out.join(&self.case.name);
                     std::fs::create_dir_all(&d).map_err(|e| OpError::new("io", e.to_string()))?;
@@ -541,12 +540,18 @@ impl State<'_> {
                         .map_err(|e| OpError::new("io", e.to_string()))?;
                     // The output and its read-back, each with its files, for
                     // tools/readback_check (MuJoCo compiles both the same).
-                    let pairs = out.join("readback").join(&self.case.name);
-                    let io = |e: mjcf::ExportError| OpError::new("io", e.to_string());
-                    m.export(&pairs, file, &opts).map_err(io)?;
-                    let again = file.replace(".xml", ".readback.xml");
-                    back.export(&pairs, &again, &opts).map_err(io)?;
+                    if let Ok(back) = &back {
+                        let pairs = out.join("readback").join(&self.case.name);
+                        let io = |e: mjcf::ExportError| OpError::new("io", e.to_string());
+                        m.export(&pairs, file, &opts).map_err(io)?;
+                        let again = file.replace(".xml", ".readback.xml");
+                        back.export(&pairs, &again, &opts).map_err(io)?;
+                    }
                 }
+                back?;
+                // Every name written is the element's full name, and no name twice.
+                names::check_names(m, &xml)
+                    .map_err(|e| OpError::new("names", format!("{file}: {e}")))?;
                 // A model dm_control cannot read has no expected text: MuJoCo judges
                 // the output written to `actual_dir` instead.
                 let no_reference = self.case.reference_fails.is_some() && !dir.join(file).exists();
