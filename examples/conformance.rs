@@ -12,8 +12,12 @@
 mod case;
 #[path = "../tests/support/compare.rs"]
 mod compare;
+#[path = "../tests/support/names.rs"]
+mod names;
 #[path = "../tests/support/replay.rs"]
 mod replay;
+#[path = "../tests/support/text.rs"]
+mod text;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

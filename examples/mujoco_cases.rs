@@ -60,6 +60,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         r#"{"nu": 1, "actuator_gainprm[0][0]": 4000, "actuator_biasprm[0][1]": -4000, "actuator_biasprm[0][2]": -400}"#,
     )?;
 
+    // D11 through a root-level include (issue 19 item 3): the included file's root
+    // class holds `<motor>`, `<velocity>`, `<position>`, in that order; MuJoCo applies
+    // them in that order, so the position gains (kp 4000, kv 400) stand. Both the file
+    // and what it is written as compile so.
+    std::fs::write(
+        out.join("d11_defaults.xml"),
+        r#"<mujoco><default><motor gear="2"/><velocity kv="1"/><position kp="4000" kv="400"/></default></mujoco>"#,
+    )?;
+    std::fs::write(
+        out.join("d11_through_include.xml"),
+        r#"<mujoco model="d11i"><include file="d11_defaults.xml"/>
+             <worldbody><body name="b"><joint name="j" axis="0 0 1"/><geom size="0.1"/></body></worldbody>
+             <actuator><position name="p" joint="j"/></actuator></mujoco>"#,
+    )?;
+    let expect = r#"{"nu": 1, "actuator_gainprm[0][0]": 4000, "actuator_biasprm[0][1]": -4000, "actuator_biasprm[0][2]": -400, "actuator_gear[0][0]": 2}"#;
+    std::fs::write(out.join("d11_through_include.expect.json"), expect)?;
+    let m = Model::from_path(out.join("d11_through_include.xml"))?;
+    std::fs::write(out.join("d11_through_include.readback.xml"), m.to_xml_string()?)?;
+    std::fs::write(out.join("d11_through_include.readback.expect.json"), expect)?;
+
     // D9: a root default class named `main` (MuJoCo's own name for it).
     let m = Model::from_xml_str(
         r#"<mujoco model="d9"><default class="main"><geom rgba="1 0 0 1"/></default>
@@ -210,6 +230,123 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.join("model_attached.expect.json"),
         r#"{"nmesh": 2, "body_names": ["world", "parent/", "parent/c1-cb", "parent/c2-cb"]}"#,
     )?;
+    names(&out)?;
     println!("wrote the cases to {}", out.display());
+    Ok(())
+}
+
+/// A small robot: a body `torso` with an unnamed geom and a hinge `hip`.
+fn small_robot(name: &str) -> Result<Model, Box<dyn std::error::Error>> {
+    let mut m = Model::new(name);
+    let b = m.add_mut(&m.worldbody(), element!("body", name = "torso"))?;
+    m.add_mut(&b, element!("geom", size = [0.1]))?;
+    m.add_mut(&b, element!("joint", name = "hip"))?;
+    Ok(m)
+}
+
+/// An inertial for a moving frame.
+fn frame_inertial() -> mjcf::Element {
+    element!("inertial", pos = [0, 0, 0], mass = 0.1, diaginertia = [1e-3; 3])
+}
+
+/// The names written (issue 19 items 2, 5, 8; DESIGN D14), as MuJoCo names them.
+fn names(out: &Path) -> Result<(), Box<dyn std::error::Error>> {
+    // Two unnamed joints on one frame: the first takes the frame's name, the second
+    // its automatic name.
+    let mut scene = Model::new("arena");
+    let a = scene.attach_mut(&scene.worldbody(), &small_robot("robot")?)?;
+    scene.add_mut(a.frame(), element!("joint", type = "hinge"))?;
+    scene.add_mut(a.frame(), element!("joint", type = "slide"))?;
+    scene.add_mut(a.frame(), frame_inertial())?;
+    write(
+        out,
+        "names_frame_unnamed_joints",
+        &scene,
+        r#"{"njnt": 3, "joint_names": ["robot/", "//unnamed_joint_1", "robot/hip"], "jnt_type[1]": 2}"#,
+    )?;
+    // D14: a joint `a` on the frame of `hand`, and the unnamed joint of the frame of
+    // the attachment `a` inside `hand` (both `hand/a/` as dm_control writes them).
+    let mut hand = Model::new("hand");
+    let inner = hand.attach_mut(&hand.worldbody(), &small_robot("a")?)?;
+    hand.add_mut(inner.frame(), element!("joint"))?;
+    hand.add_mut(inner.frame(), frame_inertial())?;
+    let mut arm = Model::new("arm");
+    let h = arm.attach_mut(&arm.worldbody(), &hand)?;
+    arm.add_mut(h.frame(), element!("joint", name = "a"))?;
+    arm.add_mut(h.frame(), frame_inertial())?;
+    write(
+        out,
+        "names_d14_frame_joint_named_as_a_scope",
+        &arm,
+        r#"{"njnt": 3, "joint_names": ["hand/a/", "hand//unnamed_joint_0", "hand/a/hip"]}"#,
+    )?;
+    // A composed model read back (literal names `robot/`, `robot/torso`, the class
+    // `robot/`) with `robot` attached again: the scope `robot_1`.
+    let mut scene = Model::new("arena");
+    scene.add_mut(&scene.worldbody(), element!("geom", size = [1]))?;
+    scene.attach_mut(&scene.worldbody(), &small_robot("robot")?)?;
+    let mut back = Model::from_xml_str(&scene.to_xml_string()?)?;
+    back.attach_mut(&back.worldbody(), &small_robot("robot")?)?;
+    // And an unnamed geom before the literal `//unnamed_geom_0`.
+    back.insert_mut(&back.worldbody(), 0, element!("geom", size = [0.5]))?;
+    write(
+        out,
+        "names_attached_into_a_composed_model_read_back",
+        &back,
+        r#"{"nbody": 5, "body_names": ["world", "robot/", "robot/torso", "robot_1/", "robot_1/torso"],
+            "geom_names": ["//unnamed_geom_0~1", "//unnamed_geom_0", "robot//unnamed_geom_0", "robot_1//unnamed_geom_0"],
+            "joint_names": ["robot/hip", "robot_1/hip"]}"#,
+    )?;
+    // A class named `/` inside another class (MuJoCo compiles it): the root class is
+    // MuJoCo's main class alone, `/1` beside an attached model's root class, whose
+    // geoms keep MuJoCo's default colour (0.5, 0.5, 0.5, 1).
+    let slash = Model::from_xml_str(
+        r#"<mujoco model="m"><default><geom rgba="1 0 0 1"/>
+             <default class="a"><default class="/"><geom rgba="0 1 0 1"/></default></default></default>
+           <worldbody><geom size="1"/><geom class="/" size="1"/></worldbody></mujoco>"#,
+    )?;
+    let expect =
+        r#""geom_rgba[0][0]": 1, "geom_rgba[0][1]": 0, "geom_rgba[1][0]": 0, "geom_rgba[1][1]": 1"#;
+    write(out, "names_class_slash", &slash, &format!("{{{expect}}}"))?;
+    let mut with = slash.clone();
+    with.attach_mut(&with.worldbody(), &small_robot("robot")?)?;
+    write(
+        out,
+        "names_class_slash_attached",
+        &with,
+        &format!(r#"{{{expect}, "geom_rgba[2][0]": 0.5, "geom_rgba[2][1]": 0.5}}"#),
+    )?;
+    // A root class named `main` (D9) with an attached model: the robot's geom keeps
+    // MuJoCo's default colour.
+    let mut main = Model::from_xml_str(
+        r#"<mujoco model="arena"><default class="main"><geom rgba="1 0 0 1"/></default>
+           <worldbody><geom size="1"/></worldbody></mujoco>"#,
+    )?;
+    main.attach_mut(&main.worldbody(), &small_robot("robot")?)?;
+    write(
+        out,
+        "names_root_main_attached",
+        &main,
+        r#"{"ngeom": 2, "geom_rgba[0][1]": 0, "geom_rgba[1][0]": 0.5, "geom_rgba[1][1]": 0.5}"#,
+    )?;
+    // Unnamed elements in a `<replicate>`, and an attached model at a site in it:
+    // MuJoCo appends the copy's number to the written names.
+    let mut rep = Model::from_xml_str(
+        r#"<mujoco model="arena"><worldbody><geom size="1"/>
+           <replicate count="2" offset="1 0 0"><geom size="0.1"/><site name="s"/></replicate>
+           </worldbody></mujoco>"#,
+    )?;
+    let site = rep.find(mjcf::Namespace::Site, "s").ok_or("no site")?;
+    rep.attach_mut(&site, &small_robot("robot")?)?;
+    let names: Vec<String> =
+        rep.find_all(mjcf::Namespace::Geom).iter().filter_map(|l| rep.full_name(l)).collect();
+    assert_eq!(names, ["//unnamed_geom_0", "//unnamed_geom_1_", "robot//unnamed_geom_0_"]);
+    write(
+        out,
+        "names_replicated",
+        &rep,
+        r#"{"ngeom": 5, "geom_names": ["//unnamed_geom_0", "//unnamed_geom_1_0", "//unnamed_geom_1_1",
+            "robot//unnamed_geom_0_0", "robot//unnamed_geom_0_1"]}"#,
+    )?;
     Ok(())
 }

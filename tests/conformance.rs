@@ -24,8 +24,12 @@
 mod case;
 #[path = "support/compare.rs"]
 mod compare;
+#[path = "support/names.rs"]
+mod names;
 #[path = "support/replay.rs"]
 mod replay;
+#[path = "support/text.rs"]
+mod text;
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;

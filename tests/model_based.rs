@@ -49,8 +49,9 @@
 //! An auto-name (`//unnamed_geom_3` at the top, `robot//unnamed_geom_1` in scope
 //! `robot`) compares as its scope prefix and namespace (``, `geom`; `robot/`, `geom`)
 //! without its index, so unnamed elements are compared by position, but still in the
-//! right scope and namespace. An unnamed frame joint is written with its frame's name
-//! (`robot/`). The naive model renders to the same form directly; `Display` prints the
+//! right scope and namespace. The first unnamed joint of a frame is written with its
+//! frame's name (`robot/`), unless a named frame joint has that name (DESIGN D14); the
+//! other unnamed ones with auto-names. The naive model renders to the same form directly; `Display` prints the
 //! form one element per line, which is what a failure shows (with the steps replayed
 //! and the library's XML).
 //!
@@ -477,12 +478,6 @@ impl Naive {
                     return Err(format!("frame joint {n} exists on this frame"));
                 }
             }
-            // An unnamed frame joint is written with its frame's name: one per frame.
-            if node.name.is_none()
-                && parent_node.children.iter().any(|c| is_joint(c.tag) && c.name.is_none())
-            {
-                return Err("the frame has an unnamed joint".into());
-            }
             // The frame's own joints come before the attached model's content.
             let at = parent_node.children.iter().take_while(|c| is_joint(c.tag)).count();
             self.node_mut(p).children.insert(at, node);
@@ -529,14 +524,6 @@ impl Naive {
                         && frame.children.iter().any(|c| is_joint(c.tag) && c.name == new)
                     {
                         return Err(format!("frame joint {new:?} exists on this frame"));
-                    }
-                    // An unnamed frame joint is written with its frame's name: one per
-                    // frame.
-                    if new.is_none()
-                        && node.name.is_some()
-                        && frame.children.iter().any(|c| is_joint(c.tag) && c.name.is_none())
-                    {
-                        return Err("the frame has an unnamed joint".into());
                     }
                     new
                 } else {
@@ -686,27 +673,51 @@ impl Naive {
 
     /// The canonical form.
     fn canon(&self) -> Canon {
-        fn node(n: &NNode, frame_name: Option<&str>) -> CNode {
-            let name = match (&n.name, frame_name) {
-                (Some(s), _) => CName::Named(s.clone()),
-                // An unnamed frame joint is written with the frame's name.
-                (None, Some(f)) => CName::Named(f.to_string()),
-                (None, None) => auto_name(&n.scope, n.tag),
-            };
-            let children = n
-                .children
-                .iter()
-                .map(|c| {
-                    node(c, if n.is_frame() && is_joint(c.tag) { n.name.as_deref() } else { None })
-                })
-                .collect();
-            CNode {
-                tag: n.tag.to_string(),
-                name,
-                attrs: n.attrs.iter().map(|(k, v)| (k.to_string(), v.clone())).collect(),
-                children,
+        // The names of the named frame joints: an unnamed frame joint is written with
+        // its frame's name (the first of its frame) unless one of them has that name
+        // (a joint `a` of the frame holding a model with an attachment `a`).
+        fn named_frame_joints(n: &NNode, out: &mut Vec<String>) {
+            for c in &n.children {
+                if n.is_frame() && is_joint(c.tag) {
+                    out.extend(c.name.clone());
+                }
+                named_frame_joints(c, out);
             }
         }
+        let mut taken = Vec::new();
+        self.world.iter().for_each(|n| named_frame_joints(n, &mut taken));
+        let node = |n: &NNode, frame_name: Option<&str>| -> CNode {
+            fn node(n: &NNode, frame_name: Option<&str>, taken: &[String]) -> CNode {
+                let name = match (&n.name, frame_name) {
+                    (Some(s), _) => CName::Named(s.clone()),
+                    // The first unnamed frame joint (marked by its frame's name).
+                    (None, Some(f)) => CName::Named(f.to_string()),
+                    (None, None) => auto_name(&n.scope, n.tag),
+                };
+                let first_unnamed = n
+                    .children
+                    .iter()
+                    .position(|c| is_joint(c.tag) && c.name.is_none())
+                    .filter(|_| n.is_frame())
+                    .filter(|_| !n.name.as_ref().is_some_and(|f| taken.contains(f)));
+                let children = n
+                    .children
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| {
+                        let f = if first_unnamed == Some(i) { n.name.as_deref() } else { None };
+                        node(c, f, taken)
+                    })
+                    .collect();
+                CNode {
+                    tag: n.tag.to_string(),
+                    name,
+                    attrs: n.attrs.iter().map(|(k, v)| (k.to_string(), v.clone())).collect(),
+                    children,
+                }
+            }
+            node(n, frame_name, &taken)
+        };
         let items = |section: &str| -> Vec<CNode> {
             self.items
                 .iter()

@@ -497,11 +497,11 @@ fn written_empty_models_read_back_unchanged() {
     assert_eq!(again, text::rewrapped_root_default(&w));
     assert_eq!(write(&Model::from_xml_str(&again).unwrap()), again);
     // A root class named `main` is MuJoCo's main class itself (DESIGN D9): written as
-    // the outer `<default>`, it reads back as the unnamed root class.
+    // the outer `<default class="main">`, it reads back named so, and writes the same.
     let main = m.set_attr(&m.default_class(), "class", "main").unwrap();
     let w = write(&main);
-    assert!(!w.contains("class=\"main\""), "{w}");
-    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), write(&Model::new("m")));
+    assert!(w.contains("  <default class=\"main\">\n  </default>"), "{w}");
+    assert_eq!(write(&Model::from_xml_str(&w).unwrap()), w);
 }
 
 // ---------------------------------------------------------------------------------

@@ -19,6 +19,10 @@
 mod case;
 #[path = "../../tests/support/compare.rs"]
 mod compare;
+#[path = "../../tests/support/names.rs"]
+mod names;
+#[path = "../../tests/support/text.rs"]
+mod text;
 #[path = "../../tests/support/replay.rs"]
 #[allow(dead_code)]
 mod replay;

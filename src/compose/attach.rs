@@ -24,7 +24,8 @@ impl Model {
     /// before), or at the end of the worldbody. The child's names get the scope prefix
     /// `name/` when written, where `name` is the child's model name, or `name_1`,
     /// `name_2`, ... if the model that receives it already has an attachment of that
-    /// name. The child value is shared, not copied, whatever its size, and one value
+    /// name, or a literal name read from MJCF that starts with `name/` (a composed
+    /// model read back holds `robot/torso`). The child value is shared, not copied, whatever its size, and one value
     /// can be attached any number of times.
     ///
     /// Time: O(levels · depth · (log n + √width)), independent of the size of `child`
@@ -259,7 +260,8 @@ impl Model {
     /// for a malformed path; [`ErrorKind::DuplicateIdentifier`] (in
     /// [`Namespace::AttachmentFrame`](crate::Namespace::AttachmentFrame)) if an
     /// attachment of the same model already has that name (including this one, as in
-    /// the reference); [`ErrorKind::InvalidValue`] if `to` is empty, holds a `/`
+    /// the reference), or a literal name of the model read from MJCF starts with it
+    /// and a `/` (`robot/torso`: the attachment's names would be written the same); [`ErrorKind::InvalidValue`] if `to` is empty, holds a `/`
     /// ([`ValueError::SlashInIdentifier`]) or a character XML cannot hold, such as NUL
     /// ([`ValueError::InvalidCharacter`]).
     ///
@@ -296,8 +298,10 @@ impl Model {
         let (frame, outer) = frames.split_last().ok_or_else(|| not_attached(self, &text))?;
         let (m, ()) = self.in_scope(outer, |m: &Model| {
             // As in the reference, the name must be free: renaming to the scope's own
-            // name is refused too.
-            if m.index.frame_of(to).is_some() {
+            // name is refused too; so is the part before the `/` of a literal name
+            // (`robot` beside `robot/torso` read from MJCF), which the attachment's
+            // names would meet.
+            if m.index.frame_of(to).is_some() || m.index.has_slashed_segment(to) {
                 return Err(EditError::new(
                     ErrorKind::DuplicateIdentifier {
                         namespace: crate::Namespace::AttachmentFrame,

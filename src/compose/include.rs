@@ -56,7 +56,9 @@ impl Model {
     ///   attribute of a merged element (a global setting, a root default-class
     ///   default) that must agree does not; or the result's settings disagree with
     ///   an attached model's;
-    /// - [`ErrorKind::DuplicateIdentifier`]: a copied element's name is taken;
+    /// - [`ErrorKind::DuplicateIdentifier`]: a copied element's name is taken, or
+    ///   (a name read from MJCF, `robot/x`) starts with the scope of an attachment of
+    ///   this model and a `/`, so that the attachment's names would meet it;
     /// - [`ErrorKind::CopyConflict`]: with `override_attributes`, a named element of
     ///   `other` whose namesake here has another parent.
     ///
@@ -186,7 +188,10 @@ impl Copier<'_> {
                 }
                 continue;
             }
-            let Some(done) = stack.pop() else { break };
+            let Some(mut done) = stack.pop() else { break };
+            if done.dest.kind().tag() == "default" {
+                done.children = actuator_defaults_in_order(&done.dest, done.src, &done.children);
+            }
             let node = done.dest.with_parts(done.attrs, done.children);
             path.truncate(done.path_len);
             match stack.last_mut() {
@@ -223,6 +228,28 @@ impl Copier<'_> {
             Node::new(id, n.kind(), n.attrs().to_vec(), children)
         })
     }
+}
+
+/// The children of the default class `dest` merged with `src` (`children`), with
+/// their actuator defaults in document order (DESIGN D11): those `dest` sets, in its
+/// order, then those only `src` sets, in its order (what is copied comes after the
+/// receiving model's own).
+fn actuator_defaults_in_order(dest: &Node, src: &Node, children: &Seq<Node>) -> Seq<Node> {
+    let set = |c: &Node| !c.attrs().is_empty() || !c.children().is_empty();
+    let (own, theirs) = (dest.children(), src.children());
+    if !theirs.iter().any(|c| crate::model::defaults::is_actuator_default(c.kind()) && set(c)) {
+        // Nothing of theirs to place: the children as merged (shared).
+        return children.clone();
+    }
+    let rank = |n: &Node| {
+        if let Some(i) = own.iter().position(|c| c.id() == n.id() && set(c)) {
+            return Some(i);
+        }
+        theirs.iter().position(|c| c.kind() == n.kind() && set(c)).map(|i| own.len() + i)
+    };
+    let mut list: Vec<Node> = children.iter().cloned().collect();
+    crate::model::defaults::order(&mut list, |n| n, rank);
+    list.into_iter().collect()
 }
 
 /// Merges the attributes of two elements of the same kind.

@@ -172,6 +172,16 @@ impl Word {
     pub fn model_name(self) -> &'static str {
         MODEL_WORDS[usize::from(self.0) % MODEL_WORDS.len()]
     }
+
+    /// The name of a joint of an attachment frame: for odd words a model name
+    /// ([`Word::model_name`]), which the scope of an attachment inside the attached
+    /// model can share (the names written for both then meet: DESIGN D14); an
+    /// element name ([`Word::text`]) otherwise.
+    ///
+    /// Time: O(1).
+    pub fn frame_joint_name(self) -> &'static str {
+        if self.0 % 2 == 1 { Word(self.0 / 2).model_name() } else { self.text() }
+    }
 }
 
 /// One more attribute of an element: which one of the attributes recipes set on
@@ -1097,14 +1107,14 @@ impl Builder {
         m: &Model,
         parent: &Loc,
         make: impl Fn(Option<&str>) -> Element,
-        word: Option<Word>,
+        word: Option<&str>,
         prefix: &str,
         allowed: usize,
     ) -> Option<(Model, Loc)> {
         let (next, loc) = match word {
             None => m.add(parent, make(None)).ok()?,
             Some(w) => {
-                let base = format!("{prefix}{}", w.text());
+                let base = format!("{prefix}{w}");
                 let mut found = None;
                 for k in 1..=6 {
                     let name = if k == 1 { base.clone() } else { format!("{base}_{k}") };
@@ -1209,14 +1219,14 @@ impl Builder {
                         .child(g.clone());
                     if *free && top { el.child(Element::new("freejoint")) } else { el }
                 };
-                self.add_named(m, &p, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
             }
             Step::Geom { parent, geom } => {
                 let p = parent.of(&body_parents(m))?.clone();
                 let kind = view(m, &p)?.1.child("geom")?;
                 let (top, scoped) = (p == world && depth == 0, p.is_scoped());
                 let make = |n: Option<&str>| self.geom(m, kind, geom, top, scoped, n);
-                self.add_named(m, &p, make, geom.name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &p, make, geom.name.map(Word::text), prefix, allowed).map(|r| r.0)
             }
             Step::Site { parent, name, pos, extras } => {
                 let p = parent.of(&body_parents(m))?.clone();
@@ -1227,7 +1237,7 @@ impl Builder {
                     let el = with_extras(el, kind, palette("site", false), extras, &["pos"]);
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                self.add_named(m, &p, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
             }
             Step::Joint { body, name, kind: jk, axis, range, class, extras } => {
                 // Bodies where the joint fits: no freejoint, at most 6 degrees of freedom.
@@ -1258,7 +1268,7 @@ impl Builder {
                     }
                     with_extras(el, kind, palette("joint", false), extras, &taken)
                 };
-                self.add_named(m, &b, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &b, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
             }
             Step::Camera { parent, name, extras } | Step::Light { parent, name, extras } => {
                 let tag = if matches!(step, Step::Camera { .. }) { "camera" } else { "light" };
@@ -1268,7 +1278,7 @@ impl Builder {
                     let el = with_extras(Element::new(tag), kind, palette(tag, false), extras, &[]);
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                self.add_named(m, &p, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
             }
             Step::Class { parent, name, defaults } => {
                 let mut parents = vec![m.default_class()];
@@ -1296,7 +1306,7 @@ impl Builder {
                     }
                     el
                 };
-                self.add_named(m, &p, make, Some(*name), prefix, allowed).map(|r| r.0)
+                self.add_named(m, &p, make, Some(name.text()), prefix, allowed).map(|r| r.0)
             }
             Step::Material { name, extras } => {
                 let asset = m.asset();
@@ -1305,7 +1315,7 @@ impl Builder {
                     let el = Element::new("material").attr("name", n.unwrap_or("x"));
                     with_extras(el, kind, palette("material", false), extras, &[])
                 };
-                self.add_named(m, &asset, make, Some(*name), prefix, allowed).map(|r| r.0)
+                self.add_named(m, &asset, make, Some(name.text()), prefix, allowed).map(|r| r.0)
             }
             Step::Mesh { name, scale } => {
                 let asset = m.asset();
@@ -1316,7 +1326,7 @@ impl Builder {
                         .attr("vertex", TETRAHEDRON)
                         .attr("scale", scale.clone())
                 };
-                self.add_named(m, &asset, make, Some(*name), prefix, allowed).map(|r| r.0)
+                self.add_named(m, &asset, make, Some(name.text()), prefix, allowed).map(|r| r.0)
             }
             Step::Actuator { kind: ak, name, joint, extras } => {
                 let joints = named(m, Namespace::Joint, scalar_joint);
@@ -1333,7 +1343,8 @@ impl Builder {
                     let el = with_extras(el, kind, palette(tag, false), extras, &["joint"]);
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                self.add_named(m, &section, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &section, make, name.map(Word::text), prefix, allowed)
+                    .map(|r| r.0)
             }
             Step::Sensor { kind: sk, name, target, extras } => {
                 let section = m.sensor();
@@ -1370,7 +1381,8 @@ impl Builder {
                     let el = with_extras(el, kind, palette(tag, false), extras, &[]);
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                self.add_named(m, &section, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &section, make, name.map(Word::text), prefix, allowed)
+                    .map(|r| r.0)
             }
             Step::Tendon { name, joints } => {
                 let all = named(m, Namespace::Joint, scalar_joint);
@@ -1397,7 +1409,8 @@ impl Builder {
                     }
                     el
                 };
-                self.add_named(m, &section, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &section, make, name.map(Word::text), prefix, allowed)
+                    .map(|r| r.0)
             }
             Step::Equality { kind: ek, name, first, second } => {
                 let section = m.section("equality")?;
@@ -1421,7 +1434,8 @@ impl Builder {
                     }
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                self.add_named(m, &section, make, *name, prefix, allowed).map(|r| r.0)
+                self.add_named(m, &section, make, name.map(Word::text), prefix, allowed)
+                    .map(|r| r.0)
             }
             Step::Exclude { first, second } | Step::Pair { first, second } => {
                 let section = m.section("contact")?;
@@ -1490,8 +1504,8 @@ impl Builder {
             next = next.add(&frame_loc, Element::new("freejoint")).ok()?.0;
             next = next.add(&frame_loc, inertial()).ok()?.0;
         } else if !frame.joints.is_empty() {
-            // Joints that fit (at most 6 degrees of freedom; one unnamed joint, as an
-            // unnamed frame joint is written with the frame's name).
+            // Joints that fit (at most 6 degrees of freedom, no rotation after a
+            // ball joint); any number unnamed.
             let mut added = false;
             for j in frame.joints.iter().take(3) {
                 if !joint_fits(&next, &frame_loc, j.kind) {
@@ -1506,9 +1520,14 @@ impl Builder {
                     };
                     if let Some(n) = n { el.attr("name", n) } else { el }
                 };
-                if let Some((n, _)) =
-                    self.add_named(&next, &frame_loc, make, j.name, prefix, usize::MAX)
-                {
+                if let Some((n, _)) = self.add_named(
+                    &next,
+                    &frame_loc,
+                    make,
+                    j.name.map(Word::frame_joint_name),
+                    prefix,
+                    usize::MAX,
+                ) {
                     next = n;
                     added = true;
                 }

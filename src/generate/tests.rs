@@ -7,11 +7,14 @@
 //! Cases: `PROPTEST_CASES` (default 64) from a fixed seed (`PROPTEST_RNG_SEED` to
 //! explore others).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunner};
+
+#[path = "../../tests/support/names.rs"]
+mod names;
 
 use super::strategy::{model_recipe, models, scene_and_edits, scene_recipe};
 use super::*;
@@ -33,36 +36,22 @@ fn write(m: &Model) -> Result<String, TestCaseError> {
     m.to_xml_string().map_err(|e| TestCaseError::fail(format!("cannot write: {e}")))
 }
 
-/// Valid: `check` finds nothing, the output reads back and writing that is a fixed
-/// point after one round, and names are unique per namespace in the composed model.
+/// Valid: `check` finds nothing; the output reads back, and writing that is the
+/// same text (write, read, write is a fixed point, composed models included); every
+/// name written is unique in its namespace, is the element's `full_name`, and
+/// `from_full_name` gives the element back (in the model and in what it reads back
+/// as).
 fn assert_valid(m: &Model) -> Result<String, TestCaseError> {
     let problems: Vec<String> = m.check().iter().map(ToString::to_string).collect();
     prop_assert!(problems.is_empty(), "{problems:?}");
     let w1 = write(m)?;
+    names::check_names(m, &w1).map_err(|e| TestCaseError::fail(format!("{e}\n{w1}")))?;
     let read =
         |w: &str| Model::from_xml_str(w).map_err(|e| TestCaseError::fail(format!("{e}\n{w}")));
-    let w2 = write(&read(&w1)?)?;
-    let w3 = write(&read(&w2)?)?;
-    prop_assert_eq!(&w3, &w2, "no fixed point; first output:\n{}", w1);
-    for ns in [
-        Namespace::Body,
-        Namespace::Geom,
-        Namespace::Site,
-        Namespace::Joint,
-        Namespace::Actuator,
-        Namespace::Sensor,
-        Namespace::Default,
-        Namespace::Material,
-        Namespace::Mesh,
-    ] {
-        let mut seen = HashSet::new();
-        for l in m.find_all(ns) {
-            let full = m.get(&l).ok().and_then(|e| e.full_name());
-            if let Some(f) = full {
-                prop_assert!(seen.insert(f.clone()), "{} {} twice", ns, f);
-            }
-        }
-    }
+    let back = read(&w1)?;
+    let w2 = write(&back)?;
+    names::check_names(&back, &w2).map_err(|e| TestCaseError::fail(format!("{e}\n{w2}")))?;
+    prop_assert_eq!(&w2, &w1, "write, read, write is no fixed point");
     Ok(w1)
 }
 
@@ -105,6 +94,25 @@ proptest! {
         for ((v, w), a) in versions.iter().zip(&texts).zip(&again) {
             prop_assert_eq!(&write(v)?, w);
             prop_assert!(v == a);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Edits of what a generated scene reads back as: a flat model whose literal
+    /// names hold `/` (`robot/torso`, the class `robot/`, `robot/root/`,
+    /// `//unnamed_geom_0`). Every version writes unique names: the scopes of new
+    /// attachments, their frames' joints and the automatic names avoid the literal
+    /// ones (DESIGN D14).
+    #[test]
+    fn edits_of_a_read_back_scene_write_unique_names((r, e) in scene_and_edits()) {
+        let scene = r.build();
+        let w = write(&scene)?;
+        let back = Model::from_xml_str(&w).map_err(|e| TestCaseError::fail(format!("{e}\n{w}")))?;
+        for v in e.apply(&back) {
+            assert_valid(&v)?;
         }
     }
 }
@@ -184,6 +192,9 @@ fn generators_reach_every_kind_of_step() {
     let mut tags: HashMap<&'static str, usize> = HashMap::new();
     let (mut nested, mut frame_joints, mut free_frames, mut shared, mut edits_applied) =
         (0, 0, 0, 0, 0);
+    // Frames with two unnamed joints; frame joints named as a scope of the model
+    // the frame holds (their names meet: DESIGN D14).
+    let (mut two_unnamed, mut joint_named_as_scope) = (0, 0);
     for _ in 0..300 {
         let (r, e) = scene_and_edits().new_tree(&mut runner).unwrap().current();
         let versions = e.apply(&r.build());
@@ -199,6 +210,15 @@ fn generators_reach_every_kind_of_step() {
                 let kids: Vec<&str> = el.children().map(|c| c.tag()).collect();
                 free_frames += usize::from(kids.contains(&"freejoint"));
                 frame_joints += usize::from(kids.contains(&"joint"));
+                let joints: Vec<_> = el.children().filter(|c| c.tag() == "joint").collect();
+                two_unnamed +=
+                    usize::from(joints.iter().filter(|j| j.identifier().is_none()).count() >= 2);
+                let scope = m.scope_of_frame(&el.loc()).unwrap();
+                let inner: Vec<&str> = m.attached(&scope).unwrap().scopes().collect();
+                joint_named_as_scope += joints
+                    .iter()
+                    .filter(|j| j.identifier().is_some_and(|n| inner.contains(&n)))
+                    .count();
             }
         }
         // One value attached at two places (at any level).
@@ -241,6 +261,11 @@ fn generators_reach_every_kind_of_step() {
     assert!(nested > 10, "nested attachments: {nested}");
     assert!(frame_joints > 10, "frames with joints: {frame_joints}");
     assert!(free_frames > 10, "frames with freejoints: {free_frames}");
+    assert!(two_unnamed > 3, "frames with two unnamed joints: {two_unnamed}");
+    assert!(
+        joint_named_as_scope > 0,
+        "frame joints named as a scope inside: {joint_named_as_scope}"
+    );
     assert!(shared > 0, "models attached twice: {shared}");
     assert!(edits_applied > 1000, "edits applied: {edits_applied}");
 }

@@ -730,6 +730,9 @@ struct Filling<'e> {
     /// Where the finished node goes among its parent's children: replacing the
     /// singleton at this position, or (`None`) appended.
     slot: Option<usize>,
+    /// The singleton children `part` gives, in its order (their order as given is
+    /// kept for a default class's actuator defaults: DESIGN D11).
+    given: Vec<ElementKind>,
 }
 
 impl<'e> Filling<'e> {
@@ -761,6 +764,7 @@ impl<'e> Filling<'e> {
             next: 0,
             path_len,
             slot,
+            given: Vec::new(),
         })
     }
 }
@@ -785,6 +789,9 @@ fn fill(
             let (existing, slot) = match child_kind.multiplicity() {
                 Multiplicity::Singleton => {
                     let pos = top.children.iter().position(|c| c.kind() == child_kind);
+                    if !top.given.contains(&child_kind) {
+                        top.given.push(child_kind);
+                    }
                     (pos.and_then(|p| top.children.get(p).cloned()), pos)
                 }
                 Multiplicity::OnDemand if top.children.iter().any(|c| c.kind() == child_kind) => {
@@ -798,7 +805,18 @@ fn fill(
             stack.push(Filling::start(ctx, parent, &existing, child, slot, path_len)?);
             continue;
         }
-        let Some(done) = stack.pop() else { break };
+        let Some(mut done) = stack.pop() else { break };
+        if done.kind.tag() == "default" && done.given.len() > 1 {
+            // DESIGN D11: the actuator defaults in the order given.
+            let mut children: Vec<Node> = done.children.iter().cloned().collect();
+            let given = &done.given;
+            super::defaults::order(
+                &mut children,
+                |n| n,
+                |n| given.iter().position(|k| *k == n.kind()),
+            );
+            done.children = children.into_iter().collect();
+        }
         let node = Node::new(done.id, done.kind, done.attrs, done.children);
         path.truncate(done.path_len);
         match stack.last_mut() {

@@ -6,11 +6,12 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, Namespace};
+use crate::schema::{AttrType, ElementKind, Namespace};
+use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
 use crate::xml::WriteOptions;
 
-use super::cursor::{Step, Walk};
+use super::cursor::{Insts, Item, Step, Walk};
 use super::tree::{ElementId, Node};
 use super::{Loc, Model};
 
@@ -19,8 +20,9 @@ use super::{Loc, Model};
 pub struct Problem {
     /// The element.
     pub loc: Loc,
-    /// The element as MuJoCo will name it (`robot_1/torso`), or its tag and
-    /// position for an unnamed element without a namespace.
+    /// The element as the writer names it (`robot_1/torso`, `//unnamed_actuator_3`:
+    /// [`ElementRef::full_name`](crate::ElementRef::full_name)), or, for an element
+    /// without a namespace, its scope prefix and tag.
     pub path: String,
     /// What is wrong.
     pub kind: ProblemKind,
@@ -59,6 +61,16 @@ pub enum ProblemKind {
     /// joint between) with mass. MuJoCo refuses it ("mass and inertia of moving bodies
     /// must be larger than mjMINVAL").
     MasslessMovingBody,
+    /// A body (or attachment frame) whose joints have more than 6 degrees of
+    /// freedom (a freejoint has 6, a ball joint 3, a hinge or slide 1): a freejoint
+    /// beside another joint, say. MuJoCo refuses it ("more than 6 dofs in body").
+    TooManyDofs {
+        /// The degrees of freedom of its joints.
+        dofs: usize,
+    },
+    /// A body (or attachment frame) with a hinge or ball joint after a ball joint.
+    /// MuJoCo refuses it ("ball followed by rotation in body").
+    RotationAfterBall,
     /// A keyframe array with more values than the model has room for (MuJoCo refuses
     /// it, "invalid qpos size"; a shorter one it pads with zeros): the composed
     /// model's, or with [`WriteOptions::merge_keyframes`] the key's own model's.
@@ -117,6 +129,18 @@ impl fmt::Display for Problem {
                 f,
                 "{}: moves (has joints) but has no mass, and no body fixed to it has any; \
                  give it an inertial or a geom",
+                self.path
+            ),
+            ProblemKind::TooManyDofs { dofs } => write!(
+                f,
+                "{}: its joints have {dofs} degrees of freedom, more than the 6 MuJoCo allows \
+                 in one body (a freejoint has 6: it takes no other joint)",
+                self.path
+            ),
+            ProblemKind::RotationAfterBall => write!(
+                f,
+                "{}: a hinge or ball joint follows a ball joint, which MuJoCo refuses; \
+                 put the ball joint after them",
                 self.path
             ),
             ProblemKind::KeyLength { attribute, expected, found } => write!(
@@ -187,19 +211,63 @@ pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -
     "hinge"
 }
 
+/// An element open in [`Model::check`]'s walk, with what its subtree showed so far.
+struct Open<'a> {
+    inst: usize,
+    node: &'a Node,
+    /// It has joints (or a freejoint).
+    moves: bool,
+    /// It, or something welded below it, has mass.
+    massive: bool,
+    /// The degrees of freedom of its own joints.
+    dofs: usize,
+    /// One of its joints is a ball joint.
+    ball: bool,
+    /// A hinge or ball joint of its own follows a ball joint.
+    rotation_after_ball: bool,
+}
+
+impl<'a> Open<'a> {
+    fn new(inst: usize, node: &'a Node) -> Open<'a> {
+        Open {
+            inst,
+            node,
+            moves: false,
+            massive: false,
+            dofs: 0,
+            ball: false,
+            rotation_after_ball: false,
+        }
+    }
+}
+
+/// How a problem names the element the walk entered as `item`: the name the writer
+/// writes for it, or (no namespace) its scope and tag.
+fn problem_path(insts: &Insts<'_>, item: &Item<'_>) -> String {
+    let prefix = &insts.list[item.inst].names.prefix;
+    match insts.name_of_item(item) {
+        Some(w) => w.to_string_in(prefix),
+        None => format!("{prefix}{}", item.node.kind().tag()),
+    }
+}
+
 impl Model {
     /// What MuJoCo would refuse in the composed model, found before it is written:
     /// references that name nothing in their model (the `joint="hinj"` typo, with the
     /// nearest names), references whose element was removed, moving bodies
     /// and attachment frames without mass (no inertial, no geom, no massive body
-    /// welded below), keyframes whose `qpos`, `qvel` or `ctrl` length does not fit the
-    /// composed model, and arrays shorter than MuJoCo accepts (`pos="1 2"`; the
-    /// minimums probed from MuJoCo 4.0.0). Empty when none is found; this is not a full MuJoCo compile
-    /// (classes are followed for joint types only; `act`, `mpos` and `mquat` of keys
-    /// are not checked).
+    /// welded below), bodies and frames whose joints MuJoCo refuses (more than 6
+    /// degrees of freedom, such as a freejoint beside another joint; a hinge or ball
+    /// joint after a ball joint), keys longer than the model, arrays shorter than
+    /// MuJoCo accepts (`pos="1 2"`; the minimums probed from MuJoCo 4.0.0), and keys
+    /// of attached models written without `merge_keyframes` ([`ProblemKind::UncomposedKey`];
+    /// see [`Model::check_with`]). Empty when none is found; this is not a full MuJoCo
+    /// compile. Each problem names its element as the writer writes it.
     ///
-    /// Time: O(n) for a composed model of n elements, plus O(names) per dangling
-    /// reference for its suggestions.
+    /// Time: O(N) for a composed model of N elements, plus, for dangling references,
+    /// O(n log n) per model and namespace they name into (ranking its `n` names
+    /// once) and a bounded number of name comparisons each (see
+    /// [`Model::lookup`]).
     ///
     /// # Examples
     /// ```
@@ -229,9 +297,12 @@ impl Model {
         let mut problems = Vec::new();
         let name = self.name();
         let mut walk = Walk::new(self);
-        // Per open element: (instance, node, whether it moves, whether it or anything
-        // below has mass so far).
-        let mut open: Vec<(usize, &Node, bool, bool)> = Vec::new();
+        let mut open: Vec<Open<'_>> = Vec::new();
+        // The class in force per instance: (childclass stack) is approximated by the
+        // element's own class, else the nearest `childclass` above, else the root.
+        let mut childclass: Vec<Option<ElementId>> = Vec::new();
+        // Names ranked for suggestions, per model (instance) and namespace, once.
+        let mut suggesters: HashMap<(usize, Namespace), Suggester<'_>> = HashMap::new();
         while let Some(step) = walk.next() {
             match step {
                 Step::Enter(item) => {
@@ -240,16 +311,7 @@ impl Model {
                     let node = item.node;
                     let kind = node.kind();
                     let loc = || Loc::scoped(inst.frames.clone(), node.id(), name);
-                    let path = || {
-                        self.element(&loc()).and_then(|e| e.full_name()).unwrap_or_else(|| {
-                            let scope = self.scope_path(&loc()).unwrap_or_default();
-                            if scope.is_empty() {
-                                kind.tag().to_string()
-                            } else {
-                                format!("{scope}/{}", kind.tag())
-                            }
-                        })
-                    };
+                    let path = || problem_path(&walk.insts, &item);
                     // References.
                     for (i, v) in node.attrs() {
                         let i = *i as usize;
@@ -263,16 +325,18 @@ impl Model {
                                 if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
                                     continue;
                                 }
-                                let names = m
-                                    .index
-                                    .names
-                                    .keys()
-                                    .filter(|(k, _)| *k == ns)
-                                    .map(|(_, n)| n.as_str());
-                                let suggestions = crate::suggest::nearest(n, names, 3)
-                                    .into_iter()
-                                    .map(SmolStr::from)
-                                    .collect();
+                                let ranked =
+                                    suggesters.entry((item.inst, ns)).or_insert_with(|| {
+                                        Suggester::new(
+                                            m.index
+                                                .names
+                                                .keys()
+                                                .filter(|(k, _)| *k == ns)
+                                                .map(|(_, n)| n.as_str()),
+                                        )
+                                    });
+                                let suggestions =
+                                    ranked.nearest(n, 3).into_iter().map(SmolStr::from).collect();
                                 problems.push(Problem {
                                     loc: loc(),
                                     path: path(),
@@ -296,12 +360,33 @@ impl Model {
                             _ => {}
                         }
                     }
-                    // Moving bodies.
-                    if matches!(kind.tag(), "joint" | "freejoint")
-                        && open.last().is_some_and(|(_, p, _, _)| p.kind().tag() == "body")
-                    {
+                    // Degrees of freedom (the layout's own count is in Model::layout).
+                    let parent_tag = open.last().map(|o| o.node.kind().tag());
+                    if matches!(kind.tag(), "joint" | "freejoint") && parent_tag == Some("body") {
+                        let class = node
+                            .kind()
+                            .class_attr()
+                            .and_then(|c| match node.attr(c) {
+                                Some(Value::Reference(Reference::Element(id))) => Some(*id),
+                                _ => None,
+                            })
+                            .or(childclass.last().copied().flatten())
+                            .or_else(|| {
+                                m.root
+                                    .child_of_kind(ElementKind::ROOT.child("default")?)
+                                    .map(Node::id)
+                            });
+                        let ty = joint_type(m, node, class);
+                        let v = match ty {
+                            "free" => 6,
+                            "ball" => 3,
+                            _ => 1,
+                        };
                         if let Some(top) = open.last_mut() {
-                            top.2 = true;
+                            top.moves = true;
+                            top.dofs += v;
+                            top.rotation_after_ball |= top.ball && matches!(ty, "ball" | "hinge");
+                            top.ball |= ty == "ball";
                         }
                     }
                     // Mass: an inertial with mass, or a geom (MuJoCo gives geoms a
@@ -320,33 +405,48 @@ impl Model {
                     };
                     if massive {
                         if let Some(top) = open.last_mut() {
-                            top.3 = true;
+                            top.massive = true;
                         }
                     }
-                    open.push((item.inst, node, false, false));
+                    let cc = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
+                        Some(Value::Reference(Reference::Element(id))) => Some(*id),
+                        _ => None,
+                    });
+                    let inherited = if item.inst == open.last().map_or(0, |o| o.inst) {
+                        childclass.last().copied().flatten()
+                    } else {
+                        None
+                    };
+                    childclass.push(cc.or(inherited));
+                    open.push(Open::new(item.inst, node));
                 }
                 Step::Leave(item) => {
-                    let Some((inst, node, moves, massive)) = open.pop() else { continue };
-                    let is_body = node.kind().tag() == "body"
-                        && node.kind().spec().parent.is_some_and(|p| p.tag() != "default");
-                    if is_body && moves && !massive {
-                        let i = &walk.insts.list[inst];
-                        let loc = Loc::scoped(i.frames.clone(), node.id(), name);
-                        let path = self
-                            .element(&loc)
-                            .and_then(|e| e.full_name())
-                            .unwrap_or_else(|| "body".into());
-                        problems.push(Problem { loc, path, kind: ProblemKind::MasslessMovingBody });
+                    childclass.pop();
+                    let Some(o) = open.pop() else { continue };
+                    let is_body = o.node.kind().tag() == "body"
+                        && o.node.kind().spec().parent.is_some_and(|p| p.tag() != "default");
+                    let problem = |kind| {
+                        let i = &walk.insts.list[o.inst];
+                        let loc = Loc::scoped(i.frames.clone(), o.node.id(), name);
+                        Problem { loc, path: problem_path(&walk.insts, &item), kind }
+                    };
+                    if is_body && o.moves && !o.massive {
+                        problems.push(problem(ProblemKind::MasslessMovingBody));
+                    }
+                    if o.dofs > 6 {
+                        problems.push(problem(ProblemKind::TooManyDofs { dofs: o.dofs }));
+                    }
+                    if o.rotation_after_ball {
+                        problems.push(problem(ProblemKind::RotationAfterBall));
                     }
                     // Mass below counts for the parent only through a body that does
                     // not move on its own (welded to it): MuJoCo wants a moving body's
                     // own mass, or that of bodies welded to it, above zero.
-                    if massive && !(is_body && moves) {
+                    if o.massive && !(is_body && o.moves) {
                         if let Some(top) = open.last_mut() {
-                            top.3 = true;
+                            top.massive = true;
                         }
                     }
-                    let _ = item;
                 }
             }
         }
@@ -423,44 +523,33 @@ impl Model {
     /// `robot_1/` (a body), a frame joint's `robot_1/root/`, or an automatic name
     /// such as `robot//unnamed_geom_1`.
     ///
-    /// Time: O(levels · log n) for a scoped identifier; O(n) for frames, frame
-    /// joints and automatic names, which are found by walking the composed model.
+    /// Time: O(levels · log n) for a scoped identifier; O(N) for frames, frame
+    /// joints and automatic names, which are found by walking the composed model of
+    /// `N` elements.
     pub fn from_full_name(&self, namespace: Namespace, name: &str) -> Option<Loc> {
         if let Some(loc) = self.find(namespace, name) {
-            return Some(loc);
+            // (A frame, by its scope path, has no name of that namespace to check.)
+            if namespace == Namespace::AttachmentFrame
+                || self.full_name(&loc).as_deref() == Some(name)
+            {
+                return Some(loc);
+            }
         }
-        // Frames, their joints and unnamed elements: compare the names the walk gives,
-        // counting unnamed elements per model in document order.
-        let mut counters: HashMap<*const Model, usize> = HashMap::new();
+        // Frames, their joints and unnamed elements: compare the names the walk gives.
         let top = self.name();
         let mut walk = Walk::new(self);
+        let mut text = String::new();
         while let Some(step) = walk.next() {
             let Step::Enter(item) = step else { continue };
             if item.node.kind().namespace() != Some(namespace) {
                 continue;
             }
+            let Some(written) = walk.insts.name_of_item(&item) else { continue };
             let inst = &walk.insts.list[item.inst];
-            let n = counters.entry(std::ptr::from_ref(inst.model)).or_insert(0);
-            let index = *n;
-            // Own elements are counted in the model's own document order: frames'
-            // bodies count too, as the writer counts them.
-            *n += 1;
-            let named = item.node.identifier().is_some()
-                && item.node.attached().is_none()
-                && !item.in_frame;
-            if named {
-                continue;
-            }
-            let loc = Loc::scoped(inst.frames.clone(), item.node.id(), top);
-            let full = if item.node.attached().is_some() || item.in_frame {
-                self.full_name(&loc)
-            } else {
-                let scope = self.scope_path(&loc).unwrap_or_default();
-                let p = if scope.is_empty() { "/".to_string() } else { format!("{scope}/") };
-                Some(format!("{p}/unnamed_{}_{index}", namespace.as_str()))
-            };
-            if full.as_deref() == Some(name) {
-                return Some(loc);
+            text.clear();
+            written.write(&inst.names.prefix, &mut text);
+            if text == name {
+                return Some(Loc::scoped(inst.frames.clone(), item.node.id(), top));
             }
         }
         None

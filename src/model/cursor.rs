@@ -14,15 +14,26 @@
 //! - everything else holds its own children.
 //!
 //! The writer and [`Model::find_all`] both fold over this walk.
+//!
+//! The walk is also where names come from (`super::naming` has the rules): each
+//! instance gets its scope prefix once, from its parent's, and the walk counts the
+//! elements of each namespace of each model as it enters them, which is the position
+//! an unnamed element's automatic name holds. [`Insts::name_of_item`] names what the
+//! walk enters; [`Insts::name_of_id`] names any element of an instance (a reference's
+//! target, [`ElementRef::full_name`]), counting its model once by the same walk
+//! ([`Walk::own`]).
 
+use std::cell::OnceCell;
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
 
 use crate::error::{EditError, ErrorKind};
+use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace};
 use crate::value::{Reference, Value};
 
+use super::naming::{ElemCtx, InstNames, Named, Written, first_unnamed_joint};
 use super::settings::is_settings_section;
 use super::tree::{ElementId, Node};
 use super::{Loc, Model};
@@ -33,8 +44,46 @@ pub(crate) struct Inst<'a> {
     pub(crate) model: &'a Model,
     /// The frames from the outermost model down to this one (empty for index 0).
     pub(crate) frames: Arc<[ElementId]>,
-    /// The instance holding the frame and the scope name, for attachments.
-    pub(crate) parent: Option<(usize, &'a str)>,
+    /// The attachment frame (a node of the parent instance's model), for attachments.
+    pub(crate) frame: Option<&'a Node>,
+    /// Its prefix and how its root class is written.
+    pub(crate) names: InstNames,
+    /// The name of its root default class (what an element without a class of its
+    /// own is written with).
+    root_class: Written<'a>,
+    /// Per namespace (`ns as usize`), how many of the model's elements of it the walk
+    /// has entered.
+    counters: Vec<u32>,
+    /// Every element's automatic-name position and whether a `<replicate>` of its
+    /// model is above it, counted once when a name needs it ([`Insts::name_of_id`]).
+    auto: OnceCell<HashMap<ElementId, (u32, bool), IdHash>>,
+}
+
+impl<'a> Inst<'a> {
+    fn new(
+        model: &'a Model,
+        frames: Arc<[ElementId]>,
+        frame: Option<&'a Node>,
+        names: InstNames,
+    ) -> Inst<'a> {
+        let root_class = section(model, "default")
+            .and_then(|r| {
+                names.name_of(model, Named::of_node(r), &ElemCtx::default(), || (0, false))
+            })
+            .unwrap_or(Written::RootClass);
+        let (counters, auto) = (Vec::new(), OnceCell::new());
+        Inst { model, frames, frame, names, root_class, counters, auto }
+    }
+
+    /// The position of the next element of `ns` (counted).
+    fn count(&mut self, ns: Namespace) -> u32 {
+        let k = ns as usize;
+        if self.counters.len() <= k {
+            self.counters.resize(k + 1, 0);
+        }
+        self.counters[k] += 1;
+        self.counters[k] - 1
+    }
 }
 
 /// The models of a composition met so far, each once: an attached model gets one
@@ -50,8 +99,9 @@ pub(crate) struct Insts<'a> {
 
 impl<'a> Insts<'a> {
     fn new(top: &'a Model) -> Insts<'a> {
+        let names = InstNames::top(top);
         Insts {
-            list: vec![Inst { model: top, frames: Arc::from([]), parent: None }],
+            list: vec![Inst::new(top, Arc::from([]), None, names)],
             by_frame: HashMap::new(),
             under_root: None,
         }
@@ -66,17 +116,72 @@ impl<'a> Insts<'a> {
         let mut frames = self.list[parent].frames.to_vec();
         frames.push(frame.id());
         let i = self.list.len();
-        self.list.push(Inst {
-            model: &a.model,
-            frames: frames.into(),
-            parent: Some((parent, a.scope.as_str())),
-        });
+        let outer = &self.list[parent];
+        let in_replicate = in_replicate(outer.model, frame.id());
+        let names = outer.names.attached(&a.scope, &a.model, in_replicate);
+        self.list.push(Inst::new(&a.model, frames.into(), Some(frame), names));
         self.by_frame.insert((parent, frame.id()), i);
         Some(i)
     }
 
+    /// The name of instance `inst`'s root default class (what an element without a
+    /// class of its own is written with).
+    pub(crate) fn root_class_name(&self, inst: usize) -> Written<'a> {
+        self.list[inst].root_class
+    }
+
+    /// The name `item` (entered by the walk) is written with, `None` for elements
+    /// without a namespace.
+    #[inline]
+    pub(crate) fn name_of_item(&self, item: &Item<'a>) -> Option<Written<'a>> {
+        let inst = &self.list[item.inst];
+        // A frame's joint: its frame (the walk keeps items small: this is rare).
+        let frame = if item.in_frame {
+            let m = inst.model;
+            m.index.parent(item.node.id()).and_then(|p| m.node_by_id(p))
+        } else {
+            None
+        };
+        let ctx = ElemCtx { frame, first_unnamed: item.first_unnamed, enclosing: inst.frame };
+        inst.names
+            .name_of(inst.model, Named::of_node(item.node), &ctx, || (item.auto, item.replicated))
+    }
+
+    /// The name element `id` of instance `inst` is written with, wherever it lies
+    /// (ahead of the walk too); `None` for elements without a namespace or not in
+    /// the model. An unnamed element's model is counted once (O(n)), the first time
+    /// one is asked for.
+    pub(crate) fn name_of_id(&self, inst: usize, id: ElementId) -> Option<Written<'a>> {
+        // Members of runs have no namespace, so every element with a name has an
+        // entry of its own.
+        let entry = self.list[inst].model.index.elems.get(&id)?;
+        self.name_of_entry(inst, id, entry)
+    }
+
+    /// [`Insts::name_of_id`] of an element whose index entry is `entry`.
+    pub(crate) fn name_of_entry(
+        &self,
+        inst: usize,
+        id: ElementId,
+        entry: &'a super::Entry,
+    ) -> Option<Written<'a>> {
+        let i = &self.list[inst];
+        let m = i.model;
+        let frame =
+            entry.parent.filter(|p| m.index.scope_of(*p).is_some()).and_then(|p| m.node_by_id(p));
+        let ctx = ElemCtx {
+            frame,
+            first_unnamed: frame.is_some_and(|f| first_unnamed_joint(f) == Some(id)),
+            enclosing: i.frame,
+        };
+        i.names.name_of(m, Named::of_entry(entry), &ctx, || {
+            let counted = i.auto.get_or_init(|| auto_positions(m));
+            counted.get(&id).copied().unwrap_or((0, false))
+        })
+    }
+
     /// The instance of the model attached along `frames` from instance 0.
-    fn along(&mut self, frames: &[ElementId]) -> Option<usize> {
+    pub(crate) fn along(&mut self, frames: &[ElementId]) -> Option<usize> {
         let mut i = 0;
         for f in frames {
             let node = self.list[i].model.node_by_id(*f)?;
@@ -114,8 +219,23 @@ pub(crate) struct Item<'a> {
     pub(crate) node: &'a Node,
     /// 0 for the root, 1 for sections (and attached root default classes), ...
     pub(crate) depth: usize,
-    /// Whether it is an own child of an attachment frame (a frame's joint).
+    /// Whether it is an own child of an attachment frame (a frame's joint or
+    /// inertial).
     pub(crate) in_frame: bool,
+    /// For a frame's joint: whether it is the first unnamed one of its frame.
+    pub(crate) first_unnamed: bool,
+    /// Whether a `<replicate>` of its own model is above it.
+    pub(crate) replicated: bool,
+    /// Its position among its model's elements of its namespace, in document order
+    /// (set when the walk enters it; 0 for elements without a namespace).
+    pub(crate) auto: u32,
+}
+
+impl<'a> Item<'a> {
+    /// An item with no frame, counted later.
+    fn plain(inst: usize, node: &'a Node, depth: usize, replicated: bool) -> Item<'a> {
+        Item { inst, node, depth, in_frame: false, first_unnamed: false, replicated, auto: 0 }
+    }
 }
 
 /// A step of the preorder walk.
@@ -134,29 +254,34 @@ pub(crate) struct Walk<'a> {
     /// Elements below the sections for which this holds are not entered at all (see
     /// [`Walk::pruned`]).
     prune: Option<fn(&Node) -> bool>,
+    /// Whether attached models are left out ([`Walk::own`]).
+    own: bool,
 }
 
 impl<'a> Walk<'a> {
     /// The walk of the whole composed `model`, from its root.
     pub(crate) fn new(model: &'a Model) -> Walk<'a> {
-        let item = Item { inst: 0, node: &model.root, depth: 0, in_frame: false };
-        Walk {
-            insts: Insts::new(model),
-            stack: vec![Step::Enter(item)],
-            entered: None,
-            prune: None,
-        }
+        Walk::plain(model, &model.root, 0)
+    }
+
+    /// The walk of `model`'s own elements: the composed walk without what its
+    /// attachments hold (their frames are entered). Its elements are entered in the
+    /// order the composed walk enters them, wherever `model` is attached, so it
+    /// counts them as that walk does (settings sections, which only the outermost
+    /// model's walk enters, hold no element with a namespace).
+    pub(crate) fn own(model: &'a Model) -> Walk<'a> {
+        Walk { own: true, ..Walk::new(model) }
     }
 
     /// A walk of a plain subtree with no attachments in it (such as a merged
     /// settings section), written as part of instance 0 at `depth`.
     pub(crate) fn plain(model: &'a Model, node: &'a Node, depth: usize) -> Walk<'a> {
-        let item = Item { inst: 0, node, depth, in_frame: false };
         Walk {
             insts: Insts::new(model),
-            stack: vec![Step::Enter(item)],
+            stack: vec![Step::Enter(Item::plain(0, node, depth, false))],
             entered: None,
             prune: None,
+            own: false,
         }
     }
 
@@ -179,26 +304,31 @@ impl<'a> Walk<'a> {
     /// The composed children of `item`, in document order (the rules of the module
     /// documentation).
     pub(crate) fn expand(&mut self, item: Item<'a>) -> Vec<Item<'a>> {
-        let Item { inst, node, depth, .. } = item;
-        let plain = |n: &'a Node, inst: usize, in_frame: bool| Item {
-            inst,
-            node: n,
-            depth: depth + 1,
-            in_frame,
-        };
+        let Item { inst, node, depth, replicated, .. } = item;
+        let below = replicated || node.kind().tag() == "replicate";
+        let plain = |n: &'a Node, inst: usize| Item::plain(inst, n, depth + 1, false);
         let mut out: Vec<Item<'a>> = Vec::with_capacity(node.children().len());
         if node.attached().is_some() {
-            out.extend(node.children().iter().map(|c| plain(c, inst, true)));
+            let first_unnamed = first_unnamed_joint(node);
+            out.extend(node.children().iter().map(|c| Item {
+                in_frame: true,
+                first_unnamed: first_unnamed == Some(c.id()),
+                ..Item::plain(inst, c, depth + 1, below)
+            }));
+            if self.own {
+                return out;
+            }
             if let Some(child) = self.insts.attached(inst, node) {
                 if let Some(wb) = section(self.insts.list[child].model, "worldbody") {
-                    out.extend(wb.children().iter().map(|c| plain(c, child, false)));
+                    out.extend(wb.children().iter().map(|c| plain(c, child)));
                 }
             }
             return out;
         }
-        out.extend(node.children().iter().map(|c| plain(c, inst, false)));
+        out.extend(node.children().iter().map(|c| Item::plain(inst, c, depth + 1, below)));
         if inst != 0
             || depth > 1
+            || self.own
             || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT)
         {
             return out;
@@ -214,7 +344,7 @@ impl<'a> Walk<'a> {
                 .iter()
                 .filter_map(|&j| {
                     let sec = self.insts.list[j].model.root.child_of_kind(kind)?;
-                    Some(Item { inst: j, node: sec, depth: 1, in_frame: false })
+                    Some(Item::plain(j, sec, 1, false))
                 })
                 .collect();
             out.splice(p + 1..p + 1, siblings);
@@ -226,7 +356,7 @@ impl<'a> Walk<'a> {
         }
         for &j in self.attached_under_root().iter() {
             if let Some(sec) = self.insts.list[j].model.root.child_of_kind(kind) {
-                out.extend(sec.children().iter().map(|c| plain(c, j, false)));
+                out.extend(sec.children().iter().map(|c| plain(c, j)));
             }
         }
         out
@@ -248,8 +378,14 @@ impl<'a> Iterator for Walk<'a> {
 
     fn next(&mut self) -> Option<Step<'a>> {
         self.entered = None;
-        let step = self.stack.pop()?;
-        if let Step::Enter(item) = step {
+        let mut step = self.stack.pop()?;
+        if let Step::Enter(item) = &mut step {
+            // Counted as it is entered: its model's elements are entered in document
+            // order.
+            if let Some(ns) = item.node.kind().namespace() {
+                item.auto = self.insts.list[item.inst].count(ns);
+            }
+            let item = *item;
             self.entered = Some(self.stack.len());
             self.stack.push(Step::Leave(item));
             let Item { inst, node, depth, .. } = item;
@@ -263,13 +399,13 @@ impl<'a> Iterator for Walk<'a> {
                 let children = node.children();
                 if !children.is_empty() {
                     let prune = self.prune.filter(|_| depth >= 1);
+                    let below = item.replicated || node.kind().tag() == "replicate";
                     self.stack.reserve(children.len());
                     for c in children.iter().rev() {
                         if prune.is_some_and(|p| p(c)) {
                             continue;
                         }
-                        let item = Item { inst, node: c, depth: depth + 1, in_frame: false };
-                        self.stack.push(Step::Enter(item));
+                        self.stack.push(Step::Enter(Item::plain(inst, c, depth + 1, below)));
                     }
                 }
             } else {
@@ -283,6 +419,34 @@ impl<'a> Iterator for Walk<'a> {
 
 fn section<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
     model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
+}
+
+/// Whether the element `id` of `model` lies inside a `<replicate>`.
+fn in_replicate(model: &Model, id: ElementId) -> bool {
+    let mut cur = model.index.parent(id);
+    while let Some(p) = cur {
+        let Some(e) = model.index.entry(p) else { return false };
+        if e.kind.tag() == "replicate" {
+            return true;
+        }
+        cur = e.parent;
+    }
+    false
+}
+
+/// Every element of `model` with a namespace: its automatic-name position and
+/// whether a `<replicate>` of the model is above it, as the composed walk counts
+/// them ([`Walk::own`]).
+fn auto_positions(model: &Model) -> HashMap<ElementId, (u32, bool), IdHash> {
+    let mut out = HashMap::with_hasher(IdHash);
+    for step in Walk::own(model) {
+        if let Step::Enter(item) = step {
+            if item.inst == 0 && item.node.kind().namespace().is_some() {
+                out.insert(item.node.id(), (item.auto, item.replicated));
+            }
+        }
+    }
+    out
 }
 
 /// A step of [`Model::walk`]: entering an element (before its children) or leaving it
@@ -503,10 +667,12 @@ impl<'a> ElementRef<'a> {
         self.top.scope_path(&self.loc()).unwrap_or_default()
     }
 
-    /// The name MuJoCo will give the element in the written model: the identifier
-    /// with its scope prefix (`robot_1/torso`), an attachment frame's scope
-    /// (`robot_1/`), or the automatic name of an unnamed element (`//unnamed_geom_0`,
-    /// `robot//unnamed_geom_2`); `None` for elements without a namespace.
+    /// The name MuJoCo will give the element in the written model, exactly as the
+    /// writer writes it (both follow one set of rules: README "Names"): the
+    /// identifier with its scope prefix (`robot_1/torso`), an attachment frame's scope
+    /// (`robot_1/`), a frame joint's (`robot_1/root/`), or the automatic name of an
+    /// unnamed element (`//unnamed_geom_0`, `robot//unnamed_geom_2`, `//unnamed_geom_1_`
+    /// inside a `<replicate>`); `None` for elements without a namespace.
     ///
     /// Time: O(levels · depth · log n) for named elements and frames; O(n) more for
     /// unnamed ones (n of the element's model), whose number is their position.
@@ -528,31 +694,10 @@ impl<'a> ElementRef<'a> {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn full_name(&self) -> Option<String> {
-        let scope = self.scope();
-        let prefix = if scope.is_empty() { String::new() } else { format!("{scope}/") };
-        if let Some(a) = self.node.attached() {
-            return Some(format!("{prefix}{}/", a.scope));
-        }
-        let ns = self.node.kind().namespace()?;
-        // A frame's joint is named after its frame: `robot/` or `robot/root/`.
-        let parent = self.model.index.parent(self.node.id());
-        if let Some(frame) = parent.and_then(|p| self.model.index.scope_of(p)) {
-            return Some(match self.identifier() {
-                Some(n) => format!("{prefix}{frame}/{n}/"),
-                None => format!("{prefix}{frame}/"),
-            });
-        }
-        if let Some(n) = self.identifier() {
-            return Some(format!("{prefix}{n}"));
-        }
-        let index = self
-            .model
-            .root
-            .descendants()
-            .filter(|n| n.kind().namespace() == Some(ns))
-            .position(|n| n.id() == self.node.id())?;
-        let p = if prefix.is_empty() { "/" } else { prefix.as_str() };
-        Some(format!("{p}/unnamed_{}_{index}", ns.as_str()))
+        let mut walk = Walk::new(self.top);
+        let inst = walk.insts.along(&self.frames)?;
+        let name = walk.insts.name_of_id(inst, self.node.id())?;
+        Some(name.to_string_in(&walk.insts.list[inst].names.prefix))
     }
 
     /// The value of attribute `name`, if set.
@@ -687,7 +832,7 @@ impl<'a> ElementRef<'a> {
             // Deeper than any rule of a top-level section or the root applies.
             2
         };
-        let items = walk.expand(Item { inst, node: self.node, depth, in_frame: false });
+        let items = walk.expand(Item::plain(inst, self.node, depth, false));
         let insts = walk.insts;
         items
             .into_iter()

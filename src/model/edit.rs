@@ -435,17 +435,6 @@ impl Model {
                     }));
                 }
             }
-            // An unnamed frame joint is written with its frame's name: one per frame.
-            let frame = path.split_last().and_then(|(_, p)| self.node_at(p));
-            if let (Some(ns), None, Some(f)) = (kind.namespace(), new_name, frame) {
-                if f.attached().is_some() && super::frame::unnamed_joint(f, Some(node.id())) {
-                    let name = f.attached().map(|a| format!("{}/", a.scope)).unwrap_or_default();
-                    return Err(err(ErrorKind::DuplicateIdentifier {
-                        namespace: ns,
-                        name: name.into(),
-                    }));
-                }
-            }
             index.rename(node.id(), new_name.map(SmolStr::from));
         }
         let root = self.root.update_path(&path, |_| Ok::<_, EditError>(new_node))?;

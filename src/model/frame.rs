@@ -130,16 +130,12 @@ pub(crate) fn check_frame_child(
             return Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: name.into() });
         }
     }
-    // An unnamed frame joint is written with the frame's own name (`robot/`), so a
-    // frame takes one at most.
-    let one_unnamed = || match (child.kind().namespace(), child.identifier()) {
-        (Some(ns), None) if unnamed_joint(frame, None) => {
-            Err(ErrorKind::DuplicateIdentifier { namespace: ns, name: format!("{scope}/").into() })
-        }
-        _ => Ok(()),
-    };
+    // Unnamed joints are any number: the first is written with the frame's name
+    // (`robot/`), the others with their automatic names (`model::naming`). A
+    // freejoint beside other joints is MuJoCo's to refuse (more than 6 degrees of
+    // freedom), as for any body: `Model::check` reports it.
     match tag {
-        "joint" => one_unnamed(),
+        "joint" => Ok(()),
         "inertial" | "freejoint" => {
             if tag == "freejoint" && parent.is_none_or(|p| p.kind().tag() != "worldbody") {
                 return Err(ErrorKind::FreejointNotTopLevel(scope.into()));
@@ -147,15 +143,8 @@ pub(crate) fn check_frame_child(
             if frame.children().iter().any(|c| c.kind() == child.kind()) {
                 return Err(ErrorKind::DuplicateChild(child.kind().tag()));
             }
-            one_unnamed()
+            Ok(())
         }
         _ => Err(ErrorKind::InvalidChild { parent: "body", tag: tag.into(), suggestion: None }),
     }
-}
-
-/// Whether the frame has an unnamed joint or freejoint other than `except`.
-pub(crate) fn unnamed_joint(frame: &Node, except: Option<super::tree::ElementId>) -> bool {
-    frame.children().iter().any(|c| {
-        c.kind().namespace().is_some() && c.identifier().is_none() && Some(c.id()) != except
-    })
 }

@@ -70,6 +70,19 @@ pub(crate) struct Index {
     /// Shared by the versions whose settings and attachments are the same; every
     /// edit that can change them starts a new, empty one.
     pub(crate) merged: MergedCache,
+    /// The literal names holding a `/` (read from MJCF, or copied from a model that
+    /// was), counted by the part before their first `/` (`robot` for `robot/torso`,
+    /// `""` for `//unnamed_geom_0`), over every namespace. A scope may not be such a
+    /// part (`free_scope_name` skips it; `insert_one` refuses a name whose part is a
+    /// scope), so that the names an attachment writes (`robot/...`) meet no literal
+    /// name (`model::naming`). Empty for models built through the API, which refuses
+    /// `/` in names.
+    pub(crate) slashed: HashMap<SmolStr, u32>,
+}
+
+/// The part of a name before its first `/`, if it has one.
+pub(crate) fn slashed_segment(name: &str) -> Option<&str> {
+    name.split_once('/').map(|(s, _)| s)
 }
 
 /// A lazily computed, shared value of the merged settings sections (root order).
@@ -136,7 +149,9 @@ impl Entry {
 /// (`runs`) rather than by an entry of its own.
 type ToIndex<'a> = (Option<ElementId>, &'a Node, bool, usize, u64, bool);
 
-/// A name already taken, found while indexing.
+/// A name already taken, found while indexing: by another element of the
+/// namespace, or (a name with a `/`) by an attachment whose scope is the part before
+/// its `/` (its names are written `scope/...`).
 #[derive(Debug)]
 pub(crate) struct Duplicate {
     pub(crate) id: ElementId,
@@ -242,12 +257,20 @@ impl Index {
     ) -> Result<(), Duplicate> {
         let name = n.identifier().map(SmolStr::from);
         if let (Some(ns), Some(name), true) = (n.kind().namespace(), &name, register) {
+            let duplicate = || Duplicate { id: n.id(), namespace: ns, name: name.clone() };
+            let segment = slashed_segment(name);
+            if segment.is_some_and(|s| self.frame_of(s).is_some()) {
+                return Err(duplicate());
+            }
             // One hash of the name: insert, and put the earlier element back if the
             // name was taken.
             let key = (ns, name.clone());
             if let Some(earlier) = self.names.insert(key.clone(), n.id()) {
                 self.names.insert(key, earlier);
-                return Err(Duplicate { id: n.id(), namespace: ns, name: name.clone() });
+                return Err(duplicate());
+            }
+            if let Some(s) = segment {
+                *self.slashed.entry(s.into()).or_insert(0) += 1;
             }
         }
         // A frame's entry holds its scope name (the node's own, which attach and
@@ -273,6 +296,7 @@ impl Index {
                     self.scopes.remove(scope, n.id());
                 } else if let (Some(ns), Some(name)) = (e.kind.namespace(), e.text) {
                     if self.names.get(&(ns, name.clone())) == Some(&n.id()) {
+                        self.unslash(&name);
                         self.names.remove(&(ns, name));
                     }
                 }
@@ -290,13 +314,39 @@ impl Index {
         let in_frame = entry.parent.is_some_and(|p| self.scope_of(p).is_some());
         if let (Some(ns), false) = (entry.kind.namespace(), in_frame) {
             if let Some(old) = &entry.text {
+                self.unslash(old);
                 self.names.remove(&(ns, old.clone()));
             }
             if let Some(new) = &new {
+                if let Some(s) = slashed_segment(new) {
+                    *self.slashed.entry(s.into()).or_insert(0) += 1;
+                }
                 self.names.insert((ns, new.clone()), id);
             }
         }
         self.elems.insert(id, Entry { text: new, ..entry });
+    }
+
+    /// Forgets `name` (a registered name going away) in `slashed`. Freeing a part
+    /// may free a scope name: the suffix hints start afresh.
+    fn unslash(&mut self, name: &str) {
+        let Some(s) = slashed_segment(name) else { return };
+        let key = SmolStr::from(s);
+        match self.slashed.get(&key).copied() {
+            Some(c) if c > 1 => {
+                self.slashed.insert(key, c - 1);
+            }
+            Some(_) => {
+                self.slashed.remove(&key);
+                self.scopes.free_from = OrdMap::new();
+            }
+            None => {}
+        }
+    }
+
+    /// Whether a literal name of the model starts with `segment` and a `/`.
+    pub(crate) fn has_slashed_segment(&self, segment: &str) -> bool {
+        !self.slashed.is_empty() && self.slashed.contains_key(segment)
     }
 
     /// The scope name of the attachment whose frame is `frame`: the frame's entry
@@ -465,11 +515,17 @@ impl Index {
         self.scopes.iter(&self.elems)
     }
 
-    /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken (the
-    /// reference's suffix rule, gaps filled from 1). Amortised O(log n) while names
+    /// `base`, or `base_1`, `base_2`, ...: the first scope name not taken by an
+    /// attachment or by the part before the `/` of a literal name (the reference's
+    /// suffix rule, gaps filled from 1). Amortised O(log n) while names
     /// are only added. Changes nothing: [`Scopes::push`] records the hint.
     pub(crate) fn free_scope_name(&self, base: &str) -> FreeName {
-        let taken = |name: &str, hash: u64| self.scopes.frame_of(name, hash, &self.elems).is_some();
+        // Taken by an attachment, or by literal names `name/...` (which the
+        // attachment's names would meet).
+        let taken = |name: &str, hash: u64| {
+            self.scopes.frame_of(name, hash, &self.elems).is_some()
+                || self.has_slashed_segment(name)
+        };
         // A hint for `base` means `base` was taken when it was noted, and no name was
         // freed since (that clears the hints): taken still.
         let mut n = match self.scopes.free_from.get(base) {
@@ -570,6 +626,7 @@ impl ReadIndex {
         mut self,
         root: &Node,
         names: HashMap<(Namespace, SmolStr), ElementId>,
+        slashed: HashMap<SmolStr, u32>,
     ) -> Index {
         let name = root.identifier().map(SmolStr::from);
         let entry = Entry {
@@ -585,6 +642,7 @@ impl ReadIndex {
             names,
             elems: ElemMap::from_entries(self.entries),
             runs: self.runs,
+            slashed,
             ..Index::default()
         }
     }

@@ -8,6 +8,7 @@ mod arrays;
 mod build;
 pub(crate) mod check;
 mod cursor;
+pub(crate) mod defaults;
 pub(crate) mod diff;
 mod edit;
 mod elems;
@@ -16,6 +17,7 @@ pub(crate) mod frame;
 mod index;
 pub(crate) mod keys;
 pub(crate) mod layout;
+pub(crate) mod naming;
 pub(crate) mod pose;
 mod scope;
 pub(crate) mod settings;
@@ -41,9 +43,9 @@ pub(crate) use build::{
 };
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
-pub(crate) use cursor::{Item, Step, Walk};
+pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;
-pub(crate) use index::{Entry, Index, MergedCache, ReadIndex};
+pub(crate) use index::{Entry, Index, MergedCache, ReadIndex, slashed_segment};
 pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
@@ -400,8 +402,10 @@ impl Model {
     /// there ("did you mean").
     ///
     /// Time: O(log n) for a name of this model, O(levels · depth · log n) for one with
-    /// a scope path; a miss also ranks the names for suggestions: O(named elements of
-    /// the model looked in) string comparisons.
+    /// a scope path; a miss also ranks the `c` names of that namespace in the model
+    /// looked in for suggestions, O(c log c), and compares the name with at most 16
+    /// of them (those next to it in alphabetical order, of the texts and of the
+    /// texts reversed).
     ///
     /// # Errors
     /// [`ErrorKind::UnknownName`] when nothing has that name;

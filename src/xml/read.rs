@@ -890,6 +890,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // arena), each element's identifier kept for its index entry, and which elements
     // hold named references.
     let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
+    // The names holding a `/`, by the part before it (`Index::slashed`).
+    let mut slashed: imbl::HashMap<SmolStr, u32> = imbl::HashMap::new();
     let mut idents: Vec<Option<SmolStr>> = Vec::with_capacity(r.arena.len());
     let mut with_refs: Vec<usize> = Vec::new();
     for (i, p) in r.arena.iter_mut().enumerate() {
@@ -907,6 +909,9 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                 let (kind, offset) =
                     (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
                 return Err(r.err(kind, offset));
+            }
+            if let Some(segment) = crate::model::slashed_segment(n) {
+                *slashed.entry(segment.into()).or_insert(0) += 1;
             }
         }
         if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
@@ -971,15 +976,16 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         child_idents.clear();
         let mut kinds = p.kind.singleton_children().peekable();
         if kinds.peek().is_some() {
-            // Singletons in schema order, each with where it was read (if it was).
+            // Singletons in schema order, each with where it was read (its arena
+            // entry, in document order, includes included), if it was.
             // The ones not read take one block of ids, so that a class read without
             // any is indexed as one run (`model::index`).
             let first = ElementId::fresh_block(kinds.clone().count());
             let mut singles: Vec<(Node, Option<usize>)> = Vec::new();
             for (i, k) in kinds.enumerate() {
                 let found = unique_child(&r.arena, at, k);
-                match found.and_then(|c| Some((built[c].take()?, r.arena[c].offset))) {
-                    Some((n, offset)) => singles.push((n, Some(offset))),
+                match found.and_then(|c| Some((built[c].take()?, c))) {
+                    Some((n, at)) => singles.push((n, Some(at))),
                     None => {
                         let empty = empty_node_with_id(first.nth(i), k);
                         if !empty.children().is_empty() {
@@ -990,7 +996,8 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                 }
             }
             if p.kind.tag() == "default" {
-                keep_actuator_default_order(&mut singles);
+                // DESIGN D11: the actuator defaults in the order they were read.
+                crate::model::defaults::order(&mut singles, |(n, _)| n, |(_, at)| *at);
             }
             // Singletons are few: their identifiers (if any) read from the nodes.
             child_idents.extend(singles.iter().map(|(n, _)| n.identifier().map(SmolStr::from)));
@@ -1026,7 +1033,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     // The arena is spent: freed before the index is built, which can reuse its memory.
     drop(std::mem::take(&mut r.arena));
     drop(built);
-    let index = index.finish(&root, names);
+    let index = index.finish(&root, names, slashed);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
 }
 
@@ -1171,23 +1178,6 @@ fn forget_auto_name(p: &mut Pending) {
         let mut attrs = p.attrs.to_vec();
         attrs.retain(|a| !auto(a));
         p.attrs = attrs.into();
-    }
-}
-
-/// In a default class, `<position>`, `<velocity>`, `<motor>`, `<general>`, ... all set
-/// the class's one actuator default, applied by MuJoCo in document order: their
-/// order as read is kept (DESIGN D11), among the places the schema gives them, so a
-/// later `<position kp>` still overrides an earlier `<velocity kv>`.
-fn keep_actuator_default_order(singles: &mut [(Node, Option<usize>)]) {
-    let actuators = ElementKind::ROOT.child("actuator").map(|a| a.spec().children).unwrap_or(&[]);
-    let is_actuator = |n: &Node| actuators.iter().any(|a| a.tag() == n.kind().tag());
-    let places: Vec<usize> = (0..singles.len()).filter(|&i| is_actuator(&singles[i].0)).collect();
-    let mut ordered: Vec<(Node, Option<usize>)> =
-        places.iter().map(|&i| singles[i].clone()).collect();
-    // Stable: read ones in document order, then the unread (empty) ones.
-    ordered.sort_by_key(|(_, offset)| offset.unwrap_or(usize::MAX));
-    for (place, item) in places.into_iter().zip(ordered) {
-        singles[place] = item;
     }
 }
 

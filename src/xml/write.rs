@@ -9,21 +9,22 @@
 // Implementation notes:
 // - The walk is iterative (an explicit stack), so a 100,000-deep body chain writes
 //   without growing the call stack.
-// - Auto names count every element of the namespace before it in document order; the
-//   walk visits elements in exactly that order, so a counter per namespace suffices.
-//   A resolved reference to an unnamed element needs the target's index, which may
-//   lie ahead: those come from a full count made once, only when needed.
+// - Every name written (an element's own, a frame's, an automatic one, a default
+//   class's, a reference's) comes from the walk's naming (`model::naming`): the walk
+//   keeps each instance's prefix and counts automatic names as it enters elements; a
+//   reference to an element ahead is named by the same rules (`Insts::name_of_id`).
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use crate::error::WriteError;
 use crate::id::IdHash;
+use crate::model::naming::{RootClass, Written as WrittenName};
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
-use crate::model::{ElemMap, Entry, Item, Model, Step, Walk};
+use crate::model::{ElemMap, Entry, Insts, Item, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
-use crate::value::{FloatStyle, Reference, Value};
+use crate::value::{FloatStyle, Reference, Value, is_clean};
 
 /// The output reserved per element of the composed model, before writing: about what
 /// an element with a short name and a few attributes takes once indented (a robot
@@ -175,7 +176,6 @@ impl Model {
         let merged = settings::merged(self).map_err(|k| WriteError::Conflict(k.to_string()))?;
         let mut w = Writer {
             marks: marks.then(Vec::new),
-            insts: Vec::new(),
             merged: &merged,
             out: String::with_capacity(4096),
             style: FloatStyle {
@@ -197,9 +197,8 @@ impl Model {
         let marks = w.marks.take().unwrap_or_default();
         let marks = marks
             .into_iter()
-            .map(|(offset, inst, node, tag)| {
-                let loc = crate::Loc::scoped(w.insts[inst].frames.clone(), node.id(), self.name());
-                (offset, loc, tag)
+            .map(|(offset, frames, node, tag)| {
+                (offset, crate::Loc::scoped(frames, node.id(), self.name()), tag)
             })
             .collect();
         let mut out = w.out;
@@ -214,6 +213,10 @@ impl Model {
 
 /// Where an element's start tag begins: byte offset, locator, tag.
 type Mark = (usize, crate::Loc, &'static str);
+
+/// A [`Mark`] as the writer takes it: the frames leading to the element's model and
+/// the node, made a locator at the end.
+type RawMark<'a> = (usize, std::sync::Arc<[ElementId]>, &'a Node, &'static str);
 
 /// MJCF text and where each element of the model was written in it, from
 /// [`Model::to_xml_written`].
@@ -272,38 +275,6 @@ impl Written {
     }
 }
 
-/// What the writer keeps per model of the composition (per instance of the walk).
-struct Inst<'a> {
-    model: &'a Model,
-    /// The attachment frames leading to the model (for locators).
-    frames: std::sync::Arc<[ElementId]>,
-    /// `""` for the root model, `robot/`, `arena/robot/` for attachments.
-    prefix: String,
-    /// Running auto-name counters (document order of this model's own elements), by
-    /// namespace (`ns as usize`; a hash per element cost more than the rest of its
-    /// counting).
-    counters: Vec<usize>,
-    /// Auto-name indices of every element (and whether it is inside a `<replicate>`),
-    /// counted once when a reference needs one.
-    auto_index: Option<HashMap<ElementId, (usize, bool)>>,
-    /// The name of the model's root default class.
-    root_class: Option<&'a str>,
-    /// Whether `prefix` is written as it is (no character to escape).
-    prefix_clean: bool,
-}
-
-impl Inst<'_> {
-    /// The auto-name index of the next element of `ns` (counted).
-    fn next_auto_index(&mut self, ns: Namespace) -> usize {
-        let k = ns as usize;
-        if self.counters.len() <= k {
-            self.counters.resize(k + 1, 0);
-        }
-        self.counters[k] += 1;
-        self.counters[k] - 1
-    }
-}
-
 /// An element whose start tag is not finished yet.
 enum Pending {
     /// `<tag attrs` is written; `>` or `/>` follows, once it is known whether a child
@@ -326,28 +297,20 @@ struct Open {
     inst: usize,
     child_cc: bool,
     depth: usize,
-    /// For an attachment frame, its name (`robot/`), which its joints build on.
-    frame: Option<String>,
     /// The tag written (`body` or `frame` for an attachment frame).
     tag: &'static str,
     /// In the world: the worldbody, or a frame written as MuJoCo's `<frame>` there,
     /// whose bodies are top-level bodies for MuJoCo.
     world_level: bool,
-    /// Written without tags of its own: the root default class when it is named
-    /// `main` (MuJoCo's name for the outermost class: `<default class="main">` inside
-    /// it is refused as a repeated name; DESIGN D9) or holds a class named `/` (read
-    /// from a composed file), written as MuJoCo's main class, the `<default>` wrapper
-    /// itself, so that the name stays that class's.
+    /// Written without tags of its own: the outermost root default class written as
+    /// MuJoCo's main class, the `<default>` wrapper itself ([`RootClass::Main`]).
     transparent: bool,
-    /// Inside a `<replicate>` of its own model (or one itself, for its children).
-    replicated: bool,
-    replicates: bool,
 }
 
 struct Writer<'a> {
-    insts: Vec<Inst<'a>>,
-    /// Where each element's start tag begins (offset, instance, node), when asked.
-    marks: Option<Vec<(usize, usize, &'a Node, &'static str)>>,
+    /// Where each element's start tag begins (offset, the frames leading to its
+    /// model, node, tag written), when asked.
+    marks: Option<Vec<RawMark<'a>>>,
     /// The merged settings sections (`compiler`, `option`, ...), written in place of
     /// the root model's own.
     merged: &'a [Node],
@@ -360,7 +323,7 @@ struct Writer<'a> {
     /// The elements entered and not yet left.
     open: Vec<Open>,
     /// The element whose start tag is not finished.
-    pending: Option<(Pending, &'a Node)>,
+    pending: Option<(Pending, Item<'a>)>,
     /// Inside `<default>`, the wrapper of the root class and the attached models'
     /// root classes (one level deeper than the walk says).
     in_default: bool,
@@ -415,25 +378,8 @@ impl<'a> Writer<'a> {
     /// of the root model's own settings sections.
     fn run(&mut self, mut walk: Walk<'a>, substitute: bool) -> Result<(), WriteError> {
         while let Some(step) = walk.next() {
-            // New instances get their writer state (prefix from their parent's).
-            while self.insts.len() < walk.insts.list.len() {
-                let i = &walk.insts.list[self.insts.len()];
-                let prefix = match i.parent {
-                    Some((p, scope)) => format!("{}{scope}/", self.insts[p].prefix),
-                    None => String::new(),
-                };
-                self.insts.push(Inst {
-                    model: i.model,
-                    frames: i.frames.clone(),
-                    prefix_clean: is_clean(prefix.as_bytes()),
-                    prefix,
-                    counters: Vec::new(),
-                    auto_index: None,
-                    root_class: section_of(i.model, "default").and_then(Node::identifier),
-                });
-            }
             if substitute && matches!(step, Step::Enter(Item { depth: 0, .. })) {
-                self.reserve_output();
+                self.reserve_output(&walk.insts);
             }
             match step {
                 Step::Enter(item)
@@ -443,10 +389,10 @@ impl<'a> Writer<'a> {
                         && item.node.kind().tag() == "keyframe" =>
                 {
                     walk.skip_subtree();
-                    self.write_merged_keys()?;
+                    self.write_merged_keys(&walk.insts)?;
                 }
                 Step::Enter(item) => {
-                    if !self.enter(item, substitute)? {
+                    if !self.enter(&walk.insts, item, substitute)? {
                         walk.skip_subtree();
                     }
                     if substitute
@@ -458,13 +404,13 @@ impl<'a> Writer<'a> {
                         walk.skip_subtree();
                         if let Some(m) = self.merged.iter().find(|m| m.kind() == item.node.kind()) {
                             if emits(m) {
-                                let walk = Walk::plain(self.insts[0].model, m, 1).pruned(silent);
-                                self.run(walk, false)?;
+                                let model = walk.insts.list[0].model;
+                                self.run(Walk::plain(model, m, 1).pruned(silent), false)?;
                             }
                         }
                     }
                 }
-                Step::Leave(item) => self.leave(item),
+                Step::Leave(item) => self.leave(&walk.insts, item),
             }
         }
         Ok(())
@@ -474,18 +420,18 @@ impl<'a> Writer<'a> {
     /// root's children list them all): `BYTES_PER_ELEMENT` per element of each. Grown
     /// by doubling instead, a large output is copied and its fresh pages touched
     /// again at every step (77 MB allocated for 19 MB of text).
-    fn reserve_output(&mut self) {
-        let elements: usize = self.insts.iter().map(|i| i.model.index.elems.len()).sum();
+    fn reserve_output(&mut self, insts: &Insts<'a>) {
+        let elements: usize = insts.list.iter().map(|i| i.model.index.elems.len()).sum();
         self.out.reserve(elements.saturating_mul(BYTES_PER_ELEMENT).min(MAX_RESERVE));
     }
 
     /// Writes the composed keys in place of the keyframe section.
-    fn write_merged_keys(&mut self) -> Result<(), WriteError> {
-        let keys = crate::model::keys::merged_keys(self.insts[0].model);
+    fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
+        let keys = crate::model::keys::merged_keys(insts.list[0].model);
         if keys.is_empty() {
             return Ok(());
         }
-        self.finish_parent()?;
+        self.finish_parent(insts)?;
         if self.in_default {
             self.indent(1);
             self.out.push_str("</default>");
@@ -523,14 +469,14 @@ impl<'a> Writer<'a> {
     }
 
     /// Finishes the start tag of the parent of a child about to be written.
-    fn finish_parent(&mut self) -> Result<(), WriteError> {
+    fn finish_parent(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
         match self.pending.take() {
             Some((Pending::Started, _)) => {
                 self.out.push('>');
                 self.newline();
             }
-            Some((Pending::Unwritten(sec), node)) => {
-                self.start_tag(0, node, sec.depth, false, None)?;
+            Some((Pending::Unwritten(sec), item)) => {
+                self.start_tag(insts, &item, sec.depth, false)?;
                 self.out.push('>');
                 self.newline();
             }
@@ -542,24 +488,26 @@ impl<'a> Writer<'a> {
     /// Writes `<tag attrs` (not closed) at `depth`.
     fn start_tag(
         &mut self,
-        inst: usize,
-        node: &'a Node,
+        insts: &Insts<'a>,
+        item: &Item<'a>,
         depth: usize,
         childclass: bool,
-        frame: Option<&str>,
     ) -> Result<(), WriteError> {
-        let tag = self.open.last().map_or("", |o| o.tag);
+        let node = item.node;
         self.indent(depth);
         if let Some(marks) = &mut self.marks {
-            let written = if node.attached().is_some() { tag } else { node.kind().tag() };
-            marks.push((self.out.len(), inst, node, written));
+            let written = match node.attached() {
+                Some(_) => self.open.last().map_or("body", |o| o.tag),
+                None => node.kind().tag(),
+            };
+            marks.push((self.out.len(), insts.list[item.inst].frames.clone(), node, written));
         }
         self.out.push('<');
-        if let Some(a) = node.attached() {
+        if node.attached().is_some() {
+            // `body`, or `frame` (DESIGN D10).
+            let tag = self.open.last().map_or("body", |o| o.tag);
             self.out.push_str(tag);
-            let name = format!("{}{}/", self.insts[inst].prefix, a.scope);
-            self.write_frame_attrs(inst, node, &name);
-            return Ok(());
+            return self.write_attrs(insts, item, true);
         }
         let kind = node.kind();
         self.out.push_str(kind.tag());
@@ -571,29 +519,38 @@ impl<'a> Writer<'a> {
                 self.out.push('"');
             }
         }
-        self.write_attrs(inst, node, childclass, frame)
+        self.write_attrs(insts, item, childclass)
     }
 
     /// Enters an element; `false` if it is not written (nor its subtree).
-    fn enter(&mut self, item: Item<'a>, substitute: bool) -> Result<bool, WriteError> {
-        let Item { inst, node, depth, in_frame } = item;
+    fn enter(
+        &mut self,
+        insts: &Insts<'a>,
+        item: Item<'a>,
+        substitute: bool,
+    ) -> Result<bool, WriteError> {
+        let Item { inst, node, depth, .. } = item;
         let kind = node.kind();
         let top = depth == 1 && inst == 0 && substitute;
+        let names = &insts.list[inst].names;
         // The `<default>` wrapper of the root classes opens at the first one and
         // closes before the next section.
         if depth == 1 && substitute {
             let is_default = kind.tag() == "default";
             if is_default && !self.in_default {
-                self.finish_parent()?;
+                self.finish_parent(insts)?;
                 self.indent(1);
-                // A root class written as MuJoCo's main class (transparent: named
-                // `main`, or unnamed beside a class `/`) whose one class is named `/`
-                // says so on the wrapper: `<default><default class="/">` alone reads
-                // back as dm_control's shape, `/` folded into the root class
-                // (`xml::read`), and the references to `main` would then take `/`'s
-                // defaults.
-                let main = node.identifier().is_none_or(|n| n.is_empty() || n == "main");
-                if inst == 0 && main && lone_slash_class(node) {
+                // A root class written as MuJoCo's main class says so on the wrapper
+                // when it is named `main` (so that it reads back named so, and the
+                // text written again is the same), or when its one class is named
+                // `/`: `<default><default class="/">` alone reads back as
+                // dm_control's shape, `/` folded into the root class (`xml::read`),
+                // and the references to `main` would then take `/`'s defaults.
+                let named_main = node.identifier() == Some("main");
+                if inst == 0
+                    && names.root_class == RootClass::Main
+                    && (named_main || lone_slash_class(node))
+                {
                     self.out.push_str("<default class=\"main\">");
                 } else {
                     self.out.push_str("<default>");
@@ -613,7 +570,7 @@ impl<'a> Writer<'a> {
         if top && kind.tag() == "worldbody" && !emits(node) {
             return Ok(false);
         }
-        if !top && depth > 0 && !in_frame && node.attached().is_none() && !emits(node) {
+        if !top && depth > 0 && !item.in_frame && node.attached().is_none() && !emits(node) {
             return Ok(false);
         }
         // The written depth: sections and the root classes at the wrapper's level,
@@ -622,24 +579,16 @@ impl<'a> Writer<'a> {
             Some(o) if depth > 1 => o.depth + 1,
             _ => depth + usize::from(self.in_default),
         };
-        let transparent = depth == 2
-            && inst == 0
-            && kind.tag() == "default"
+        let transparent = inst == 0
             && substitute
-            && (node.identifier() == Some("main")
-                || (node.identifier().is_none_or(str::is_empty)
-                    && node
-                        .children()
-                        .iter()
-                        .any(|c| c.kind().tag() == "default" && c.identifier() == Some("/"))));
+            && item.depth == 1
+            && kind.tag() == "default"
+            && names.root_class == RootClass::Main;
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
         let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
-        let child_cc = cc_here || (node.attached().is_none() && self.sets_childclass(inst, node));
-        // A frame's own joints are named after the frame.
-        let frame_name =
-            if in_frame { self.open.last().and_then(|o| o.frame.clone()) } else { None };
-        let frame = node.attached().map(|a| format!("{}{}/", self.insts[inst].prefix, a.scope));
+        let child_cc =
+            cc_here || (node.attached().is_none() && self.sets_childclass(insts, inst, node));
         let parent_world = self.open.last().is_some_and(|o| o.world_level);
         let as_frame = parent_world && frame_keeps_bodies_top_level(node);
         let tag = match node.attached() {
@@ -651,37 +600,25 @@ impl<'a> Writer<'a> {
         let world_level = (kind.tag() == "worldbody" && inst == 0 && substitute)
             || as_frame
             || (parent_world && kind.tag() == "frame");
-        let replicated = self.open.last().is_some_and(|o| o.inst == inst && o.replicates);
-        let replicates = replicated || kind.tag() == "replicate";
         let depth = if transparent { depth - 1 } else { depth };
-        self.open.push(Open {
-            inst,
-            child_cc,
-            depth,
-            frame,
-            tag,
-            world_level,
-            transparent,
-            replicated,
-            replicates,
-        });
+        self.open.push(Open { inst, child_cc, depth, tag, world_level, transparent });
         if transparent {
             return Ok(true);
         }
         if top && kind.tag() != "default" && kind.tag() != "worldbody" {
-            self.finish_parent()?;
-            self.pending = Some((Pending::Unwritten(Inst0Section { depth }), node));
+            self.finish_parent(insts)?;
+            self.pending = Some((Pending::Unwritten(Inst0Section { depth }), item));
             return Ok(true);
         }
         if depth > 0 {
-            self.finish_parent()?;
+            self.finish_parent(insts)?;
         }
-        self.start_tag(inst, node, depth, cc_here, frame_name.as_deref())?;
-        self.pending = Some((Pending::Started, node));
+        self.start_tag(insts, &item, depth, cc_here)?;
+        self.pending = Some((Pending::Started, item));
         Ok(true)
     }
 
-    fn leave(&mut self, item: Item<'a>) {
+    fn leave(&mut self, insts: &Insts<'a>, item: Item<'a>) {
         let Some(open) = self.open.pop() else { return };
         if open.transparent {
             return;
@@ -697,10 +634,10 @@ impl<'a> Writer<'a> {
                 self.out.push_str("/>");
                 self.newline();
             }
-            Some((Pending::Unwritten(sec), node)) => {
-                if singleton_emits_attrs(node) {
+            Some((Pending::Unwritten(sec), item)) => {
+                if singleton_emits_attrs(item.node) {
                     // Attributes only: failures are reported by `bad_char` or not at all.
-                    let _ = self.start_tag(0, node, sec.depth, false, None);
+                    let _ = self.start_tag(insts, &item, sec.depth, false);
                     self.out.push_str("/>");
                     self.newline();
                 }
@@ -732,48 +669,29 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// A frame's attributes (copied from its site), then `name` last; the frame counts
-    /// as a body of its model for auto names.
-    fn write_frame_attrs(&mut self, inst: usize, frame: &Node, name: &str) {
-        self.insts[inst].next_auto_index(Namespace::Body);
-        let kind = frame.kind();
-        for (i, v) in frame.attrs() {
-            self.value.clear();
-            v.write_plain(&mut self.value, self.style);
-            self.emit_attr(kind.tag(), kind.attr(*i as usize).name);
-        }
-        self.value.clear();
-        self.value.push_str(name);
-        self.emit_attr(kind.tag(), "name");
-    }
-
     /// Writes ` name="value"` for every attribute, in schema order, including the
-    /// auto name and the implicit default class. `frame` is set for the joints of an
-    /// attachment frame, which are named after it.
+    /// element's name (its own with its prefix, an attachment frame's, a frame
+    /// joint's, an automatic one: `model::naming`) and the implicit default class.
+    /// `childclass`: a `childclass` of the same model is above (no implicit class).
     fn write_attrs(
         &mut self,
-        inst: usize,
-        node: &Node,
+        insts: &Insts<'a>,
+        item: &Item<'a>,
         childclass: bool,
-        frame: Option<&str>,
     ) -> Result<(), WriteError> {
+        let (inst, node) = (item.inst, item.node);
         let kind = node.kind();
-        let is_default = kind.tag() == "default";
-        // Identifier slot: an auto name when unset (default classes and frame joints
-        // render their own).
-        let auto_name = match (kind.identifier(), kind.namespace()) {
-            (Some(i), Some(ns)) => {
-                let index = self.insts[inst].next_auto_index(ns);
-                (node.attr(i).is_none() || is_default || frame.is_some()).then_some((i, ns, index))
-            }
-            _ => None,
+        // The identifier slot is always written from the naming rules.
+        let name = match kind.identifier() {
+            Some(i) => insts.name_of_item(item).map(|w| (i, w)),
+            None => None,
         };
         let implicit_class = match facts(kind).class {
-            Some(c) if !childclass && !self.has_live(inst, node, c) => Some(c),
+            Some(c) if !childclass && !self.has_live(insts, inst, node, c) => Some(c),
             _ => None,
         };
         let mut set = node.attrs().iter().peekable();
-        let mut virtuals: [Option<usize>; 2] = [auto_name.map(|a| a.0), implicit_class];
+        let mut virtuals: [Option<usize>; 2] = [name.map(|a| a.0), implicit_class];
         virtuals.sort_by_key(|v| v.unwrap_or(usize::MAX));
         let mut virt = virtuals.iter().flatten().copied().peekable();
         loop {
@@ -788,36 +706,21 @@ impl<'a> Writer<'a> {
             self.value.clear();
             if take_virtual {
                 let i = virt.next().unwrap_or_default();
-                if Some(i) == auto_name.map(|a| a.0) {
-                    // Skip the stored value at the same slot, if any.
-                    if next_set == Some(i) {
-                        set.next();
-                    }
-                    if let Some(f) = frame {
-                        self.value.push_str(f);
-                        if let Some(n) = node.identifier() {
-                            self.value.push_str(n);
-                            self.value.push('/');
-                        }
-                    } else if is_default {
-                        self.emit_default_class(
-                            inst,
-                            kind.tag(),
-                            kind.attr(i).name,
-                            node.identifier(),
-                        );
-                        continue;
-                    } else if let Some((_, ns, index)) = auto_name {
-                        let replicated = self.open.last().is_some_and(|o| o.replicated);
-                        self.auto_name(inst, ns, index, replicated);
-                    }
-                } else {
-                    // Implicit class: the model's root class.
-                    let root_class = self.insts[inst].root_class;
-                    self.emit_default_class(inst, kind.tag(), kind.attr(i).name, root_class);
-                    continue;
+                // Skip the stored value at the same slot, if any.
+                if next_set == Some(i) {
+                    set.next();
                 }
-                self.emit_attr(kind.tag(), kind.attr(i).name);
+                let attr = kind.attr(i).name;
+                match name {
+                    Some((slot, written)) if slot == i => {
+                        self.emit_written(insts, inst, kind.tag(), attr, written);
+                    }
+                    _ => {
+                        // Implicit class: the model's root class.
+                        let root = insts.root_class_name(inst);
+                        self.emit_written(insts, inst, kind.tag(), attr, root);
+                    }
+                }
             } else if let Some((i, v)) = set.next() {
                 let i = *i as usize;
                 let spec = kind.attr(i);
@@ -837,16 +740,37 @@ impl<'a> Writer<'a> {
                     v.write_plain(&mut self.out, self.style);
                     self.out.push('"');
                 } else {
-                    self.emit_value(inst, node, i, v)?;
+                    self.emit_value(insts, inst, node, i, v)?;
                 }
             }
         }
         Ok(())
     }
 
+    /// Appends ` attr="…"` for a name in instance `inst`: an element's own name as
+    /// prefix and name, each escaped with no copy between; any other spelt first.
+    fn emit_written(
+        &mut self,
+        insts: &Insts<'a>,
+        inst: usize,
+        tag: &'static str,
+        attr: &'static str,
+        written: WrittenName<'_>,
+    ) {
+        let names = &insts.list[inst].names;
+        if let WrittenName::Own(n) = written {
+            let parts = [names.prefix.as_str(), n];
+            emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, names.prefix_clean);
+            return;
+        }
+        self.value.clear();
+        written.write(&names.prefix, &mut self.value);
+        self.emit_attr(tag, attr);
+    }
+
     /// The index entry of `id` in the model of instance `inst`.
-    fn entry(&mut self, inst: usize, id: ElementId) -> Option<&'a Entry> {
-        let elems = &self.insts[inst].model.index.elems;
+    fn entry(&mut self, insts: &Insts<'a>, inst: usize, id: ElementId) -> Option<&'a Entry> {
+        let elems = &insts.list[inst].model.index.elems;
         if let Some((m, e)) = self.entries.get(&id) {
             if m.ptr_eq(elems) {
                 return *e;
@@ -857,51 +781,26 @@ impl<'a> Writer<'a> {
         e
     }
 
-    fn sets_childclass(&mut self, inst: usize, node: &Node) -> bool {
-        facts(node.kind()).childclass.is_some_and(|i| self.has_live(inst, node, i))
+    fn sets_childclass(&mut self, insts: &Insts<'a>, inst: usize, node: &Node) -> bool {
+        facts(node.kind()).childclass.is_some_and(|i| self.has_live(insts, inst, node, i))
     }
 
     /// Whether attribute `i` of `node` is set and will be written: a reference to an
     /// element that was removed is not (an optional reference; a required one fails).
-    fn has_live(&mut self, inst: usize, node: &Node, i: usize) -> bool {
+    fn has_live(&mut self, insts: &Insts<'a>, inst: usize, node: &Node, i: usize) -> bool {
         match node.attr(i) {
             None => false,
-            Some(Value::Reference(Reference::Element(id))) => self.entry(inst, *id).is_some(),
+            Some(Value::Reference(Reference::Element(id))) => {
+                self.entry(insts, inst, *id).is_some()
+            }
             Some(_) => true,
-        }
-    }
-
-    /// Appends ` attr="P + name"` (`/` when both are empty).
-    fn emit_default_class(
-        &mut self,
-        inst: usize,
-        tag: &'static str,
-        attr: &'static str,
-        name: Option<&str>,
-    ) {
-        let prefix = &self.insts[inst].prefix;
-        let name = name.unwrap_or("");
-        let parts = if name.is_empty() && prefix.is_empty() { ["/", ""] } else { [prefix, name] };
-        let clean = self.insts[inst].prefix_clean;
-        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
-    }
-
-    /// Writes `(P or /) + /unnamed_<ns>_<index>` into `self.value`, and a `_` after it
-    /// for an element inside a `<replicate>`: MuJoCo appends the copy's number to the
-    /// name (`//unnamed_geom_1` + `0`), which must not make another element's name
-    /// (`//unnamed_geom_10`).
-    fn auto_name(&mut self, inst: usize, ns: Namespace, index: usize, replicated: bool) {
-        let prefix = &self.insts[inst].prefix;
-        let p = if prefix.is_empty() { "/" } else { prefix.as_str() };
-        let _ = write!(self.value, "{p}/unnamed_{}_{}", ns.as_str(), index);
-        if replicated {
-            self.value.push('_');
         }
     }
 
     /// Appends ` name="value"` for attribute `i` (holding `v`), if it is written.
     fn emit_value(
         &mut self,
+        insts: &Insts<'a>,
         inst: usize,
         node: &Node,
         i: usize,
@@ -910,12 +809,14 @@ impl<'a> Writer<'a> {
         let kind = node.kind();
         let (tag, attr) = (kind.tag(), kind.attr(i).name);
         // Names are written as prefix and name, each escaped, with no copy between.
-        let prefix = self.insts[inst].prefix.as_str();
+        let names = &insts.list[inst].names;
+        let prefix = names.prefix.as_str();
         let parts = match v {
             Value::Basepath(_) => return Ok(()),
             Value::Reference(Reference::Element(target)) => {
-                return self.emit_reference(inst, node, i, *target);
+                return self.emit_reference(insts, inst, node, i, *target);
             }
+            // (The identifier slot is written by `write_attrs`.)
             Value::Identifier(n) => [prefix, n.as_str()],
             Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
             Value::Reference(Reference::Name(n)) => {
@@ -923,12 +824,14 @@ impl<'a> Writer<'a> {
                 // `main` and `/` name the root class unless a class has that name
                 // (as the reader resolves them): written as the root class is, so
                 // that the text reads back to the same class, in any scope.
-                let model = self.insts[inst].model;
+                let model = insts.list[inst].model;
                 if ty == AttrType::Reference(RefTarget::Fixed(Namespace::Default))
                     && matches!(n.as_str(), "main" | "/")
                     && !model.index.names.contains_key(&(Namespace::Default, n.clone()))
                 {
-                    return self.emit_reference(inst, node, i, model.default_class().id());
+                    let root = insts.root_class_name(inst);
+                    self.emit_written(insts, inst, tag, attr, root);
+                    return Ok(());
                 }
                 // The one world body is `world` in every scope; a name in another
                 // model (`RefTarget::Unless`) is not this model's.
@@ -951,7 +854,7 @@ impl<'a> Writer<'a> {
                 return Ok(());
             }
         };
-        let clean = self.insts[inst].prefix_clean;
+        let clean = names.prefix_clean;
         emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
         Ok(())
     }
@@ -960,6 +863,7 @@ impl<'a> Writer<'a> {
     /// is written (an optional reference to a removed element is not).
     fn emit_reference(
         &mut self,
+        insts: &Insts<'a>,
         inst: usize,
         node: &Node,
         i: usize,
@@ -967,10 +871,10 @@ impl<'a> Writer<'a> {
     ) -> Result<(), WriteError> {
         let kind = node.kind();
         let (tag, attr) = (kind.tag(), kind.attr(i).name);
-        let model = self.insts[inst].model;
-        let Some(entry) = self.entry(inst, target) else {
+        let Some(entry) = self.entry(insts, inst, target) else {
             let spec = kind.attr(i);
             if spec.required {
+                let model = insts.list[inst].model;
                 return Err(WriteError::MissingRequired {
                     tag: kind.tag(),
                     attribute: spec.name,
@@ -979,56 +883,10 @@ impl<'a> Writer<'a> {
             }
             return Ok(());
         };
-        if entry.kind.tag() == "default" {
-            self.emit_default_class(inst, tag, attr, entry.name().map(smol_str::SmolStr::as_str));
-            return Ok(());
+        if let Some(written) = insts.name_of_entry(inst, target, entry) {
+            self.emit_written(insts, inst, tag, attr, written);
         }
-        // A frame, or a joint of a frame.
-        if let Some(scope) = entry.scope() {
-            let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
-        } else if let Some(scope) = entry.parent.and_then(|p| model.index.scope_of(p)) {
-            let _ = write!(self.value, "{}{}/", self.insts[inst].prefix, scope);
-            if let Some(n) = entry.name() {
-                let _ = write!(self.value, "{n}/");
-            }
-        } else {
-            match (entry.name(), entry.kind.namespace()) {
-                (Some(n), _) => {
-                    let prefix = &self.insts[inst].prefix;
-                    let clean = self.insts[inst].prefix_clean;
-                    emit_parts(&mut self.out, &mut self.bad_char, tag, attr, [prefix, n], clean);
-                    return Ok(());
-                }
-                (None, Some(ns)) => {
-                    let (index, replicated) = self.auto_index_of(inst, target);
-                    self.auto_name(inst, ns, index, replicated);
-                }
-                (None, None) => return Ok(()),
-            }
-        }
-        self.emit_attr(tag, attr);
         Ok(())
-    }
-
-    fn auto_index_of(&mut self, inst: usize, id: ElementId) -> (usize, bool) {
-        let it = &mut self.insts[inst];
-        if it.auto_index.is_none() {
-            let mut counts: HashMap<Namespace, usize> = HashMap::new();
-            let mut map = HashMap::new();
-            // Document order (pre-order), with whether a `<replicate>` is above.
-            let mut stack = vec![(&it.model.root, false)];
-            while let Some((n, replicated)) = stack.pop() {
-                if let Some(ns) = n.kind().namespace() {
-                    let c = counts.entry(ns).or_insert(0);
-                    map.insert(n.id(), (*c, replicated));
-                    *c += 1;
-                }
-                let below = replicated || n.kind().tag() == "replicate";
-                stack.extend(n.children().iter().rev().map(|c| (c, below)));
-            }
-            it.auto_index = Some(map);
-        }
-        it.auto_index.as_ref().and_then(|m| m.get(&id).copied()).unwrap_or((0, false))
     }
 
     /// Appends ` name="<escaped self.value>"`.
@@ -1127,50 +985,6 @@ fn facts(kind: ElementKind) -> &'static KindFacts {
     table.get(kind.0 as usize).unwrap_or(&NONE)
 }
 
-/// Whether a byte is written as it is: printable ASCII other than `& < > "`.
-#[cfg(test)]
-fn clean_byte(b: u8) -> bool {
-    (0x20..0x7f).contains(&b) && !matches!(b, b'&' | b'<' | b'>' | b'"')
-}
-
-/// Whether every byte of `s` is written as it is (`clean_byte` in the tests): eight bytes at a time (names are
-/// scanned once per attribute written, and most are a few dozen bytes).
-fn is_clean(s: &[u8]) -> bool {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    const HIGH: u64 = 0x8080_8080_8080_8080;
-    // Nonzero iff some byte of `x` is zero (exact as to whether one is).
-    fn zero_byte(x: u64) -> u64 {
-        x.wrapping_sub(ONES) & !x & HIGH
-    }
-    fn clean8(w: [u8; 8]) -> bool {
-        let x = u64::from_le_bytes(w);
-        // A byte below 0x20; a byte of 0x7f or more (the +1 carries out of a byte
-        // only from 0xff, itself caught by `x & HIGH`); one of the four to escape.
-        let special = (x.wrapping_sub(ONES * 0x20) & !x & HIGH)
-            | ((x | x.wrapping_add(ONES)) & HIGH)
-            | zero_byte(x ^ (ONES * u64::from(b'&')))
-            | zero_byte(x ^ (ONES * u64::from(b'<')))
-            | zero_byte(x ^ (ONES * u64::from(b'>')))
-            | zero_byte(x ^ (ONES * u64::from(b'"')));
-        special == 0
-    }
-    let mut chunks = s.chunks_exact(8);
-    for c in &mut chunks {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(c);
-        if !clean8(w) {
-            return false;
-        }
-    }
-    // The last 1 to 7 bytes, padded with clean ones.
-    let rest = chunks.remainder();
-    let mut w = [b'a'; 8];
-    for (d, &b) in w.iter_mut().zip(rest) {
-        *d = b;
-    }
-    clean8(w)
-}
-
 /// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
 /// carriage return as character references, and every non-ASCII character as a
 /// numeric character reference.
@@ -1196,40 +1010,4 @@ pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
         }
     }
     bad
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The eight-bytes-at-a-time scan says what the byte-by-byte one says: every byte
-    /// value at every position of strings of every length up to 24, and random ones.
-    #[test]
-    fn is_clean_is_every_byte_clean() {
-        for len in 1..=24 {
-            for at in 0..len {
-                for b in 0..=255u8 {
-                    let mut s = vec![b'a'; len];
-                    s[at] = b;
-                    assert_eq!(is_clean(&s), clean_byte(b), "{b:#x} at {at} of {len}");
-                }
-            }
-        }
-        let mut r: u64 = 0x2545_f491_4f6c_dd1d;
-        for _ in 0..100_000 {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
-            let len = (r % 40) as usize;
-            // Mostly clean bytes, with a few of anything.
-            let s: Vec<u8> = (0..len)
-                .map(|k| {
-                    let x = r.rotate_left(k as u32 * 7);
-                    if x % 16 == 0 { (x >> 8) as u8 } else { 0x20 + ((x >> 8) % 95) as u8 }
-                })
-                .collect();
-            assert_eq!(is_clean(&s), s.iter().all(|&b| clean_byte(b)), "{s:?}");
-        }
-        assert!(is_clean(b""));
-    }
 }
