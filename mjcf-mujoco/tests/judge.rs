@@ -21,12 +21,12 @@ mod case;
 mod compare;
 #[path = "../../tests/support/names.rs"]
 mod names;
-#[path = "../../tests/support/text.rs"]
-mod text;
 #[path = "../../tests/support/replay.rs"]
 #[allow(dead_code)]
 mod replay;
 mod support;
+#[path = "../../tests/support/text.rs"]
+mod text;
 
 use std::path::{Path, PathBuf};
 
@@ -168,11 +168,11 @@ fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tall
             continue;
         };
         // MuJoCo copies what refers to a replicated element too (a tendon through
-        // replicated sites), appending the copy's number to its name.
-        if replicates
-            && compiled.id(kind, &name).is_none()
-            && compiled.id(kind, &format!("{name}0")).is_some()
-        {
+        // replicated sites), appending the copy's number to its name, padded to the
+        // digits of the count (`0`, `00`, ...).
+        let copied =
+            ["0", "00", "000"].iter().any(|z| compiled.id(kind, &format!("{name}{z}")).is_some());
+        if replicates && compiled.id(kind, &name).is_none() && copied {
             tally.replicated += 1;
             continue;
         }
