@@ -103,8 +103,11 @@ pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
 ///
 /// Attribute names are written as bare words (`type`, `class` and other keywords
 /// included); values are anything [`Value`](crate::Value) inputs convert from: text,
-/// numbers, arrays of numbers, booleans. Nothing is checked until the element is
-/// added to a model.
+/// numbers, arrays of numbers, booleans. A bracketed list written in the call may mix
+/// integers and floats, as in Python (`size = [2, 2, 0.1]`): each item is converted by
+/// `f64::from`, so any number type that converts to `f64` without loss fits (`i32`,
+/// `u32`, `f32`, ...; a `usize` or `i64` needs `as f64`). Nothing is checked until
+/// the element is added to a model.
 ///
 /// # Examples
 /// ```
@@ -112,11 +115,29 @@ pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
 /// let a = element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1);
 /// let b = Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]).attr("mass", 1);
 /// assert_eq!(a, b);
+/// // Integers and floats mixed in one list, as Python's `[2, 2, .1]`:
+/// let (x, i) = (0.5_f32, 3_u32);
+/// let c = element!("camera", xyaxes = [0, 1, 0, -0.5, x, i], pos = [2, 2, 0.1]);
+/// assert_eq!(c, Element::new("camera").attr("xyaxes", [0.0, 1.0, 0.0, -0.5, 0.5, 3.0]).attr("pos", [2.0, 2.0, 0.1]));
 /// ```
 #[macro_export]
 macro_rules! element {
-    ($tag:expr $(, $name:tt = $value:expr)* $(,)?) => {
-        $crate::Element::new($tag)$(.attr(stringify!($name), $value))*
+    ($tag:expr $(, $($attrs:tt)*)?) => {
+        $crate::element!(@attrs $crate::Element::new($tag); $($($attrs)*)?)
+    };
+    (@attrs $element:expr;) => {
+        $element
+    };
+    // A bracketed list of numbers: each item converted on its own, so that integers
+    // and floats mix. Any other value (`[0.1; 3]`, a variable, text) is the next arm's.
+    (@attrs $element:expr; $name:tt = [$($item:expr),* $(,)?] $(, $($rest:tt)*)?) => {
+        $crate::element!(@attrs $element.attr(
+            stringify!($name),
+            [$(<::core::primitive::f64 as ::core::convert::From<_>>::from($item)),*],
+        ); $($($rest)*)?)
+    };
+    (@attrs $element:expr; $name:tt = $value:expr $(, $($rest:tt)*)?) => {
+        $crate::element!(@attrs $element.attr(stringify!($name), $value); $($($rest)*)?)
     };
 }
 
