@@ -74,6 +74,7 @@ mod error;
 mod files;
 #[cfg(any(test, feature = "proptest", feature = "arbitrary"))]
 pub mod generate;
+mod history;
 mod id;
 mod model;
 mod schema;
@@ -85,6 +86,7 @@ mod xml;
 pub use crate::error::{
     EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
 };
+pub use crate::history::History;
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{

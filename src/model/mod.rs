@@ -17,6 +17,7 @@ mod index;
 pub(crate) mod keys;
 pub(crate) mod layout;
 pub(crate) mod pose;
+mod reach;
 mod scope;
 pub(crate) mod settings;
 pub(crate) mod tree;
