@@ -106,6 +106,13 @@ pub enum ErrorKind {
         /// The tag looked for.
         tag: SmolStr,
     },
+    /// A tag that no single top-level section takes
+    /// ([`Model::add_top`](crate::Model::add_top)).
+    #[error("no single top-level section takes <{}>: add it under its parent", cut(.tag))]
+    NoSection {
+        /// The element's tag.
+        tag: SmolStr,
+    },
     /// A second singleton or on-demand child.
     #[error("a <{0}> child already exists")]
     DuplicateChild(&'static str),

@@ -114,3 +114,62 @@ fn diff_lines_tell_unnamed_siblings_of_one_tag_apart() {
         old.diff(&fewer).iter().map(|c| c.display(&old, &fewer).to_string()).collect();
     assert_eq!(lines, ["- instance[name=i]/config[1]"]);
 }
+
+#[test]
+fn add_top_puts_each_tag_in_its_section() {
+    let m = Model::new("m");
+    for (tag, section) in [
+        ("body", "worldbody"),
+        ("geom", "worldbody"),
+        ("site", "worldbody"),
+        ("light", "worldbody"),
+        ("camera", "worldbody"),
+        ("frame", "worldbody"),
+        ("motor", "actuator"),
+        ("position", "actuator"),
+        ("touch", "sensor"),
+        ("mesh", "asset"),
+        ("material", "asset"),
+        ("pair", "contact"),
+        ("exclude", "contact"),
+        ("key", "keyframe"),
+        ("weld", "equality"),
+        ("fixed", "tendon"),
+    ] {
+        let loc = m.section_for(tag).unwrap();
+        assert_eq!(m.get(&loc).unwrap().tag(), section, "{tag}");
+    }
+    let (m2, motor) = m.add_top(element!("motor", name = "m1")).unwrap();
+    assert_eq!(m2.get(&motor).unwrap().parent().unwrap().tag(), "actuator");
+    assert_eq!(m, Model::new("m")); // the persistent form leaves `self` as it was
+}
+
+#[test]
+fn add_top_refuses_a_tag_no_section_takes_and_changes_nothing() {
+    let mut m = Model::new("m");
+    for tag in ["joint", "inertial", "freejoint", "nosuchtag"] {
+        let e = m.add_top_mut(Element::new(tag)).unwrap_err();
+        assert_eq!(e.kind(), &ErrorKind::NoSection { tag: tag.into() });
+        assert_eq!(m, Model::new("m"));
+    }
+    // A tag several sections take is refused too, not placed in the first.
+    let many: Vec<&str> = mjcf::ElementKind::all()
+        .map(|k| k.tag())
+        .filter(|t| {
+            let root = mjcf::ElementKind::all().next().unwrap();
+            root.spec()
+                .children
+                .iter()
+                .filter(|s| s.tag() != "default" && s.child(t).is_some())
+                .count()
+                > 1
+        })
+        .collect();
+    assert!(!many.is_empty());
+    for tag in many {
+        assert!(
+            matches!(m.section_for(tag).unwrap_err().kind(), ErrorKind::NoSection { .. }),
+            "{tag}"
+        );
+    }
+}
