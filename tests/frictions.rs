@@ -1,7 +1,9 @@
 //! The frictions a new user hit (issue 21), each shown removed: mixed number lists in
-//! `element!`, ...
+//! `element!`, the children of default classes (`child`), diff lines that name their
+//! element, adding without naming the section (`add_top`), a chosen scope name
+//! (`attach_as`), and an editor's `History`.
 
-use mjcf::{Element, ErrorKind, Model, Namespace, element};
+use mjcf::{Element, ErrorKind, History, Model, Namespace, element};
 
 #[test]
 fn element_macro_mixes_integers_and_floats_in_a_list() {
@@ -172,4 +174,123 @@ fn add_top_refuses_a_tag_no_section_takes_and_changes_nothing() {
             "{tag}"
         );
     }
+}
+
+fn hand() -> Model {
+    let mut hand = Model::new("jaco_hand");
+    let palm = hand.add_top_mut(element!("body", name = "palm")).unwrap();
+    hand.add_mut(&palm, element!("site", name = "tip")).unwrap();
+    hand
+}
+
+#[test]
+fn attach_as_chooses_the_scope_with_the_same_uniqueness_rule() {
+    let mut arm = Model::new("arm");
+    let before = arm.clone();
+    let a = arm.attach_as_mut(&arm.worldbody(), &hand(), "gripper").unwrap();
+    let b = arm.attach_as_mut(&arm.worldbody(), &hand(), "gripper").unwrap();
+    // A default-named attachment and a chosen name share one rule.
+    let c = arm.attach_mut(&arm.worldbody(), &Model::new("gripper")).unwrap();
+    assert_eq!([a.scope(), b.scope(), c.scope()], ["gripper", "gripper_1", "gripper_2"]);
+    let xml = arm.to_xml_string().unwrap();
+    assert!(xml.contains(r#"<body name="gripper/palm">"#), "{xml}");
+    assert!(xml.contains(r#"<body name="gripper_1/palm">"#), "{xml}");
+    assert_eq!(arm.attached(&a).unwrap().name(), "jaco_hand"); // the child keeps its name
+    for x in [&c, &b, &a] {
+        arm.detach_mut(x).unwrap();
+    }
+    assert_eq!(arm, before);
+}
+
+#[test]
+fn attach_as_inside_an_attachment_and_in_the_persistent_form() {
+    let arena = Model::new("arena");
+    let (arena, outer) = arena.attach_as(&arena.worldbody(), &hand(), "left").unwrap();
+    let tip = arena.lookup(Namespace::Site, "left/tip").unwrap();
+    let (scene, inner) = arena.attach_as(&tip, &hand(), "gripper").unwrap();
+    assert_eq!((outer.scope(), inner.scope()), ("left", "left/gripper"));
+    assert!(scene.find(Namespace::Body, "left/gripper/palm").is_some());
+    assert!(arena.find(Namespace::Body, "left/gripper/palm").is_none()); // unchanged
+}
+
+#[test]
+fn attach_as_refuses_a_bad_scope_name_and_changes_nothing() {
+    let mut arm = Model::new("arm");
+    let before = arm.clone();
+    for bad in ["", "a/b", "/", "nul\0"] {
+        let e = arm.attach_as_mut(&arm.worldbody(), &hand(), bad).unwrap_err();
+        assert!(
+            matches!(e.kind(), ErrorKind::InvalidValue { attribute: "model", .. }),
+            "{bad:?}: {e}"
+        );
+        assert_eq!(arm, before);
+    }
+}
+
+fn boxes(history: &mut History, n: usize) {
+    for i in 0..n {
+        history
+            .edit(format!("box {i}"), |m| {
+                m.add_top_mut(element!("body", name = format!("box_{i}")))
+            })
+            .unwrap();
+    }
+}
+
+#[test]
+fn history_undo_redo_and_editing_after_undo_drops_the_redoable_entries() {
+    let mut history = History::new(Model::new("m"));
+    boxes(&mut history, 3);
+    assert_eq!((history.len(), history.position()), (4, 3));
+    assert!(history.undo() && history.undo());
+    assert_eq!(history.label(history.position()), Some("box 0"));
+    assert!(history.redo());
+    assert_eq!(history.current(), history.get(2).unwrap());
+    assert!(history.undo() && history.undo());
+    assert!(!history.undo()); // at the oldest: nothing moves
+    assert_eq!(history.position(), 0);
+    assert!(history.go_to(3) && !history.redo() && !history.go_to(4));
+    history.go_to(1);
+    history.edit("other", |m| m.add_top_mut(element!("site", name = "s"))).unwrap();
+    assert_eq!(history.len(), 3);
+    assert_eq!(history.diff_lines(1, 2).unwrap(), ["+ site s"]);
+    assert!(history.diff(0, 3).is_none());
+}
+
+#[test]
+fn history_edit_that_fails_leaves_the_history_unchanged() {
+    let mut history = History::new(Model::new("m"));
+    boxes(&mut history, 1);
+    let e = history.edit("bad", |m| m.add_top_mut(element!("body", name = "box_0")));
+    assert!(matches!(e.unwrap_err().kind(), ErrorKind::DuplicateIdentifier { .. }));
+    assert_eq!((history.len(), history.position()), (2, 1));
+    // A closure that changed the copy before failing leaves no trace either.
+    let e = history.edit("half", |m| {
+        m.add_top_mut(element!("body", name = "kept_out"))?;
+        m.add_top_mut(element!("joint"))
+    });
+    assert!(e.is_err());
+    assert!(history.current().find(Namespace::Body, "kept_out").is_none());
+}
+
+#[test]
+fn history_with_a_limit_forgets_the_oldest_entries() {
+    let mut history = History::with_limit(Model::new("m"), 3);
+    boxes(&mut history, 5);
+    assert_eq!((history.len(), history.position()), (3, 2));
+    assert_eq!(history.label(0), Some("box 2"));
+    assert_eq!(history.diff_lines(0, 2).unwrap(), ["+ body box_3", "+ body box_4"]);
+    let mut one = History::with_limit(Model::new("m"), 0); // keeps the current version
+    boxes(&mut one, 2);
+    assert_eq!((one.len(), one.label(0)), (1, Some("box 1")));
+    assert!(!one.undo());
+}
+
+#[test]
+fn history_versions_share_what_they_did_not_change() {
+    let mut history = History::new(Model::new("m"));
+    boxes(&mut history, 2);
+    let (a, b) = (history.get(1).unwrap(), history.get(2).unwrap());
+    let box0 = a.lookup(Namespace::Body, "box_0").unwrap();
+    assert!(a.get(&box0).unwrap().ptr_eq(&b.get(&box0).unwrap()));
 }
