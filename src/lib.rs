@@ -125,21 +125,49 @@ pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
 #[macro_export]
 macro_rules! element {
     ($tag:expr $(, $($attrs:tt)*)?) => {
-        $crate::element!(@attrs $crate::Element::new($tag); $($($attrs)*)?)
+        $crate::__assign!(attr; $crate::Element::new($tag); $($($attrs)*)?)
     };
-    (@attrs $element:expr;) => {
-        $element
+}
+
+/// [`Attrs`] written as [`element!`]'s attributes, for [`Model::set`](crate::Model::set):
+/// `attrs!(rgba = [1, 0.5, 0, 1], mass = 2)` is
+/// `Attrs::new().set("rgba", [1.0, 0.5, 0.0, 1.0]).set("mass", 2)`. A bracketed list
+/// may mix integers and floats, as in [`element!`].
+///
+/// # Examples
+/// ```
+/// use mjcf::{Model, attrs, element};
+/// let mut m = Model::new("m");
+/// let g = m.add_top_mut(element!("geom", size = [0.1]))?;
+/// m.set_mut(&g, attrs!(rgba = [1, 0.5, 0, 1], mass = 2))?;
+/// assert_eq!(m.floats(&g, "rgba")?, [1.0, 0.5, 0.0, 1.0]);
+/// # Ok::<(), mjcf::EditError>(())
+/// ```
+#[macro_export]
+macro_rules! attrs {
+    ($($attrs:tt)*) => {
+        $crate::__assign!(set; $crate::Attrs::new(); $($attrs)*)
+    };
+}
+
+/// The attribute list of [`element!`] and [`attrs!`]: `$method` (`attr` or `set`)
+/// called on `$target` once per `name = value`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __assign {
+    ($method:ident; $target:expr;) => {
+        $target
     };
     // A bracketed list of numbers: each item converted on its own, so that integers
     // and floats mix. Any other value (`[0.1; 3]`, a variable, text) is the next arm's.
-    (@attrs $element:expr; $name:tt = [$($item:expr),* $(,)?] $(, $($rest:tt)*)?) => {
-        $crate::element!(@attrs $element.attr(
+    ($method:ident; $target:expr; $name:tt = [$($item:expr),* $(,)?] $(, $($rest:tt)*)?) => {
+        $crate::__assign!($method; $target.$method(
             stringify!($name),
             [$(<::core::primitive::f64 as ::core::convert::From<_>>::from($item)),*],
         ); $($($rest)*)?)
     };
-    (@attrs $element:expr; $name:tt = $value:expr $(, $($rest:tt)*)?) => {
-        $crate::element!(@attrs $element.attr(stringify!($name), $value); $($($rest)*)?)
+    ($method:ident; $target:expr; $name:tt = $value:expr $(, $($rest:tt)*)?) => {
+        $crate::__assign!($method; $target.$method(stringify!($name), $value); $($($rest)*)?)
     };
 }
 

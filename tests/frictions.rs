@@ -294,3 +294,16 @@ fn history_versions_share_what_they_did_not_change() {
     let box0 = a.lookup(Namespace::Body, "box_0").unwrap();
     assert!(a.get(&box0).unwrap().ptr_eq(&b.get(&box0).unwrap()));
 }
+
+#[test]
+fn attrs_macro_mixes_integers_and_floats_for_set() {
+    let a = mjcf::attrs!(rgba = [1, 0.5, 0, 1], mass = 2, class = "main",);
+    let b =
+        mjcf::Attrs::new().set("rgba", [1.0, 0.5, 0.0, 1.0]).set("mass", 2).set("class", "main");
+    assert_eq!(a, b);
+    assert_eq!(mjcf::attrs!(), mjcf::Attrs::new());
+    let mut m = Model::new("m");
+    let g = m.add_top_mut(element!("geom", size = [0.1])).unwrap();
+    m.set_mut(&g, mjcf::attrs!(rgba = [1, 0.5, 0, 1], pos = [0; 3])).unwrap();
+    assert_eq!(m.floats(&g, "rgba").unwrap(), [1.0, 0.5, 0.0, 1.0]);
+}
