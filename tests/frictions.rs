@@ -307,3 +307,17 @@ fn attrs_macro_mixes_integers_and_floats_for_set() {
     m.set_mut(&g, mjcf::attrs!(rgba = [1, 0.5, 0, 1], pos = [0; 3])).unwrap();
     assert_eq!(m.floats(&g, "rgba").unwrap(), [1.0, 0.5, 0.0, 1.0]);
 }
+
+#[test]
+fn child_reaches_into_an_attachment_and_diff_lines_name_its_elements() {
+    let mut arena = Model::new("arena");
+    let a = arena.attach_as_mut(&arena.worldbody(), &hand(), "left").unwrap();
+    let palm = arena.child(a.frame(), "body").unwrap();
+    assert!(palm.is_scoped());
+    assert_eq!(arena.get(&palm).unwrap().full_name().as_deref(), Some("left/palm"));
+    let old = arena.clone();
+    arena.add_mut(&palm, element!("inertial", pos = [0; 3], mass = 1)).unwrap();
+    let lines: Vec<String> =
+        old.diff(&arena).iter().map(|c| c.display(&old, &arena).to_string()).collect();
+    assert_eq!(lines, ["+ body[name=left/palm]/inertial"]);
+}
