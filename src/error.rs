@@ -97,6 +97,22 @@ pub enum ErrorKind {
         /// The nearest valid child tag, if one is close.
         suggestion: Option<&'static str>,
     },
+    /// An element with no child of the tag asked for
+    /// ([`Model::child`](crate::Model::child)).
+    #[error("<{parent}> has no <{}> child", cut(.tag))]
+    NoChild {
+        /// The parent's tag.
+        parent: &'static str,
+        /// The tag looked for.
+        tag: SmolStr,
+    },
+    /// A tag that no single top-level section takes
+    /// ([`Model::add_top`](crate::Model::add_top)).
+    #[error("no single top-level section takes <{}>: add it under its parent", cut(.tag))]
+    NoSection {
+        /// The element's tag.
+        tag: SmolStr,
+    },
     /// A second singleton or on-demand child.
     #[error("a <{0}> child already exists")]
     DuplicateChild(&'static str),

@@ -74,6 +74,7 @@ mod error;
 mod files;
 #[cfg(any(test, feature = "proptest", feature = "arbitrary"))]
 pub mod generate;
+mod history;
 mod id;
 mod model;
 mod schema;
@@ -85,6 +86,7 @@ mod xml;
 pub use crate::error::{
     EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
 };
+pub use crate::history::History;
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
@@ -103,8 +105,11 @@ pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
 ///
 /// Attribute names are written as bare words (`type`, `class` and other keywords
 /// included); values are anything [`Value`](crate::Value) inputs convert from: text,
-/// numbers, arrays of numbers, booleans. Nothing is checked until the element is
-/// added to a model.
+/// numbers, arrays of numbers, booleans. A bracketed list written in the call may mix
+/// integers and floats, as in Python (`size = [2, 2, 0.1]`): each item is converted by
+/// `f64::from`, so any number type that converts to `f64` without loss fits (`i32`,
+/// `u32`, `f32`, ...; a `usize` or `i64` needs `as f64`). Nothing is checked until
+/// the element is added to a model.
 ///
 /// # Examples
 /// ```
@@ -112,11 +117,57 @@ pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
 /// let a = element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1);
 /// let b = Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]).attr("mass", 1);
 /// assert_eq!(a, b);
+/// // Integers and floats mixed in one list, as Python's `[2, 2, .1]`:
+/// let (x, i) = (0.5_f32, 3_u32);
+/// let c = element!("camera", xyaxes = [0, 1, 0, -0.5, x, i], pos = [2, 2, 0.1]);
+/// assert_eq!(c, Element::new("camera").attr("xyaxes", [0.0, 1.0, 0.0, -0.5, 0.5, 3.0]).attr("pos", [2.0, 2.0, 0.1]));
 /// ```
 #[macro_export]
 macro_rules! element {
-    ($tag:expr $(, $name:tt = $value:expr)* $(,)?) => {
-        $crate::Element::new($tag)$(.attr(stringify!($name), $value))*
+    ($tag:expr $(, $($attrs:tt)*)?) => {
+        $crate::__assign!(attr; $crate::Element::new($tag); $($($attrs)*)?)
+    };
+}
+
+/// [`Attrs`] written as [`element!`]'s attributes, for [`Model::set`](crate::Model::set):
+/// `attrs!(rgba = [1, 0.5, 0, 1], mass = 2)` is
+/// `Attrs::new().set("rgba", [1.0, 0.5, 0.0, 1.0]).set("mass", 2)`. A bracketed list
+/// may mix integers and floats, as in [`element!`].
+///
+/// # Examples
+/// ```
+/// use mjcf::{Model, attrs, element};
+/// let mut m = Model::new("m");
+/// let g = m.add_top_mut(element!("geom", size = [0.1]))?;
+/// m.set_mut(&g, attrs!(rgba = [1, 0.5, 0, 1], mass = 2))?;
+/// assert_eq!(m.floats(&g, "rgba")?, [1.0, 0.5, 0.0, 1.0]);
+/// # Ok::<(), mjcf::EditError>(())
+/// ```
+#[macro_export]
+macro_rules! attrs {
+    ($($attrs:tt)*) => {
+        $crate::__assign!(set; $crate::Attrs::new(); $($attrs)*)
+    };
+}
+
+/// The attribute list of [`element!`] and [`attrs!`]: `$method` (`attr` or `set`)
+/// called on `$target` once per `name = value`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __assign {
+    ($method:ident; $target:expr;) => {
+        $target
+    };
+    // A bracketed list of numbers: each item converted on its own, so that integers
+    // and floats mix. Any other value (`[0.1; 3]`, a variable, text) is the next arm's.
+    ($method:ident; $target:expr; $name:tt = [$($item:expr),* $(,)?] $(, $($rest:tt)*)?) => {
+        $crate::__assign!($method; $target.$method(
+            stringify!($name),
+            [$(<::core::primitive::f64 as ::core::convert::From<_>>::from($item)),*],
+        ); $($($rest)*)?)
+    };
+    ($method:ident; $target:expr; $name:tt = $value:expr $(, $($rest:tt)*)?) => {
+        $crate::__assign!($method; $target.$method(stringify!($name), $value); $($($rest)*)?)
     };
 }
 

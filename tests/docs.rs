@@ -7,7 +7,9 @@
 //! - every `deviation` label a conformance case uses is explained in
 //!   `tests/conformance/README.md` and listed in the README's table;
 //! - no comment or document cites a line of code by number (a file name, a colon and
-//!   the number, or a `#L` anchor), which goes stale as soon as the code above moves.
+//!   the number, or a `#L` anchor), which goes stale as soon as the code above moves;
+//! - the README's quickstart is `examples/quickstart.rs`, and its line counts of the
+//!   three user programs are what `rustfmt` with its default settings gives.
 
 use std::path::{Path, PathBuf};
 
@@ -245,4 +247,45 @@ fn no_comment_or_document_cites_a_line_of_code() {
         citations.extend(line_citations(&relative, &text));
     }
     assert!(citations.is_empty(), "lines of code cited by number:\n{}", citations.join("\n"));
+}
+
+/// Non-blank lines of `file` once formatted by `rustfmt` with its default settings, as
+/// a user's code is (not the repository's `use_small_heuristics = "Max"`), on a copy.
+fn default_rustfmt_lines(file: &str) -> usize {
+    let name = format!("mjcf-docs-{}-{}", std::process::id(), file.replace('/', "_"));
+    let copy = std::env::temp_dir().join(name);
+    std::fs::write(&copy, read(file)).unwrap();
+    let status = std::process::Command::new("rustfmt")
+        .args(["--edition", "2024", "--config", "use_small_heuristics=Default"])
+        .arg(&copy)
+        .status()
+        .unwrap_or_else(|e| panic!("rustfmt could not run (it ships with rustup): {e}"));
+    assert!(status.success(), "rustfmt failed on a copy of {file}");
+    let text = std::fs::read_to_string(&copy).unwrap();
+    std::fs::remove_file(&copy).unwrap();
+    text.lines().filter(|l| !l.trim().is_empty()).count()
+}
+
+#[test]
+fn readme_quickstart_is_the_example() {
+    let block = format!("```rust\n{}```\n", read("examples/quickstart.rs"));
+    assert!(read("README.md").contains(&block), "the README's quickstart differs from the example");
+}
+
+#[test]
+fn readme_line_counts_are_default_rustfmt_counts() {
+    let readme = read("README.md");
+    for (name, file) in [
+        ("seed (`quickstart.rs`)", "examples/quickstart.rs"),
+        ("editor (`editor.rs`)", "examples/editor.rs"),
+        ("compose (`compose.rs`)", "examples/compose.rs"),
+    ] {
+        let row = format!("| {name} | ");
+        let python = number_after(&readme, &row, name);
+        let rust = number_after(&readme, &format!("{row}{python} | "), name);
+        assert_eq!(rust as usize, default_rustfmt_lines(file), "{file}: the README's count");
+    }
+    let quick = default_rustfmt_lines("examples/quickstart.rs");
+    let stated = format!("({quick} non-blank lines after\n`rustfmt` with its default settings");
+    assert!(readme.contains(&stated), "the README's seed count is not {quick}");
 }

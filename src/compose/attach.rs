@@ -86,15 +86,89 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn attach_mut(&mut self, at: &Loc, child: &Model) -> Result<Attachment, EditError> {
+        self.attach_named_mut(at, child, child.name())
+    }
+
+    /// [`Model::attach`] under a scope name of the caller's choice instead of the
+    /// child's model name (MjSpec's `attach(child, prefix="gripper/")`): the child's
+    /// names are written `gripper/...`. The uniqueness rule is [`Model::attach`]'s: if
+    /// the model that receives it already has an attachment named `scope`, the scope
+    /// is `scope_1`, `scope_2`, ... ([`Attachment::scope`] tells which).
+    ///
+    /// Time: as [`Model::attach`].
+    ///
+    /// # Errors
+    /// As [`Model::attach`], and [`ErrorKind::InvalidValue`] if `scope` is empty,
+    /// holds a `/` ([`ValueError::SlashInIdentifier`]) or a character XML cannot
+    /// hold ([`ValueError::InvalidCharacter`]), as [`Model::rename_scope`] refuses.
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut hand = Model::new("jaco_hand");
+    /// hand.add_mut(&hand.worldbody(), element!("body", name = "palm"))?;
+    /// let arm = Model::new("arm");
+    /// let (arm, a) = arm.attach_as(&arm.worldbody(), &hand, "gripper")?;
+    /// let (arm, b) = arm.attach_as(&arm.worldbody(), &hand, "gripper")?;
+    /// assert_eq!((a.scope(), b.scope()), ("gripper", "gripper_1"));
+    /// assert!(arm.find(Namespace::Body, "gripper_1/palm").is_some());
+    /// assert!(arm.attach_as(&arm.worldbody(), &hand, "a/b").is_err());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn attach_as(
+        &self,
+        at: &Loc,
+        child: &Model,
+        scope: &str,
+    ) -> Result<(Model, Attachment), EditError> {
+        let mut new = self.clone();
+        let a = new.attach_as_mut(at, child, scope)?;
+        Ok((new, a))
+    }
+
+    /// [`Model::attach_as`] in place: returns the attachment (its frame and scope).
+    ///
+    /// Time: as [`Model::attach`].
+    ///
+    /// # Errors
+    /// As [`Model::attach_as`]; `self` is unchanged on error.
+    pub fn attach_as_mut(
+        &mut self,
+        at: &Loc,
+        child: &Model,
+        scope: &str,
+    ) -> Result<Attachment, EditError> {
+        if scope.is_empty() {
+            return Err(EditError::new(
+                ErrorKind::InvalidValue {
+                    tag: "mujoco",
+                    attribute: "model",
+                    value: String::new(),
+                    error: ValueError::SlashInIdentifier,
+                },
+                String::new(),
+            ));
+        }
+        crate::model::check_model_name(scope).map_err(|k| EditError::new(k, String::new()))?;
+        self.attach_named_mut(at, child, scope)
+    }
+
+    /// [`Model::attach_mut`] with the scope's base name given (`base`, `base_1`, ...).
+    fn attach_named_mut(
+        &mut self,
+        at: &Loc,
+        child: &Model,
+        base: &str,
+    ) -> Result<Attachment, EditError> {
         if at.scope().is_empty() {
             // In place: every check comes first, then the edit copies only what other
             // versions share (nothing, when `self` owns the path alone).
-            let (frame, scope) = self.attach_here(at, child)?;
+            let (frame, scope) = self.attach_here(at, child, base)?;
             return Ok(Attachment::new(self.scoped_loc(&[], frame), scope));
         }
         let (new, frame) = self.in_scope(at.scope(), |m: &Model| {
             let mut m = m.clone();
-            let (frame, _) = m.attach_here(at, child)?;
+            let (frame, _) = m.attach_here(at, child, base)?;
             Ok((m, frame))
         })?;
         settings::check(&new).map_err(|k| EditError::new(k, String::new()))?;
@@ -117,11 +191,15 @@ impl Model {
     /// Attaches `child` at `at`, an element of this model's own tree, in place;
     /// returns the frame's id and the scope name. Every check (and the settings fold,
     /// which can fail) comes before the first change, so on error `self` is unchanged.
-    fn attach_here(&mut self, at: &Loc, child: &Model) -> Result<(ElementId, SmolStr), EditError> {
+    fn attach_here(
+        &mut self,
+        at: &Loc,
+        child: &Model,
+        base: &str,
+    ) -> Result<(ElementId, SmolStr), EditError> {
         let path = self.path_of(at.id()).ok_or_else(|| self.stale(at))?;
         let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
         let node = self.node_at(&path).ok_or_else(|| err(ErrorKind::NotFound))?;
-        let base = child.name();
         if base.contains('/') {
             return Err(err(ErrorKind::InvalidValue {
                 tag: "mujoco",

@@ -132,11 +132,12 @@ struct ChangeDisplay<'a> {
 
 impl std::fmt::Display for ChangeDisplay<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // `tag name` for an element MuJoCo names; otherwise its path (below).
         let name = |m: &Model, loc: &Loc| match m.element(loc) {
-            Some(e) => {
-                let n = e.full_name().unwrap_or_default();
-                if n.is_empty() { e.tag().to_string() } else { format!("{} {n}", e.tag()) }
-            }
+            Some(e) => match e.full_name().filter(|n| !n.is_empty()) {
+                Some(n) => format!("{} {n}", e.tag()),
+                None => path(e),
+            },
             None => format!("{loc:?}"),
         };
         let value = |v: &Option<Value>| {
@@ -147,6 +148,7 @@ impl std::fmt::Display for ChangeDisplay<'_> {
             Change::Removed { loc } => write!(f, "- {}", name(self.old, loc)),
             Change::AttrChanged { loc, attribute, old, new } => {
                 let n = name(self.new, loc);
+                // A named element by its name alone; a path has no space to cut at.
                 let n = n.split_once(' ').map_or(n.as_str(), |(_, n)| n);
                 write!(f, "~ {n} {attribute}: {} -> {}", value(old), value(new))
             }
@@ -156,6 +158,34 @@ impl std::fmt::Display for ChangeDisplay<'_> {
             Change::RenamedScope { from, to, .. } => write!(f, "renamed {from} -> {to}"),
         }
     }
+}
+
+/// The path of an element MuJoCo gives no name (a default class's `<position>`, an
+/// `<inertial>`, `<option>`), written as error paths are: from the nearest ancestor
+/// that has a name (`tag[name=..]`, the name MuJoCo sees) down through the tags, a
+/// tag followed by `[i]` (its rank among its siblings of that tag) where its parent
+/// has several: `default[name=large_actuator]/position`,
+/// `body[name=robot/torso]/inertial`, `option`. So no two elements read the same.
+///
+/// Time: O(depth · (width + levels · depth · log n)), plus O(n) per unnamed ancestor
+/// that has a namespace (whose automatic name is its position).
+fn path(element: crate::model::ElementRef<'_>) -> String {
+    let mut steps = Vec::new();
+    let mut at = element;
+    while let Some(parent) = at.parent() {
+        if let Some(n) = at.full_name().filter(|n| !n.is_empty()) {
+            steps.push(format!("{}[name={n}]", at.tag()));
+            break;
+        }
+        let same: Vec<_> = parent.children().filter(|c| c.tag() == at.tag()).collect();
+        match same.iter().position(|c| c.ptr_eq(&at)) {
+            Some(i) if same.len() > 1 => steps.push(format!("{}[{i}]", at.tag())),
+            _ => steps.push(at.tag().to_string()),
+        }
+        at = parent;
+    }
+    steps.reverse();
+    steps.join("/")
 }
 
 /// What a diff looked at, for tests of its cost.

@@ -19,8 +19,10 @@ pub(crate) mod keys;
 pub(crate) mod layout;
 pub(crate) mod naming;
 pub(crate) mod pose;
+mod reach;
 mod scope;
 pub(crate) mod settings;
+mod top;
 pub(crate) mod tree;
 
 use std::fmt;
@@ -319,7 +321,7 @@ impl Model {
         self.root.child_of_kind(kind).map(|n| self.scoped_loc(&[], n.id()))
     }
 
-    fn must_section(&self, tag: &str) -> Loc {
+    pub(crate) fn must_section(&self, tag: &str) -> Loc {
         // Every section is a singleton, created with the model and never removed.
         self.section(tag).unwrap_or_else(|| self.root())
     }
