@@ -421,7 +421,7 @@ fn main() {
     }
 
     // W8 the real job: examples/compose.rs, its models read, the scene composed, 200
-    // variants built on 2 threads and exported with their meshes into a fresh folder.
+    // variants built and exported with their meshes into a fresh folder.
     if wants("w8") {
         let case = models_dir().join("../../tests/conformance/cases/real_02_jaco_arm_with_hand");
         let out = std::env::temp_dir().join(format!("mjcf-w8-{}", std::process::id()));

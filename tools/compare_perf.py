@@ -42,7 +42,7 @@ Measured as:
     composition issue: the jaco arm and hand read, two arms and ten props in an
     arena, 200 randomized variants exported with `export_with_assets`), timed whole,
     run in a temporary folder; ours is `examples/compose.rs` (the same job, its 200
-    variants on 2 threads) timed whole by the figures binary.
+    variants) timed whole by the figures binary.
 - W3: reading the XML text from memory (`Model::from_xml_str`,
     `mjcf.from_xml_string`, `MjSpec.from_string`); W5 (ours only): quick-xml reading
     the same text into events and writing them back, the floor.

@@ -17,7 +17,8 @@
 //! - W7 attach growth: one more robot (attach + freejoint) onto a fleet of N robots,
 //!   N = 10 / 100 / 1,000 / 10,000.
 //! - W8 the real job: `examples/compose.rs` (the jaco arm and hand read, the scene
-//!   composed, 200 variants built on 2 threads and exported with their meshes), run by
+//!   composed, 200 variants built and exported with their meshes, one after another as
+//!   compose.py does), run by
 //!   `benches/figures.rs` through that file itself; `tools/compare_perf.py` runs
 //!   dm_control's `benches/dm_control/compose.py` beside it.
 //!
