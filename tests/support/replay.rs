@@ -569,7 +569,7 @@ impl State<'_> {
                     std::fs::write(d.join(file), &xml)
                         .map_err(|e| OpError::new("io", e.to_string()))?;
                     // The output and its read-back, each with its files, for
-                    // tools/readback_check (MuJoCo compiles both the same).
+                    // a MuJoCo comparison of the two.
                     if let Ok(back) = &back {
                         let pairs = out.join("readback").join(&self.case.name);
                         let io = |e: mjcf::ExportError| OpError::new("io", e.to_string());
