@@ -19,7 +19,7 @@ use crate::sys::mjModel;
 /// It is `Send + Sync`: MuJoCo only reads a compiled model while simulating, so any
 /// number of [`Physics`](crate::Physics) on any threads can share one. Cloning is
 /// O(1) (shared); writing a model field through a `Physics` copies the model first if
-/// it is shared ([`Physics::model_floats_mut`](crate::Physics::model_floats_mut)).
+/// it is shared ([`Physics::get_mut`](crate::Physics::get_mut)).
 #[derive(Clone)]
 pub struct Compiled {
     pub(crate) inner: Arc<Inner>,
@@ -265,7 +265,7 @@ impl Compiled {
     pub fn floats(&self, name: &str) -> Result<&[f64], BindError> {
         let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
         // SAFETY: the field's pointer and size come from the model's own tables.
-        unsafe { raw.floats(field) }
+        unsafe { raw.slice(field, Scalar::F64, "f64") }
     }
 
     /// The model field `name` as single-precision numbers (`geom_rgba`,
@@ -277,19 +277,8 @@ impl Compiled {
     /// As [`Compiled::floats`].
     pub fn floats32(&self, name: &str) -> Result<&[f32], BindError> {
         let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
-        if field.scalar != Scalar::F32 {
-            return Err(BindError::WrongType {
-                field: field.name,
-                holds: field.scalar.name(),
-                asked: "f32",
-            });
-        }
-        let len = raw.rows * raw.cols;
-        if len == 0 || raw.ptr.is_null() {
-            return Ok(&[]);
-        }
-        // SAFETY: a float field of the model, of that many numbers, borrowed from it.
-        Ok(unsafe { std::slice::from_raw_parts(raw.ptr.cast::<f32>(), len) })
+        // SAFETY: the field's pointer and size come from the model's own tables.
+        unsafe { raw.slice(field, Scalar::F32, "f32") }
     }
 
     /// The model field `name` as integers (`jnt_qposadr`, `body_parentid`, ...).
@@ -301,7 +290,7 @@ impl Compiled {
     pub fn ints(&self, name: &str) -> Result<&[i32], BindError> {
         let (field, raw) = self.field(name).ok_or_else(|| no_model_field(name))?;
         // SAFETY: the field's pointer and size come from the model's own tables.
-        unsafe { raw.ints(field) }
+        unsafe { raw.slice(field, Scalar::I32, "i32") }
     }
 }
 
@@ -310,44 +299,6 @@ fn no_model_field(name: &str) -> BindError {
         kind: "model",
         field: name.to_string(),
         known: "mjModel's array fields".into(),
-    }
-}
-
-impl RawField {
-    /// # Safety
-    /// `self` describes a live array of `rows * cols` scalars of `field.scalar`.
-    pub(crate) unsafe fn floats<'a>(&self, field: &'static Field) -> Result<&'a [f64], BindError> {
-        if field.scalar != Scalar::F64 {
-            return Err(BindError::WrongType {
-                field: field.name,
-                holds: field.scalar.name(),
-                asked: "f64",
-            });
-        }
-        let len = self.rows * self.cols;
-        if len == 0 || self.ptr.is_null() {
-            return Ok(&[]);
-        }
-        // SAFETY: as the caller promises.
-        Ok(unsafe { std::slice::from_raw_parts(self.ptr.cast::<f64>(), len) })
-    }
-
-    /// # Safety
-    /// As [`RawField::floats`].
-    pub(crate) unsafe fn ints<'a>(&self, field: &'static Field) -> Result<&'a [i32], BindError> {
-        if field.scalar != Scalar::I32 {
-            return Err(BindError::WrongType {
-                field: field.name,
-                holds: field.scalar.name(),
-                asked: "i32",
-            });
-        }
-        let len = self.rows * self.cols;
-        if len == 0 || self.ptr.is_null() {
-            return Ok(&[]);
-        }
-        // SAFETY: as the caller promises.
-        Ok(unsafe { std::slice::from_raw_parts(self.ptr.cast::<i32>(), len) })
     }
 }
 
@@ -362,8 +313,12 @@ pub(crate) fn locate(error: Error, model: &Model, written: &Written) -> Error {
 }
 
 impl ObjKind {
-    /// The kind of the compiled element an `mjcf` element becomes, if any.
-    pub(crate) fn of(element: &mjcf::ElementRef<'_>) -> Option<ObjKind> {
+    /// The kind of compiled element an `mjcf` element becomes (an attachment frame a
+    /// body), if any: `None` for elements MuJoCo's compiled model keeps no record of
+    /// (a `<frame>`, a default class, a section).
+    ///
+    /// Time: O(1).
+    pub fn of(element: &mjcf::ElementRef<'_>) -> Option<ObjKind> {
         if element.is_frame() {
             return Some(ObjKind::Body);
         }

@@ -295,7 +295,7 @@ impl Physics {
             .ok_or_else(|| no_data_field(name))?;
         // SAFETY: the field's pointer and size from the data's own tables; borrowed
         // from `self`.
-        unsafe { raw.floats(field) }
+        unsafe { raw.slice(field, Scalar::F64, "f64") }
     }
 
     /// [`Physics::data`], to write.
@@ -310,7 +310,7 @@ impl Physics {
         let raw = crate::fields::data_field(self.d(), unsafe { &*self.m() }, i)
             .ok_or_else(|| no_data_field(name))?;
         // SAFETY: as in `data`, borrowed mutably from `self`, which owns the data.
-        unsafe { raw.floats_mut(field) }
+        unsafe { raw.slice_mut(field, Scalar::F64, "f64") }
     }
 
     /// Positions (`qpos`).
@@ -389,7 +389,7 @@ impl Physics {
             .ok_or_else(|| no_data_field(field))?;
         // SAFETY: the field's pointer and size from the model's tables, borrowed from
         // `self`; the rows are the element's, within the field.
-        let all = unsafe { raw.floats(slot.field) }?;
+        let all: &[f64] = unsafe { raw.slice(slot.field, Scalar::F64, "f64") }?;
         Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
     }
 
@@ -412,7 +412,7 @@ impl Physics {
             .ok_or_else(|| no_data_field(field))?;
         // SAFETY: as in `get`; the model is owned by this simulation alone now
         // (`own_model`), and the data always is.
-        let all = unsafe { raw.floats_mut(slot.field) }?;
+        let all: &mut [f64] = unsafe { raw.slice_mut(slot.field, Scalar::F64, "f64") }?;
         Ok(&mut all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
     }
 
@@ -429,7 +429,7 @@ impl Physics {
         let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
             .ok_or_else(|| no_data_field(field))?;
         // SAFETY: as in `get`.
-        let all = unsafe { raw.ints(slot.field) }?;
+        let all: &[i32] = unsafe { raw.slice(slot.field, Scalar::I32, "i32") }?;
         Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
     }
 
@@ -473,29 +473,5 @@ fn no_data_field(name: &str) -> BindError {
         kind: "data",
         field: name.to_string(),
         known: "mjData's array fields".into(),
-    }
-}
-
-impl crate::fields::RawField {
-    /// # Safety
-    /// As [`RawField::floats`](crate::fields::RawField), and nothing else reads or
-    /// writes the array while the slice lives.
-    pub(crate) unsafe fn floats_mut<'a>(
-        &self,
-        field: &'static crate::fields::Field,
-    ) -> Result<&'a mut [f64], BindError> {
-        if field.scalar != Scalar::F64 {
-            return Err(BindError::WrongType {
-                field: field.name,
-                holds: field.scalar.name(),
-                asked: "f64",
-            });
-        }
-        let len = self.rows * self.cols;
-        if len == 0 || self.ptr.is_null() {
-            return Ok(&mut []);
-        }
-        // SAFETY: as the caller promises.
-        Ok(unsafe { std::slice::from_raw_parts_mut(self.ptr.cast::<f64>(), len) })
     }
 }

@@ -145,7 +145,7 @@ fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tall
     let replicates = written.elements().iter().any(|w| w.tag == "replicate");
     for event in model.walk() {
         let Event::Enter(e) = event else { continue };
-        let Some(kind) = kind_of(&e) else { continue };
+        let Some(kind) = ObjKind::of(&e) else { continue };
         if e.is_frame() && as_frame.contains(&e.loc()) {
             // Written as MuJoCo's <frame>: not compiled (and not bound).
             assert!(compiled.bind(&e.loc()).is_err());
@@ -197,32 +197,6 @@ fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tall
             ));
         }
     }
-}
-
-/// MuJoCo's kind of a compiled element, through the binding's mapping.
-fn kind_of(e: &mjcf::ElementRef<'_>) -> Option<ObjKind> {
-    Some(match e.kind().namespace()? {
-        _ if e.is_frame() => ObjKind::Body,
-        Namespace::Body => ObjKind::Body,
-        Namespace::Joint => ObjKind::Joint,
-        Namespace::Geom => ObjKind::Geom,
-        Namespace::Site => ObjKind::Site,
-        Namespace::Camera => ObjKind::Camera,
-        Namespace::Light => ObjKind::Light,
-        Namespace::Actuator => ObjKind::Actuator,
-        Namespace::Sensor => ObjKind::Sensor,
-        Namespace::Tendon => ObjKind::Tendon,
-        Namespace::Equality => ObjKind::Equality,
-        Namespace::Mesh => ObjKind::Mesh,
-        Namespace::Hfield => ObjKind::Hfield,
-        Namespace::Texture => ObjKind::Texture,
-        Namespace::Material => ObjKind::Material,
-        Namespace::Key => ObjKind::Key,
-        Namespace::Numeric => ObjKind::Numeric,
-        Namespace::Text => ObjKind::Text,
-        Namespace::Tuple => ObjKind::Tuple,
-        _ => return None,
-    })
 }
 
 fn judge_layout(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tally) {

@@ -16,7 +16,7 @@ use std::collections::HashMap;
 use std::sync::OnceLock;
 
 use crate::model::check::{Problem, ProblemKind};
-use crate::model::layout::{class_of, effective, from_classes};
+use crate::model::layout::{childclass_of, class_of, effective, from_classes};
 use crate::model::tree::ElementId;
 use crate::model::{Loc, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind};
@@ -115,11 +115,7 @@ impl Model {
             let node = item.node;
             let kind = node.kind();
             let inherited = open.last().filter(|(i, _)| *i == item.inst).and_then(|(_, c)| *c);
-            let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
-                Some(Value::Reference(crate::value::Reference::Element(id))) => Some(*id),
-                _ => None,
-            });
-            open.push((item.inst, childclass.or(inherited)));
+            open.push((item.inst, childclass_of(node).or(inherited)));
             let inst = &walk.insts.list[item.inst];
             let mut found_problems: Vec<ProblemKind> = Vec::new();
             for (i, v) in node.attrs() {

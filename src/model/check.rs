@@ -408,10 +408,7 @@ impl Model {
                             top.massive = true;
                         }
                     }
-                    let cc = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
-                        Some(Value::Reference(Reference::Element(id))) => Some(*id),
-                        _ => None,
-                    });
+                    let cc = super::layout::childclass_of(node);
                     let inherited = if item.inst == open.last().map_or(0, |o| o.inst) {
                         childclass.last().copied().flatten()
                     } else {

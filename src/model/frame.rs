@@ -68,14 +68,7 @@ pub(crate) fn placed_frame_attrs(
     // The class in force: the site's own, else the nearest `childclass` above it, else
     // the model's root class.
     let class = super::layout::class_of(site).or_else(|| {
-        (0..path.len()).rev().find_map(|n| {
-            let node = model.node_at(&path[..n])?;
-            let c = node.kind().attr_index("childclass")?;
-            match node.attr(c) {
-                Some(Value::Reference(crate::value::Reference::Element(id))) => Some(*id),
-                _ => None,
-            }
-        })
+        (0..path.len()).rev().find_map(|n| super::layout::childclass_of(model.node_at(&path[..n])?))
     });
     let class = class
         .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id));

@@ -206,6 +206,15 @@ pub(crate) fn class_of(node: &Node) -> Option<ElementId> {
     }
 }
 
+/// The class an element's `childclass` gives its content, if it sets one.
+pub(crate) fn childclass_of(node: &Node) -> Option<ElementId> {
+    let c = node.kind().attr_index("childclass")?;
+    match node.attr(c) {
+        Some(Value::Reference(Reference::Element(id))) => Some(*id),
+        _ => None,
+    }
+}
+
 /// The value of `attr` for `node`: its own, else that of the defaults of its tag in
 /// `class` and the classes above it.
 pub(crate) fn effective<'m>(
@@ -424,10 +433,7 @@ impl Model {
             if parent_tag == Some("keyframe") && kind.tag() == "key" {
                 out.keys.push((item.inst, node, loc()));
             }
-            let childclass = kind.attr_index("childclass").and_then(|c| match node.attr(c) {
-                Some(Value::Reference(Reference::Element(id))) => Some(*id),
-                _ => None,
-            });
+            let childclass = childclass_of(node);
             open.push(Open {
                 inst: item.inst,
                 node,
