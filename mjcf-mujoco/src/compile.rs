@@ -206,11 +206,14 @@ impl MuJoCo {
     }
 }
 
-/// The line MuJoCo's message names (`..., line 12, column 3`), if any.
+/// The line MuJoCo's message names, if any: its compiler's `Element name 'a', id 1,
+/// line 7`, or its XML parser's `Line number=3`.
 fn line_of(message: &str) -> Option<usize> {
-    let at = message.rfind("line ")? + "line ".len();
-    let digits: String = message[at..].chars().take_while(char::is_ascii_digit).collect();
-    digits.parse().ok()
+    ["line ", "Line number="].iter().find_map(|label| {
+        let at = message.rfind(label)? + label.len();
+        let digits: String = message[at..].chars().take_while(char::is_ascii_digit).collect();
+        digits.parse().ok()
+    })
 }
 
 #[cfg(test)]
@@ -225,7 +228,7 @@ mod tests {
         );
         assert_eq!(
             line_of("XML Error: Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=16 Line number=3"),
-            None
+            Some(3)
         );
         assert_eq!(line_of("no line here"), None);
     }

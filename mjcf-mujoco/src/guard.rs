@@ -77,9 +77,15 @@ pub(crate) fn layout_matches() -> bool {
     size == size_of::<mjLogMessage>() && body == std::mem::offset_of!(mjLogMessage, body)
 }
 
-/// Installs the sink of non-fatal messages (idempotent).
+/// Serializes the installation of the handlers: the guard's sink pointer and
+/// MuJoCo's log handler are plain globals, which two threads loading MuJoCo at once
+/// must not write together.
+pub(crate) static INSTALL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Installs the sink of non-fatal messages (idempotent); call it holding [`INSTALL`].
 pub(crate) fn install_sink() {
-    // SAFETY: `sink` has the signature the guard calls, and never unwinds.
+    // SAFETY: `sink` has the signature the guard calls, and never unwinds; the
+    // caller holds `INSTALL`, so no other thread writes the pointer meanwhile.
     unsafe { mjr_set_sink(Some(sink)) }
 }
 

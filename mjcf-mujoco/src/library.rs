@@ -171,6 +171,9 @@ impl MuJoCo {
             warning_text: get!(mju_warningText),
         };
         let set_log_handler = get!(mju_setLogHandler);
+        // One thread at a time writes the handlers (a poisoned lock only means another
+        // thread panicked while holding it: the handlers are plain pointers).
+        let _installing = guard::INSTALL.lock().unwrap_or_else(|e| e.into_inner());
         guard::install_sink();
         // SAFETY: the guard's handler has MuJoCo 4.0's handler signature (its message
         // layout checked above); it never returns on an error level, as MuJoCo asks.
