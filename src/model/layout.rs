@@ -5,9 +5,11 @@
 //! lengths are computed from it; the binding crate's tests check it against MuJoCo's
 //! compiled model (`jnt_qposadr`, `jnt_dofadr`, `nq`, `nv`, `nu`, `na`).
 //!
-//! MuJoCo numbers joints, bodies and actuators in the order the written model holds
-//! them, which is the order of [`Model::walk`]; `<frame>`s are transparent, and a
-//! `<replicate>` holds its content `count` times, copy after copy (nested ones
+//! MuJoCo numbers bodies in the order the written model starts them (the order of
+//! [`Model::walk`]), and joints body by body: a body's own joints (those inside its
+//! `<frame>`s included) before its children's, wherever they stand among its child
+//! elements; actuators in the order they are written. `<frame>`s are transparent,
+//! and a `<replicate>` holds its content `count` times, copy after copy (nested ones
 //! inside out). Elements that make joints MuJoCo's compiler generates (`<attach>` of
 //! an asset model, `<composite>`, `<flexcomp>`) are not expanded: they are listed in
 //! [`Layout::unexpanded`], and the layout is exact only where that list is empty.
