@@ -10,7 +10,9 @@
 //!   `actuator_ctrladr`, `actuator_actadr`; `nq`, `nv`, `nu`, `na` agree.
 //!
 //! - read-back: what the written text reads back as compiles to the same model (sizes,
-//!   names in order, positions, masses, sizes, ranges, gains, default poses, keys).
+//!   names in order, positions, masses, sizes, ranges, gains, default poses, keys);
+//! - composed keys: reset to a key written with `merge_keyframes`, every attached
+//!   floating base sits where its frame carries its pose in its own model's key.
 //!
 //! Each test prints its counts; a model MuJoCo refuses is counted apart (the corpus
 //! holds a few whose reference output does not compile either) and never as passed.
@@ -31,7 +33,7 @@ mod text;
 use std::path::{Path, PathBuf};
 
 use mjcf::{Event, Model, Namespace, WriteOptions};
-use mjcf_mujoco::{Compiled, Error, MuJoCo, ObjKind};
+use mjcf_mujoco::{Compiled, Error, MuJoCo, ObjKind, Physics};
 use support::mujoco;
 
 /// What judging one model found.
@@ -44,6 +46,8 @@ struct Tally {
     actuators: usize,
     /// Models whose read-back compiles to the same model.
     read_back: usize,
+    /// Attached floating bases judged after a reset to a composed key (per key).
+    keyed_bases: usize,
     /// Elements inside a `<replicate>`, whose copies MuJoCo names itself.
     replicated: usize,
     /// Models with elements the layout does not expand (`<attach>`, ...).
@@ -55,8 +59,8 @@ impl Tally {
     fn report(&self, what: &str) {
         eprintln!(
             "{what}: {} models ({} refused by MuJoCo, {} with unexpanded elements), {} names, {} joints, \
-             {} actuators judged, {} read back to the same compiled model; {} replicated elements \
-             not judged by name; {} failures",
+             {} actuators judged, {} read back to the same compiled model, {} floating bases \
+             placed by a composed key; {} replicated elements not judged by name; {} failures",
             self.models,
             self.refused,
             self.unexpanded,
@@ -64,6 +68,7 @@ impl Tally {
             self.joints,
             self.actuators,
             self.read_back,
+            self.keyed_bases,
             self.replicated,
             self.failures.len()
         );
@@ -105,6 +110,94 @@ fn judge(mujoco: &MuJoCo, label: &str, model: &Model, options: &WriteOptions, ta
     judge_names(label, model, &compiled, tally);
     judge_layout(label, model, &compiled, tally);
     judge_read_back(mujoco, label, model, options, &compiled, tally);
+    judge_keys(mujoco, label, model, tally);
+}
+
+/// A body's pose in the data: position and rotation matrix (row major).
+fn pose_of(p: &Physics, b: &mjcf_mujoco::Bound) -> ([f64; 3], [f64; 9]) {
+    let x = p.get(b, "xpos").unwrap();
+    let r = p.get(b, "xmat").unwrap();
+    ([x[0], x[1], x[2]], std::array::from_fn(|i| r[i]))
+}
+
+/// `a` then `b`: (pa + Ra pb, Ra Rb).
+fn then(a: ([f64; 3], [f64; 9]), b: ([f64; 3], [f64; 9])) -> ([f64; 3], [f64; 9]) {
+    let (pa, ra) = a;
+    let (pb, rb) = b;
+    let pos = std::array::from_fn(|r| pa[r] + (0..3).map(|i| ra[3 * r + i] * pb[i]).sum::<f64>());
+    let rot =
+        std::array::from_fn(|k| (0..3).map(|i| ra[3 * (k / 3) + i] * rb[3 * i + k % 3]).sum());
+    (pos, rot)
+}
+
+/// The inverse of a pose.
+fn inverse(a: ([f64; 3], [f64; 9])) -> ([f64; 3], [f64; 9]) {
+    let (p, r) = a;
+    let rt: [f64; 9] = std::array::from_fn(|k| r[3 * (k % 3) + k / 3]);
+    let back = std::array::from_fn(|row| -(0..3).map(|i| rt[3 * row + i] * p[i]).sum::<f64>());
+    (back, rt)
+}
+
+/// Composed keys (`merge_keyframes`) put every attached model's floating base where
+/// its frame carries the base's pose in the model's own key: with F the frame's pose
+/// (the base's pose in the composed model at rest, times the inverse of its pose in
+/// its own model at rest), the base's pose after a reset to key k is F times its pose
+/// in its own model after a reset to k.
+fn judge_keys(mujoco: &MuJoCo, label: &str, model: &Model, tally: &mut Tally) {
+    let merged = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
+    let scopes = model.scope_paths();
+    if scopes.is_empty() {
+        return;
+    }
+    let Ok(composed) = mujoco.compile_with(model, &merged) else { return };
+    for scope in &scopes {
+        let child = model.attached(scope.as_str()).unwrap();
+        let keys: Vec<String> = child
+            .find_all(Namespace::Key)
+            .iter()
+            .filter_map(|k| child.get(k).ok()?.identifier().map(str::to_string))
+            .collect();
+        let layout = child.layout();
+        let bases: Vec<mjcf::Loc> = layout
+            .joints
+            .iter()
+            .filter(|j| j.joint_type == mjcf::JointType::Free)
+            .filter_map(|j| Some(child.get(&j.loc).ok()?.parent()?.loc()))
+            .filter(|b| child.scope_path(b).is_some_and(|s| s.is_empty()))
+            .collect();
+        if keys.is_empty() || bases.is_empty() {
+            continue;
+        }
+        let Ok(alone) = mujoco.compile_with(child, &merged) else { continue };
+        let (mut c, mut a) = (Physics::new(&composed).unwrap(), Physics::new(&alone).unwrap());
+        for base in &bases {
+            let (Ok(bc), Ok(ba)) =
+                (c.bind(&model.locate_in(scope.as_str(), base).unwrap()), a.bind(base))
+            else {
+                continue;
+            };
+            c.reset().unwrap();
+            c.forward().unwrap();
+            a.reset().unwrap();
+            a.forward().unwrap();
+            let frame = then(pose_of(&c, &bc), inverse(pose_of(&a, &ba)));
+            for k in &keys {
+                c.reset_to_key(k).unwrap();
+                c.forward().unwrap();
+                a.reset_to_key(k).unwrap();
+                a.forward().unwrap();
+                let (want, got) = (then(frame, pose_of(&a, &ba)), pose_of(&c, &bc));
+                let off = want.0.iter().chain(&want.1).zip(got.0.iter().chain(&got.1));
+                if off.into_iter().any(|(x, y)| (x - y).abs() > 1e-6) {
+                    tally.failures.push(format!(
+                        "{label}: {scope}'s base {:?} after key {k}: {got:?}, its frame puts it at {want:?}",
+                        bc.name()
+                    ));
+                }
+                tally.keyed_bases += 1;
+            }
+        }
+    }
 }
 
 /// What the written text reads back as compiles to the same model (what
@@ -287,6 +380,40 @@ fn mujoco_agrees_with_names_and_layout_of_every_conformance_output() {
     tally.report("conformance outputs");
 }
 
+/// `m` with a `home` key in every attached model: each free joint moved by a few
+/// decimetres and turned, every other joint at its default.
+fn with_home_keys(m: &Model, seed: usize) -> Model {
+    let mut out = m.clone();
+    for (n, scope) in m.scope_paths().iter().enumerate() {
+        let child = m.attached(scope.as_str()).unwrap();
+        let mut qpos = Vec::new();
+        for (j, joint) in child.layout().joints.iter().enumerate() {
+            let t = (seed + n + j) as f64;
+            match joint.joint_type {
+                mjcf::JointType::Free => {
+                    let (a, b) = (0.3 * (t * 0.7).sin(), 0.4 * (t * 1.3).cos());
+                    let h = (t * 0.9).sin();
+                    let (w, z) = (h.cos(), h.sin());
+                    qpos.extend([a, b, 0.5 + 0.1 * t.cos(), w * 0.8, 0.6 * w, 0.0, z].map(|x| x));
+                    let k = qpos.len();
+                    let norm = qpos[k - 4..].iter().map(|x| x * x).sum::<f64>().sqrt();
+                    for x in &mut qpos[k - 4..] {
+                        *x /= norm;
+                    }
+                }
+                mjcf::JointType::Ball => qpos.extend([1.0, 0.0, 0.0, 0.0]),
+                _ => qpos.push(0.0),
+            }
+        }
+        out.edit_attached_mut(scope.as_str(), |c| {
+            let keys = c.section("keyframe").unwrap();
+            c.add_mut(&keys, mjcf::element!("key", name = "home", qpos = qpos))
+        })
+        .unwrap();
+    }
+    out
+}
+
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]
 fn mujoco_agrees_with_names_and_layout_of_generated_scenes() {
@@ -318,6 +445,42 @@ fn mujoco_agrees_with_names_and_layout_of_generated_scenes() {
     // Generated models are valid by construction: MuJoCo compiles every one.
     assert_eq!(tally.refused, 0, "{tally:?}");
     tally.report("generated scenes");
+    // The generators make neither keys nor floating bases in attached models: give
+    // generated models a floating base and a `home` key that moves and turns it,
+    // attach each twice at turned sites, and judge the composed keys.
+    let plain = strategy::model_recipe();
+    let mut keyed = Tally::default();
+    for i in 0..60 {
+        let mut child = plain.new_tree(&mut runner).unwrap().current().build();
+        let w = child.worldbody();
+        let base = mjcf::element!("body", name = "judge_base", pos = [0.0, 0.0, 1.0])
+            .child(mjcf::element!("freejoint"))
+            .child(mjcf::element!("geom", size = [0.1]));
+        if child.add_mut(&w, base).is_err() {
+            continue;
+        }
+        let mut arena = Model::new("arena");
+        let w = arena.worldbody();
+        let h = i as f64;
+        let sites = [
+            mjcf::element!(
+                "site",
+                name = "s0",
+                pos = [h, 0.0, 0.0],
+                euler = [10.0 * h, 20.0, 30.0]
+            ),
+            mjcf::element!("site", name = "s1", pos = [0.0, h, 1.0], quat = [0.5, 0.5, 0.5, 0.5]),
+        ];
+        for site in sites {
+            let site = arena.add_mut(&w, site).unwrap();
+            arena.attach_mut(&site, &child).unwrap();
+        }
+        let scene = with_home_keys(&arena, i);
+        let label = format!("generated model {i}, floating, attached twice");
+        judge(&mujoco, &label, &scene, &WriteOptions::default(), &mut keyed);
+    }
+    assert!(keyed.keyed_bases >= 100, "composed keys judged on {} bases only", keyed.keyed_bases);
+    keyed.report("generated models with floating bases and keys");
 }
 
 #[test]
