@@ -16,8 +16,7 @@ use std::collections::HashMap;
 use std::sync::OnceLock;
 
 use crate::model::check::{Problem, ProblemKind};
-use crate::model::layout::{childclass_of, class_of, effective, from_classes};
-use crate::model::tree::ElementId;
+use crate::model::layout::{ClassesInForce, effective, from_classes};
 use crate::model::{Loc, Model, Step, Walk};
 use crate::schema::{AttrType, ElementKind};
 use crate::value::Value;
@@ -102,21 +101,19 @@ impl Model {
     pub(crate) fn short_arrays(&self, problems: &mut Vec<Problem>) {
         let name = self.name();
         let mut walk = Walk::new(self);
-        // Per open element: its instance and the `childclass` in force for its content.
-        let mut open: Vec<(usize, Option<ElementId>)> = Vec::new();
+        let mut classes = ClassesInForce::default();
         while let Some(step) = walk.next() {
             let item = match step {
                 Step::Enter(item) => item,
                 Step::Leave(_) => {
-                    open.pop();
+                    classes.leave();
                     continue;
                 }
             };
             let node = item.node;
             let kind = node.kind();
-            let inherited = open.last().filter(|(i, _)| *i == item.inst).and_then(|(_, c)| *c);
-            open.push((item.inst, childclass_of(node).or(inherited)));
             let inst = &walk.insts.list[item.inst];
+            let class = classes.enter(inst.model, item.inst, node);
             let mut found_problems: Vec<ProblemKind> = Vec::new();
             for (i, v) in node.attrs() {
                 let i = *i as usize;
@@ -142,9 +139,6 @@ impl Model {
             let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
             if kind.tag() == "geom" && !in_default {
                 let m = inst.model;
-                let class = class_of(node).or(inherited).or_else(|| {
-                    m.root.child_of_kind(ElementKind::ROOT.child("default")?).map(|n| n.id())
-                });
                 let ty =
                     effective(m, node, class, "type").and_then(Value::as_str).unwrap_or("sphere");
                 let needed = geom_size_needed(ty, effective(m, node, class, "fromto").is_some());

@@ -6,7 +6,7 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, ElementKind, Namespace};
+use crate::schema::{AttrType, Namespace};
 use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
 use crate::xml::WriteOptions;
@@ -298,9 +298,7 @@ impl Model {
         let name = self.name();
         let mut walk = Walk::new(self);
         let mut open: Vec<Open<'_>> = Vec::new();
-        // The class in force per instance: (childclass stack) is approximated by the
-        // element's own class, else the nearest `childclass` above, else the root.
-        let mut childclass: Vec<Option<ElementId>> = Vec::new();
+        let mut classes = super::layout::ClassesInForce::default();
         // Names ranked for suggestions, per model (instance) and namespace, once.
         let mut suggesters: HashMap<(usize, Namespace), Suggester<'_>> = HashMap::new();
         while let Some(step) = walk.next() {
@@ -310,6 +308,7 @@ impl Model {
                     let m = inst.model;
                     let node = item.node;
                     let kind = node.kind();
+                    let class = classes.enter(m, item.inst, node);
                     let loc = || Loc::scoped(inst.frames.clone(), node.id(), name);
                     let path = || problem_path(&walk.insts, &item);
                     // References.
@@ -363,19 +362,6 @@ impl Model {
                     // Degrees of freedom (the layout's own count is in Model::layout).
                     let parent_tag = open.last().map(|o| o.node.kind().tag());
                     if matches!(kind.tag(), "joint" | "freejoint") && parent_tag == Some("body") {
-                        let class = node
-                            .kind()
-                            .class_attr()
-                            .and_then(|c| match node.attr(c) {
-                                Some(Value::Reference(Reference::Element(id))) => Some(*id),
-                                _ => None,
-                            })
-                            .or(childclass.last().copied().flatten())
-                            .or_else(|| {
-                                m.root
-                                    .child_of_kind(ElementKind::ROOT.child("default")?)
-                                    .map(Node::id)
-                            });
                         let ty = joint_type(m, node, class);
                         let v = match ty {
                             "free" => 6,
@@ -408,17 +394,10 @@ impl Model {
                             top.massive = true;
                         }
                     }
-                    let cc = super::layout::childclass_of(node);
-                    let inherited = if item.inst == open.last().map_or(0, |o| o.inst) {
-                        childclass.last().copied().flatten()
-                    } else {
-                        None
-                    };
-                    childclass.push(cc.or(inherited));
                     open.push(Open::new(item.inst, node));
                 }
                 Step::Leave(item) => {
-                    childclass.pop();
+                    classes.leave();
                     let Some(o) = open.pop() else { continue };
                     let is_body = o.node.kind().tag() == "body"
                         && o.node.kind().spec().parent.is_some_and(|p| p.tag() != "default");

@@ -193,8 +193,6 @@ struct Open<'a> {
     /// Its pose in the world (for a body, frame or attachment frame: its own; else
     /// its parent's).
     pose: Pose,
-    /// The `childclass` in force for its content.
-    childclass: Option<ElementId>,
     /// The body record its content belongs to.
     rec: usize,
 }
@@ -205,6 +203,34 @@ pub(crate) fn class_of(node: &Node) -> Option<ElementId> {
     match node.attr(c) {
         Some(Value::Reference(Reference::Element(id))) => Some(*id),
         _ => None,
+    }
+}
+
+/// The default class in force for each element as a walk of the composed model
+/// descends: the element's own class, else the nearest `childclass` above it in its
+/// own model (an attached model starts without one), else its model's root class.
+/// One per walk: [`ClassesInForce::enter`] at each element entered,
+/// [`ClassesInForce::leave`] at each one left.
+#[derive(Default)]
+pub(crate) struct ClassesInForce {
+    /// Per open element: its instance and the `childclass` in force for its content.
+    open: Vec<(usize, Option<ElementId>)>,
+}
+
+impl ClassesInForce {
+    /// The class in force for `node` (of walk instance `inst`, whose model is
+    /// `model`), entered now.
+    pub(crate) fn enter(&mut self, model: &Model, inst: usize, node: &Node) -> Option<ElementId> {
+        let inherited = self.open.last().filter(|(i, _)| *i == inst).and_then(|(_, c)| *c);
+        self.open.push((inst, childclass_of(node).or(inherited)));
+        class_of(node)
+            .or(inherited)
+            .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id))
+    }
+
+    /// The element entered last is left.
+    pub(crate) fn leave(&mut self) {
+        self.open.pop();
     }
 }
 
@@ -332,14 +358,14 @@ impl Model {
         let mut recs: Vec<BodyRec> = vec![BodyRec::default()];
         let mut actuators = Vec::new();
         let mut open: Vec<Open<'_>> = Vec::new();
+        let mut classes = ClassesInForce::default();
         let mut walk = Walk::new(self);
-        let root_class =
-            |m: &Model| m.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id);
         while let Some(step) = walk.next() {
             let item = match step {
                 Step::Enter(item) => item,
                 Step::Leave(_) => {
                     open.pop();
+                    classes.leave();
                     continue;
                 }
             };
@@ -354,8 +380,7 @@ impl Model {
             if parent.is_some_and(|p| p.node.attached().is_some() && p.inst != item.inst) {
                 out.origins.entry(item.inst).or_insert(parent_pose);
             }
-            let inherited = parent.filter(|p| p.inst == item.inst).and_then(|p| p.childclass);
-            let class = class_of(node).or(inherited).or_else(|| root_class(m));
+            let class = classes.enter(m, item.inst, node);
             let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
             let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().tag() == "replicate");
             let is_body = kind.tag() == "body" && !in_default;
@@ -435,14 +460,7 @@ impl Model {
             if parent_tag == Some("keyframe") && kind.tag() == "key" {
                 out.keys.push((item.inst, node, loc()));
             }
-            let childclass = childclass_of(node);
-            open.push(Open {
-                inst: item.inst,
-                node,
-                pose,
-                childclass: childclass.or(inherited),
-                rec,
-            });
+            open.push(Open { inst: item.inst, node, pose, rec });
         }
         // MuJoCo's order: bodies depth first, each body's joints before its children's;
         // a replicate's content once per copy, moved.
