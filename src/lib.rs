@@ -98,7 +98,7 @@ pub use crate::schema::{
     PathNamespace, RefTarget,
 };
 pub use crate::value::{AttrInput, FileAsset, Reference, Value};
-pub use crate::xml::{ReadOptions, WriteOptions, Written, WrittenElement};
+pub use crate::xml::{ReadOptions, SaveError, SourceText, WriteOptions, Written, WrittenElement};
 
 /// An [`Element`] with attributes, as `Element::new(tag).attr(name, value)...`:
 /// `element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1)`.

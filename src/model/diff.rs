@@ -718,7 +718,7 @@ pub(super) mod tests {
                 Ok::<_, ()>(p.with_children(children))
             })
             .unwrap();
-        Model { root, index, files: m.files.clone() }
+        Model { root, index, files: m.files.clone(), source: m.source.clone() }
     }
 
     fn site(m: &Model, name: &str) -> Loc {

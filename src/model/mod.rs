@@ -66,11 +66,18 @@ pub use scope::{Attachment, ScopeRef};
 /// assert!(m1.find(Namespace::Geom, "floor").is_some());
 /// # Ok::<(), mjcf::EditError>(())
 /// ```
+///
+/// A model read from MJCF keeps the text it was read from (its files, and where each
+/// element's tags are in them), for [`Model::save`]; every later version keeps it.
+/// Formatting is not content: `==`, [`Hash`] and [`Model::diff`] ignore it, so a model
+/// read and the same model built through the API are equal.
 #[derive(Clone)]
 pub struct Model {
     pub(crate) root: Node,
     pub(crate) index: Index,
     pub(crate) files: Arc<FileContext>,
+    /// The text read (`xml::source`); `None` for a model built through the API.
+    pub(crate) source: Option<Arc<crate::xml::Source>>,
 }
 
 /// Points at one element of a model, across versions.
@@ -194,7 +201,7 @@ impl Model {
     /// ```
     pub fn new(name: &str) -> Model {
         let (root, index) = template().clone();
-        let m = Model { root, index, files: Arc::new(FileContext::default()) };
+        let m = Model { root, index, files: Arc::new(FileContext::default()), source: None };
         m.with_name(name)
     }
 
@@ -219,7 +226,12 @@ impl Model {
     }
 
     pub(crate) fn from_parts(root: Node, index: Index, files: FileContext) -> Model {
-        Model { root, index, files: Arc::new(files) }
+        Model { root, index, files: Arc::new(files), source: None }
+    }
+
+    /// The same model with the source `source` (the reader's).
+    pub(crate) fn with_source(&self, source: Option<Arc<crate::xml::Source>>) -> Model {
+        Model { source, ..self.clone() }
     }
 
     /// The next version of this model: `root` and `index` after an edit (`index`
@@ -241,7 +253,7 @@ impl Model {
         if !(settings_same && memo_same && index.scopes.same(&self.index.scopes)) {
             index.merged = MergedCache::default();
         }
-        Model { root, index, files: self.files.clone() }
+        Model { root, index, files: self.files.clone(), source: self.source.clone() }
     }
 
     /// The model's name: its `model` attribute (`unnamed_model` if it has none, as in

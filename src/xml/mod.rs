@@ -2,7 +2,12 @@
 
 mod export;
 mod read;
+mod save;
+mod source;
 mod write;
 
+pub(crate) use source::Source;
+
 pub use read::ReadOptions;
+pub use save::{SaveError, SourceText};
 pub use write::{WriteOptions, Written, WrittenElement};

@@ -104,6 +104,8 @@ fn write_err(e: WriteError) -> OpError {
 }
 
 /// Where a variable's model is: its own value, or a place inside another model.
+// A case holds a handful of variables: the model inline costs nothing that matters.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 enum Var {
     /// A model value that is not attached.

@@ -16,6 +16,12 @@ use crate::value::{Reference, Value};
 /// Turns the arena into nodes, indexes them and resolves references.
 pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
     let (composed, hoisted) = hoist_root_class(&mut r.arena);
+    if let Some(only) = hoisted {
+        let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
+        if let Some(d) = unique_child(&r.arena, 0, root_default) {
+            r.hoisted = Some((r.arena[only].id, r.arena[d].id));
+        }
+    }
     let forget = !composed;
     // One pass over the elements' attributes (cold since they were read): auto names
     // forgotten, the index's names (document order, so that a duplicate is reported at

@@ -9,14 +9,15 @@ use std::sync::Arc;
 use quick_xml::events::BytesStart;
 
 use super::{
-    MAX_INCLUDE_DEPTH, NONE, Reader, children_of, in_settings, parse, push_child, push_unique,
-    read_document, unique_child, utf8,
+    MAX_INCLUDE_DEPTH, NONE, Reader, SrcFile, children_of, in_settings, parse, push_child,
+    push_unique, read_document, unique_child, utf8,
 };
 use crate::error::{ErrorKind, ReadError};
 use crate::files::{self, FileContext};
 use crate::model::Model;
-use crate::model::tree::Node;
+use crate::model::tree::{ElementId, Node};
 use crate::schema::{ElementKind, Multiplicity};
+use crate::xml::source::{RecordKind, SourceBuilder};
 
 /// The files of one model's include tree, for the rules on them: a file includes
 /// neither itself (a cycle) nor a file the tree already includes (MuJoCo includes
@@ -28,11 +29,59 @@ pub(super) struct Includes {
     stack: Vec<PathBuf>,
     /// Every file of the tree so far, the main file too.
     seen: HashSet<PathBuf>,
+    /// The files' text and tags, when the source is kept.
+    pub(super) src: Option<SourceBuilder>,
+    /// The model's folder, which recorded files' paths are relative to.
+    main_dir: Option<PathBuf>,
 }
 
 impl Includes {
-    pub(super) fn new(main: PathBuf) -> Includes {
-        Includes { seen: HashSet::from([main.clone()]), stack: vec![main] }
+    /// The tree of the main file `main` (its key), in the folder `main_dir`; the
+    /// source is recorded if `keep_source`.
+    pub(super) fn new(main: PathBuf, main_dir: Option<PathBuf>, keep_source: bool) -> Includes {
+        Includes {
+            seen: HashSet::from([main.clone()]),
+            stack: vec![main],
+            src: keep_source.then(SourceBuilder::default),
+            main_dir,
+        }
+    }
+
+    /// Records a file read (`shown`: its path as read, on disk or, for an in-memory
+    /// file, as written) whose root stands for `stands_for` (the main file's: `None`
+    /// and `main`). `None` when the source is not kept.
+    pub(super) fn record_file(
+        &mut self,
+        shown: Option<&Path>,
+        on_disk: bool,
+        text: &str,
+        main: bool,
+        stands_for: Option<ElementId>,
+    ) -> Option<SrcFile> {
+        let src = self.src.as_mut()?;
+        let rel = shown.map(|p| match (on_disk, &self.main_dir) {
+            (true, Some(dir)) => relative_to(p, dir),
+            _ => p.to_path_buf(),
+        });
+        let disk = shown.filter(|_| on_disk).map(Path::to_path_buf);
+        let file = src.file(rel, disk, text);
+        if file.is_none() {
+            // Too long to record: no source is kept for this model.
+            self.src = None;
+        }
+        let root_kind = if main { RecordKind::Element } else { RecordKind::FileRoot };
+        Some(SrcFile { file: file?, root_kind, stands_for })
+    }
+
+    /// The model read with the source recorded, if it was.
+    pub(super) fn attach_source(&mut self, model: Model) -> Model {
+        match self.src.take() {
+            Some(src) => {
+                let source = src.finish(model.clone());
+                model.with_source(Some(Arc::new(source)))
+            }
+            None => model,
+        }
     }
 
     /// Enters the file `key` (checked by [`include_source`]).
@@ -57,6 +106,25 @@ impl Includes {
     }
 }
 
+/// `path` relative to the folder `dir`, lexically (`..` where it leads out of it).
+fn relative_to(path: &Path, dir: &Path) -> PathBuf {
+    let norm = |p: &Path| PathBuf::from(files::normalize(&p.to_string_lossy()));
+    let (path, dir) = (norm(path), norm(dir));
+    if dir == Path::new(".") {
+        return path;
+    }
+    let (a, b): (Vec<_>, Vec<_>) = (path.components().collect(), dir.components().collect());
+    let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    let mut out = PathBuf::new();
+    for _ in common..b.len() {
+        out.push("..");
+    }
+    for c in &a[common..] {
+        out.push(c);
+    }
+    out
+}
+
 pub(super) fn canonical(path: &Path) -> PathBuf {
     std::fs::canonicalize(path)
         .unwrap_or_else(|_| PathBuf::from(files::normalize(&path.to_string_lossy())))
@@ -64,7 +132,7 @@ pub(super) fn canonical(path: &Path) -> PathBuf {
 
 /// An included file: its bytes, its path (for messages), the file context its own
 /// files resolve in, and its key on the include stack (for cycles).
-pub(super) type IncludeSource = (Arc<[u8]>, PathBuf, FileContext, PathBuf);
+pub(super) type IncludeSource = (Arc<[u8]>, PathBuf, FileContext, PathBuf, bool);
 
 /// The file an `<include>` names.
 pub(super) fn include_source(
@@ -107,7 +175,7 @@ pub(super) fn include_source(
             return Err(r.err(refused, offset));
         }
         let ctx = FileContext { base_dir: None, ..r.ctx.clone() };
-        return Ok((bytes, PathBuf::from(&file), ctx, key));
+        return Ok((bytes, PathBuf::from(&file), ctx, key, false));
     }
     // With confinement, the path is checked with symlinks followed; the file must be
     // a regular file within the size cap.
@@ -119,7 +187,7 @@ pub(super) fn include_source(
     }
     let bytes = r.ctx.read_disk(&path).map_err(|k| r.err(k, offset))?;
     let ctx = r.ctx.for_included(&full);
-    Ok((bytes.into(), full, ctx, key))
+    Ok((bytes.into(), full, ctx, key, true))
 }
 
 /// A root-level `<include>`: the file read as a model of its own, merged later.
@@ -130,10 +198,11 @@ pub(super) fn read_include(
     max_depth: usize,
     tree: &mut Includes,
 ) -> Result<Model, ReadError> {
-    let (bytes, file, ctx, key) = include_source(r, tag, offset, tree)?;
+    let (bytes, file, ctx, key, on_disk) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
+    let src = tree.record_file(Some(&file), on_disk, text, false, None);
     tree.push(key);
-    let res = read_document(text, Some(file.clone()), ctx, max_depth, tree, r.model_files);
+    let res = read_document(text, Some(file.clone()), ctx, max_depth, tree, r.model_files, src);
     tree.pop();
     res
 }
@@ -149,8 +218,9 @@ pub(super) fn inline_include(
     max_depth: usize,
     tree: &mut Includes,
 ) -> Result<(), ReadError> {
-    let (bytes, file, ctx, key) = include_source(r, tag, offset, tree)?;
+    let (bytes, file, ctx, key, on_disk) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
+    let src = tree.record_file(Some(&file), on_disk, text, false, Some(r.arena[parent].id));
     let mut sub = Reader {
         text,
         file: Some(file),
@@ -160,6 +230,8 @@ pub(super) fn inline_include(
         basepaths: r.basepaths.clone(),
         settings_set_at: HashMap::new(),
         scratch: Vec::new(),
+        src,
+        hoisted: None,
     };
     tree.push(key);
     let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, tree);

@@ -36,6 +36,7 @@ use crate::model::{
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
 use crate::value::Value;
+use crate::xml::source::{NO_RECORD, RecordKind};
 
 mod finish;
 mod include;
@@ -59,6 +60,7 @@ pub struct ReadOptions {
     assets: HashMap<String, Arc<[u8]>>,
     base_dir: Option<PathBuf>,
     confine: bool,
+    keep_source: bool,
     max_depth: usize,
     max_file_size: u64,
 }
@@ -69,6 +71,7 @@ impl Default for ReadOptions {
             assets: HashMap::new(),
             base_dir: None,
             confine: false,
+            keep_source: true,
             max_depth: 1_000_000,
             max_file_size: files::DEFAULT_MAX_FILE_SIZE,
         }
@@ -119,6 +122,18 @@ impl ReadOptions {
     #[must_use]
     pub fn confine_to_base_dir(mut self, confine: bool) -> ReadOptions {
         self.confine = confine;
+        self
+    }
+
+    /// Keeps the text read (default `true`): every file's text and where each element's
+    /// tags are in it, so that [`Model::save`] and [`Model::to_source_files`] write
+    /// untouched parts back byte for byte. Off, a model read keeps nothing of its
+    /// text (as one built through the API), and those refuse to write it.
+    ///
+    /// Time: O(1).
+    #[must_use]
+    pub fn keep_source(mut self, keep: bool) -> ReadOptions {
+        self.keep_source = keep;
         self
     }
 
@@ -197,9 +212,12 @@ impl ReadOptions {
     pub fn read_str(&self, text: &str) -> Result<Model, ReadError> {
         let ctx = self.context(self.base_dir.clone());
         // The main text takes the first place in the include tree, as a file does.
-        let mut tree = Includes::new(PathBuf::from("<main text>"));
+        let dir = self.base_dir.clone();
+        let mut tree = Includes::new(PathBuf::from("<main text>"), dir, self.keep_source);
         let model_files = ModelFiles::default();
-        read_document(text, None, ctx, self.max_depth, &mut tree, &model_files)
+        let src = tree.record_file(None, false, text, true, None);
+        let m = read_document(text, None, ctx, self.max_depth, &mut tree, &model_files, src)?;
+        Ok(tree.attach_source(m))
     }
 
     /// Reads a model from MJCF bytes (which must be UTF-8).
@@ -228,11 +246,13 @@ impl ReadOptions {
             .map_err(|k| ReadError::new(k, None, None))?;
         let text = utf8(&bytes, Some(path))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        let ctx = self.context(Some(dir));
-        let mut tree = Includes::new(canonical(path));
+        let ctx = self.context(Some(dir.clone()));
+        let mut tree = Includes::new(canonical(path), Some(dir), self.keep_source);
         let model_files = ModelFiles::default();
         let file = Some(path.to_path_buf());
-        read_document(text, file, ctx, self.max_depth, &mut tree, &model_files)
+        let src = tree.record_file(Some(path), true, text, true, None);
+        let m = read_document(text, file, ctx, self.max_depth, &mut tree, &model_files, src)?;
+        Ok(tree.attach_source(m))
     }
 }
 
@@ -389,6 +409,23 @@ struct Reader<'t> {
     /// The attributes of the tag being read: one buffer for all, so that each
     /// element allocates its attributes once, at their final size.
     scratch: Vec<Attr>,
+    /// Where this text's tags are recorded (`xml::source`), if the source is kept.
+    src: Option<SrcFile>,
+    /// The class `/` folded into the root class (`finish::hoist_root_class`): its
+    /// element and the root class's.
+    hoisted: Option<(ElementId, ElementId)>,
+}
+
+/// How a text's tags are recorded: its file in the source, and what its root tag
+/// stands for.
+#[derive(Clone, Copy)]
+struct SrcFile {
+    file: u32,
+    /// `Element` for the main file; `FileRoot` for an included file.
+    root_kind: RecordKind,
+    /// The element an included file's root stands for, when it is not the file's own
+    /// root (a file included inside an element).
+    stands_for: Option<ElementId>,
 }
 
 impl Reader<'_> {
@@ -494,11 +531,26 @@ impl Reader<'_> {
 }
 
 /// What [`parse`] found besides the arena: root-level includes (read as models, with
-/// the offset of their tag) and the model name.
+/// the offset of their tag and the first record of their file) and the model name.
 struct Parsed {
-    includes: Vec<(Model, usize)>,
+    includes: Vec<(Model, usize, usize)>,
     model_name: Option<SmolStr>,
 }
+
+/// A tag being read: where it is in the text and the record of its parent.
+#[derive(Clone, Copy)]
+struct At {
+    offset: usize,
+    /// Just after the tag.
+    after: usize,
+    parent_rec: u32,
+    /// How many tags are open around it.
+    depth: usize,
+}
+
+/// An open tag: its arena entry (`usize::MAX` for content that is not read: an
+/// include's content) and its record (`NO_RECORD` when not recorded).
+type Open = (usize, u32);
 
 /// Reads the events of `r.text` into `r.arena`. The root element becomes an entry of
 /// kind `root_kind` (the model's root, or, for a file included inside an element,
@@ -509,11 +561,10 @@ fn parse(
     max_depth: usize,
     tree: &mut Includes,
 ) -> Result<Parsed, ReadError> {
-    let mut stack: Vec<usize> = Vec::new();
+    let mut stack: Vec<Open> = Vec::new();
     let mut xml = quick_xml::Reader::from_str(r.text);
     let text = r.text;
-    let mut includes: Vec<(Model, usize)> = Vec::new();
-    let mut model_name: Option<SmolStr> = None;
+    let mut parsed = Parsed { includes: Vec::new(), model_name: None };
     let mut seen_root = false;
     loop {
         let offset = xml.buffer_position() as usize;
@@ -528,7 +579,9 @@ fn parse(
             Event::Start(t) => (t, false),
             Event::Empty(t) => (t, true),
             Event::End(_) => {
-                stack.pop();
+                if let (Some((_, rec)), Some(src)) = (stack.pop(), tree.src.as_mut()) {
+                    src.close(rec, offset, xml.buffer_position() as usize);
+                }
                 continue;
             }
             Event::Eof => break,
@@ -542,48 +595,105 @@ fn parse(
             }
             _ => continue,
         };
-        let qname = tag.name();
-        let name: &str = qname.as_ref();
-        // The root.
-        if stack.is_empty() {
+        let after = xml.buffer_position() as usize;
+        let Some(&(parent, parent_rec)) = stack.last() else {
             if seen_root {
                 return Err(r.err(ErrorKind::Syntax("more than one root element".into()), offset));
             }
             seen_root = true;
-            if !name.starts_with("mujoco") {
-                return Err(r.err(ErrorKind::WrongRoot(name.into()), offset));
-            }
-            for a in tag.attributes() {
-                let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
-                if a.key.as_ref() == "model" {
-                    let v = a
-                        .normalized_value(quick_xml::XmlVersion::default())
-                        .map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
-                    model_name = Some(SmolStr::from(v.as_ref()));
-                }
-            }
-            r.arena.push(Pending::new(root_kind, no_attrs(), offset));
+            let open = read_root(r, &tag, root_kind, tree, (offset, after), &mut parsed)?;
             if !empty {
-                stack.push(0);
+                stack.push(open);
             }
             continue;
+        };
+        let at = At { offset, after, parent_rec, depth: stack.len() };
+        let open = read_tag(r, &tag, parent, root_kind, at, max_depth, tree, &mut parsed)?;
+        if !empty {
+            stack.push(open);
         }
-        let parent = stack[stack.len() - 1];
-        let parent_kind = r.arena[parent].kind;
-        if name == "include"
-            && parent != usize::MAX
-            && (parent != 0 || root_kind != ElementKind::ROOT)
-        {
+    }
+    if !seen_root {
+        return Err(r.err(ErrorKind::Syntax("no root element".into()), text.len()));
+    }
+    if !stack.is_empty() {
+        return Err(r.err(ErrorKind::Syntax("unclosed element at end of input".into()), text.len()));
+    }
+    Ok(parsed)
+}
+
+/// Records a tag (`kind`, standing for the element `id`) under the record
+/// `parent_rec`, if this text is recorded.
+fn record(r: &Reader<'_>, tree: &mut Includes, kind: RecordKind, id: ElementId, at: At) -> u32 {
+    match (r.src, tree.src.as_mut()) {
+        (Some(f), Some(src)) if at.parent_rec != NO_RECORD => {
+            src.open(f.file, kind, id, at.parent_rec, at.offset, at.after)
+        }
+        _ => NO_RECORD,
+    }
+}
+
+/// The root tag: its name is checked, its `model` attribute read.
+fn read_root(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    root_kind: ElementKind,
+    tree: &mut Includes,
+    (offset, after): (usize, usize),
+    parsed: &mut Parsed,
+) -> Result<Open, ReadError> {
+    let qname = tag.name();
+    let name: &str = qname.as_ref();
+    if !name.starts_with("mujoco") {
+        return Err(r.err(ErrorKind::WrongRoot(name.into()), offset));
+    }
+    for a in tag.attributes() {
+        let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+        if a.key.as_ref() == "model" {
+            let v = a
+                .normalized_value(quick_xml::XmlVersion::default())
+                .map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
+            parsed.model_name = Some(SmolStr::from(v.as_ref()));
+        }
+    }
+    r.arena.push(Pending::new(root_kind, no_attrs(), offset));
+    let rec = match (r.src, tree.src.as_mut()) {
+        (Some(f), Some(src)) => {
+            let id = f.stands_for.unwrap_or(r.arena[0].id);
+            src.open(f.file, f.root_kind, id, NO_RECORD, offset, after)
+        }
+        _ => NO_RECORD,
+    };
+    Ok((0, rec))
+}
+
+/// A tag under the root: an `<include>`, content that is not read, or an element.
+#[allow(clippy::too_many_arguments)]
+fn read_tag(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    parent: usize,
+    root_kind: ElementKind,
+    at: At,
+    max_depth: usize,
+    tree: &mut Includes,
+    parsed: &mut Parsed,
+) -> Result<Open, ReadError> {
+    let qname = tag.name();
+    let name: &str = qname.as_ref();
+    let offset = at.offset;
+    if parent == usize::MAX {
+        return Ok((usize::MAX, NO_RECORD));
+    }
+    if name == "include" {
+        let rec = record(r, tree, RecordKind::Include, r.arena[parent].id, at);
+        if parent != 0 || root_kind != ElementKind::ROOT {
             // Inside an element (MuJoCo accepts `<include>` anywhere): the included
             // file's root's children are read in its place.
-            inline_include(r, &tag, offset, parent, max_depth, tree)?;
-            if !empty {
-                stack.push(usize::MAX);
-            }
-            continue;
-        }
-        if parent == 0 && name == "include" {
-            let inc = read_include(r, &tag, offset, max_depth, tree)?;
+            inline_include(r, tag, offset, parent, max_depth, tree)?;
+        } else {
+            let from = tree.src.as_ref().map_or(0, |s| s.records.len());
+            let inc = read_include(r, tag, offset, max_depth, tree)?;
             // The compiler's folders are global in MuJoCo: those the included file
             // sets apply to the files named after the include here too.
             let folders = inc.basepaths();
@@ -596,75 +706,70 @@ fn parse(
                     r.basepaths.set(Some(ns), v);
                 }
             }
-            includes.push((inc, offset));
-            if !empty {
-                // An include's content is ignored; track it so its end tag matches.
-                stack.push(usize::MAX);
-            }
-            continue;
+            parsed.includes.push((inc, offset, from));
         }
-        if parent == usize::MAX {
-            if !empty {
-                stack.push(usize::MAX);
-            }
-            continue;
+        // An include's content is ignored; tracked so that its end tag matches.
+        return Ok((usize::MAX, rec));
+    }
+    let parent_kind = r.arena[parent].kind;
+    let Some(kind) = parent_kind.child(name) else {
+        return Err(r.err(ErrorKind::invalid_child(parent_kind, name), offset));
+    };
+    if at.depth >= max_depth {
+        return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
+    }
+    let index = read_element(r, tag, parent, kind, offset)?;
+    let rec = record(r, tree, RecordKind::Element, r.arena[index].id, at);
+    Ok((index, rec))
+}
+
+/// An element of `kind` under the arena entry `parent`: a new entry, or (a singleton
+/// given again) the entry read before, its attributes updated. Returns the entry.
+fn read_element(
+    r: &mut Reader<'_>,
+    tag: &BytesStart<'_>,
+    parent: usize,
+    kind: ElementKind,
+    offset: usize,
+) -> Result<usize, ReadError> {
+    let parent_kind = r.arena[parent].kind;
+    let existing = match kind.multiplicity() {
+        Multiplicity::Repeated => None,
+        _ => unique_child(&r.arena, parent, kind),
+    };
+    let mut attrs = std::mem::take(&mut r.scratch);
+    attrs.clear();
+    match (kind.multiplicity(), existing) {
+        (Multiplicity::Singleton, Some(e)) => {
+            attrs.extend(r.arena[e].attrs.iter().cloned());
+            let res = r.read_attrs(kind, tag, &mut attrs, offset);
+            r.arena[e].attrs = take_attrs(&mut attrs);
+            r.scratch = attrs;
+            res?;
+            Ok(e)
         }
-        let Some(kind) = parent_kind.child(name) else {
-            return Err(r.err(ErrorKind::invalid_child(parent_kind, name), offset));
-        };
-        if stack.len() >= max_depth {
-            return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
+        (Multiplicity::OnDemand, Some(_)) => {
+            r.scratch = attrs;
+            Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset))
         }
-        let existing = match kind.multiplicity() {
-            Multiplicity::Repeated => None,
-            _ => unique_child(&r.arena, parent, kind),
-        };
-        let index = match (kind.multiplicity(), existing) {
-            (Multiplicity::Singleton, Some(e)) => {
-                let mut attrs = std::mem::take(&mut r.scratch);
-                attrs.clear();
-                attrs.extend(r.arena[e].attrs.iter().cloned());
-                let res = r.read_attrs(kind, &tag, &mut attrs, offset);
-                r.arena[e].attrs = take_attrs(&mut attrs);
-                r.scratch = attrs;
-                res?;
-                e
+        (m, _) => {
+            r.read_attrs(kind, tag, &mut attrs, offset)?;
+            if m != Multiplicity::Singleton {
+                name_from_file(kind, &mut attrs);
+                check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
+                check_class_named(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
             }
-            (Multiplicity::OnDemand, Some(_)) => {
-                return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
+            let stored = take_attrs(&mut attrs);
+            r.scratch = attrs;
+            let i = r.arena.len();
+            r.arena.push(Pending::new(kind, stored, offset));
+            push_child(&mut r.arena, parent, i);
+            if m != Multiplicity::Repeated {
+                push_unique(&mut r.arena, parent, i);
             }
-            (m, _) => {
-                let mut attrs = std::mem::take(&mut r.scratch);
-                attrs.clear();
-                r.read_attrs(kind, &tag, &mut attrs, offset)?;
-                if m != Multiplicity::Singleton {
-                    name_from_file(kind, &mut attrs);
-                    check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;
-                    check_class_named(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
-                }
-                let stored = take_attrs(&mut attrs);
-                r.scratch = attrs;
-                let attrs = stored;
-                let i = r.arena.len();
-                r.arena.push(Pending::new(kind, attrs, offset));
-                push_child(&mut r.arena, parent, i);
-                if m != Multiplicity::Repeated {
-                    push_unique(&mut r.arena, parent, i);
-                }
-                i
-            }
-        };
-        if !empty {
-            stack.push(index);
+            Ok(i)
         }
     }
-    if !seen_root {
-        return Err(r.err(ErrorKind::Syntax("no root element".into()), text.len()));
-    }
-    if !stack.is_empty() {
-        return Err(r.err(ErrorKind::Syntax("unclosed element at end of input".into()), text.len()));
-    }
-    Ok(Parsed { includes, model_name })
 }
 
 fn read_document(
@@ -674,6 +779,7 @@ fn read_document(
     max_depth: usize,
     tree: &mut Includes,
     model_files: &ModelFiles,
+    src: Option<SrcFile>,
 ) -> Result<Model, ReadError> {
     let mut r = Reader {
         text,
@@ -684,18 +790,30 @@ fn read_document(
         basepaths: Basepaths::default(),
         settings_set_at: HashMap::new(),
         scratch: Vec::new(),
+        src,
+        hoisted: None,
     };
+    let first = tree.src.as_ref().map_or(0, |s| s.records.len());
     let Parsed { includes, model_name } = parse(&mut r, ElementKind::ROOT, max_depth, tree)?;
     let model = finish(&mut r, model_name)?;
+    if let (Some((from, to)), Some(src)) = (r.hoisted, tree.src.as_mut()) {
+        // The class `/` folded into the root class: its tag stands for the root class.
+        src.remap(first, &HashMap::from([(from, to)]));
+    }
     if includes.is_empty() {
         return Ok(model);
     }
     let mut model = model;
-    for (inc, offset) in includes {
+    for (inc, offset, from) in includes {
         let inc = inc.with_name(model.name());
         let (model2, inc) = settings_in_document_order(&model, &inc, offset, &r.settings_set_at)
             .map_err(|e| r.err(e.kind().clone(), offset))?;
-        model = model2.include_copy(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
+        let (merged, ids) =
+            model2.include_copy_ids(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
+        if let Some(src) = tree.src.as_mut() {
+            src.remap(from, &ids);
+        }
+        model = merged;
     }
     Ok(resolve_all(&model))
 }

@@ -1,0 +1,715 @@
+//! The lossless writer: a model read from MJCF written back into its own files, with
+//! every part no edit touched byte for byte as it was read.
+//!
+//! The rules, per element of each file's tag tree (`xml::source`):
+//! - untouched (its node still the node read, and no element it names renamed or
+//!   removed): its text, tags, content and all, as read;
+//! - edited: untouched attributes keep their text, quoting and order; a changed value
+//!   is replaced in place (formatted as the plain writer formats values; a value
+//!   given twice, in a singleton given twice, is changed where it wins: its last
+//!   mention in document order); a new attribute is appended; a removed one goes
+//!   with the whitespace before it;
+//! - children: those read keep their text and the whitespace and comments before
+//!   them, in the model's order; a removed child goes with the whitespace and
+//!   comments before it (comments stay with what they annotate); a new child is
+//!   written under the element's first tag, indented like its siblings, in the plain
+//!   writer's attribute style without the plain writer's additions (no `class="/"`,
+//!   no automatic names, files named as `stem.ext`); a child moved from elsewhere
+//!   keeps its text; empty singletons are not written;
+//! - nothing is renamed, compiler folders and file attributes stay as written, and
+//!   whatever lies outside the root (declaration, comments, DOCTYPE) stays.
+//!
+//! A model with attachments is refused ([`SaveError::Attachments`]): its attached
+//! models have files of their own, which this writer does not write yet (the plain
+//! writer writes the composed model).
+
+mod tag;
+
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write as _;
+use std::path::{Component, Path, PathBuf};
+
+use crate::model::Model;
+use crate::model::tree::{ElementId, Node};
+use crate::schema::{AttrType, ElementKind};
+use crate::value::{FloatStyle, Reference, Value};
+use crate::xml::source::{NO_RECORD, RecordKind, Source};
+use tag::Tag;
+
+/// Why a model cannot be saved losslessly.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SaveError {
+    /// The model keeps no source text: it was built through the API, or read with
+    /// [`ReadOptions::keep_source`](crate::ReadOptions::keep_source) off.
+    #[error("the model keeps no source text to save into (write it with to_xml_string)")]
+    NoSource,
+    /// The model has attachments, whose files a lossless save does not write.
+    #[error("the model has attachments ({scope} first), which a lossless save does not write")]
+    Attachments {
+        /// The scope of the first attachment.
+        scope: String,
+    },
+    /// A file of the model has no path to be written to: the main text read from a
+    /// string (for [`Model::save`] and [`Model::save_as`]), or an in-memory include.
+    #[error("the model's text read from a string or memory has no path to save to")]
+    NoPath,
+    /// A file to write lies outside the folder it is to be written in (a confined
+    /// model's, or the folder given to [`Model::save_as`]).
+    #[error("'{}' lies outside the folder it is to be written in", .0.display())]
+    OutsideRoot(PathBuf),
+    /// A file could not be written.
+    #[error("cannot write '{}': {reason}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The reason the system gives.
+        reason: String,
+    },
+    /// A required reference to an element that was removed.
+    #[error("attribute '{attribute}' of <{tag}> is required, but the element it named was removed")]
+    MissingRequired {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+    },
+    /// A reference to an element that has no name to write it by.
+    #[error("attribute '{attribute}' of <{tag}> names an element that has no name")]
+    UnnamedTarget {
+        /// The element's tag.
+        tag: &'static str,
+        /// The attribute.
+        attribute: &'static str,
+    },
+}
+
+/// One file of a model's source, as [`Model::to_source_files`] writes it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SourceText {
+    /// The path relative to the model's folder (the main file's name, an include's
+    /// path from there); `None` for the main text of a model read from a string.
+    pub path: Option<PathBuf>,
+    /// The text.
+    pub text: String,
+    /// Whether the text differs from the text read.
+    pub changed: bool,
+}
+
+impl Model {
+    /// The model written back into the files it was read from (the main file and its
+    /// includes, in the order they were read), losslessly: see
+    /// [`Model::save`] for what is kept. Nothing is written to disk.
+    ///
+    /// Time: O(L) for `L` bytes of source text when nothing changed (each file is
+    /// copied); with edits, O(L + E · (depth · log n + width)) for `E` edited elements
+    /// and their ancestors, plus O(n) once when an edit renamed or removed a named
+    /// element (to find the references to it).
+    ///
+    /// # Errors
+    /// - [`SaveError::NoSource`]: the model was not read from MJCF (or was read with
+    ///   the source off);
+    /// - [`SaveError::Attachments`]: the model has attachments;
+    /// - [`SaveError::MissingRequired`], [`SaveError::UnnamedTarget`]: a reference
+    ///   that cannot be written.
+    ///
+    /// # Examples
+    /// ```
+    /// let text = "<mujoco>\n  <!-- the floor -->\n  <worldbody>\n    <geom name='floor' size='1 1 .1'  type=\"plane\"/>\n  </worldbody>\n</mujoco>\n";
+    /// let m = mjcf::Model::from_xml_str(text)?;
+    /// assert_eq!(m.to_source_files()?[0].text, text); // untouched: byte for byte
+    /// let floor = m.find(mjcf::Namespace::Geom, "floor").unwrap();
+    /// let m = m.set(&floor, mjcf::Attrs::new().set("size", [2.0, 2.0, 0.1]))?;
+    /// let saved = &m.to_source_files()?[0];
+    /// assert_eq!(saved.text, text.replace("'1 1 .1'", "'2 2 0.1'"));
+    /// assert!(saved.changed);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn to_source_files(&self) -> Result<Vec<SourceText>, SaveError> {
+        let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
+        if let Some((scope, _)) = self.index.attachments().next() {
+            return Err(SaveError::Attachments { scope: scope.to_string() });
+        }
+        let saver = Saver { model: self, src, dirty: dirty(self, &src.read) };
+        (0..src.files.len())
+            .map(|f| {
+                let text = saver.file(f)?;
+                let file = &src.files[f];
+                let changed = *text != *file.text;
+                Ok(SourceText { path: file.rel.clone(), text, changed })
+            })
+            .collect()
+    }
+
+    /// Saves the model into the files it was read from, losslessly: each file whose
+    /// text changes is written in place (atomically: a temporary file beside it, then
+    /// renamed over it), the others are not touched (same bytes, same modification
+    /// time). What is kept: an element no edit touched is written byte for byte; an
+    /// edited element keeps its untouched attributes' text, quoting and order, with
+    /// changed values in place, new ones appended and removed ones gone with their
+    /// spacing; a new element is indented like its siblings; a removed element goes
+    /// with the comments directly before it; nothing is renamed, no class or
+    /// automatic name is added, file attributes and compiler folders stay as written.
+    /// An edit inside an included file is saved into that file. A confined model
+    /// ([`ReadOptions::confine_to_base_dir`](crate::ReadOptions::confine_to_base_dir))
+    /// writes no file outside its folder. Returns the files written.
+    ///
+    /// The model keeps the source it was read from: saving a later version writes
+    /// what changed since the read (so saving twice writes once).
+    ///
+    /// Time: as [`Model::to_source_files`], plus reading each file on disk (to
+    /// compare) and writing the changed ones.
+    ///
+    /// # Errors
+    /// As [`Model::to_source_files`], and [`SaveError::NoPath`] when a file to write
+    /// was not read from disk, [`SaveError::OutsideRoot`] when (confined) it leads
+    /// out of the model's folder, [`SaveError::Io`] when it cannot be written. Files
+    /// written before an error stay written.
+    pub fn save(&self) -> Result<Vec<PathBuf>, SaveError> {
+        let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
+        let texts = self.to_source_files()?;
+        let mut written = Vec::new();
+        for (file, out) in src.files.iter().zip(texts) {
+            let on_disk = file.disk.as_ref().and_then(|d| std::fs::read(d).ok());
+            if on_disk.as_deref() == Some(out.text.as_bytes()) {
+                continue;
+            }
+            let (Some(path), Some(rel)) = (&file.disk, &file.rel) else {
+                return Err(SaveError::NoPath);
+            };
+            if self.files.confine {
+                let rel = rel.to_string_lossy();
+                self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.clone()))?;
+            }
+            write_atomically(path, out.text.as_bytes())?;
+            written.push(path.clone());
+        }
+        Ok(written)
+    }
+
+    /// Saves the model's files into the folder `dir`, with the same relative paths
+    /// as they had from the model's folder (every file, changed or not), losslessly
+    /// as [`Model::save`], with the asset files their elements name (meshes,
+    /// textures, ...) at the paths they are named by. Returns the files written.
+    ///
+    /// Time: as [`Model::to_source_files`], plus writing the files and assets.
+    ///
+    /// # Errors
+    /// As [`Model::to_source_files`]; [`SaveError::NoPath`] for a model read from a
+    /// string or with an in-memory include; [`SaveError::OutsideRoot`] for a file
+    /// whose relative path leads out of `dir` (an include or asset named through
+    /// `..`); [`SaveError::Io`] when a file cannot be written.
+    pub fn save_as(&self, dir: impl AsRef<Path>) -> Result<Vec<PathBuf>, SaveError> {
+        let dir = dir.as_ref();
+        let texts = self.to_source_files()?;
+        let mut written = Vec::new();
+        for out in &texts {
+            let rel = out.path.as_ref().ok_or(SaveError::NoPath)?;
+            let path = inside(dir, rel)?;
+            write_atomically(&path, out.text.as_bytes())?;
+            written.push(path);
+        }
+        for (rel, contents) in self.asset_files() {
+            let path = inside(dir, &rel)?;
+            if written.contains(&path) {
+                continue;
+            }
+            write_atomically(&path, &contents)?;
+            written.push(path);
+        }
+        Ok(written)
+    }
+
+    /// The heap bytes the source kept for [`Model::save`] takes (the text of every file
+    /// read and the record of every tag; the model as read is shared with the model),
+    /// or 0 for a model that keeps none.
+    ///
+    /// Time: O(files).
+    pub fn source_heap_bytes(&self) -> usize {
+        self.source.as_deref().map_or(0, Source::heap_bytes)
+    }
+
+    /// The asset files the model's elements name, by their path from the model's
+    /// folder as the reader resolves them (the compiler's folder settings joined
+    /// with the path as written in the element's own file; a file set through the
+    /// API by its name, as the lossless writer writes it).
+    fn asset_files(&self) -> Vec<(PathBuf, std::sync::Arc<[u8]>)> {
+        let Some(src) = self.source.as_deref() else { return Vec::new() };
+        let base = self.basepaths();
+        let mut out = Vec::new();
+        for n in self.root.descendants() {
+            let kind = n.kind();
+            for (i, v) in n.attrs() {
+                let (Value::File(f), AttrType::File { path_namespace }) =
+                    (v, kind.attr(*i as usize).ty)
+                else {
+                    continue;
+                };
+                let name = kind.attr(*i as usize).name;
+                // The path as written, in the file that names it, if read.
+                let written = src.records_of(n.id()).find_map(|r| {
+                    let rec = &src.records[r as usize];
+                    let text = &src.text_of(r)[rec.start as usize..rec.start_end as usize];
+                    let t = Tag::parse(text);
+                    let tok = t.tokens.iter().rev().find(|k| t.name_of(k) == name)?;
+                    let folder = src.files[rec.file as usize]
+                        .rel
+                        .as_ref()
+                        .and_then(|p| p.parent().map(Path::to_path_buf))
+                        .unwrap_or_default();
+                    Some((folder, unescape(&text[tok.value.0..tok.value.1])))
+                });
+                let (folder, path) = written.unwrap_or_else(|| (PathBuf::new(), f.vfs_name(false)));
+                let joined = crate::files::join(base.for_namespace(path_namespace), &path);
+                out.push((folder.join(crate::files::normalize(&joined)), f.contents().into()));
+            }
+        }
+        out
+    }
+}
+
+/// `rel` under `dir`, refused if it leads out of it.
+fn inside(dir: &Path, rel: &Path) -> Result<PathBuf, SaveError> {
+    let normal = PathBuf::from(crate::files::normalize(&rel.to_string_lossy()));
+    let leaves = normal.is_absolute()
+        || normal.components().any(|c| matches!(c, Component::ParentDir | Component::Prefix(_)));
+    if leaves {
+        return Err(SaveError::OutsideRoot(rel.to_path_buf()));
+    }
+    Ok(dir.join(normal))
+}
+
+/// Writes `bytes` to `path` through a temporary file beside it, renamed over it, so
+/// that the file is never seen half written; the folder is made if missing.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), SaveError> {
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let io = |e: std::io::Error| SaveError::Io { path: path.to_path_buf(), reason: e.to_string() };
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.{}-{n}.tmp", std::process::id()));
+    let res = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if res.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    res.map_err(io)
+}
+
+/// The text of an attribute value as written, its entities and character
+/// references expanded (the five of XML and numeric ones; anything else is kept).
+fn unescape(v: &str) -> String {
+    if !v.contains('&') {
+        return v.to_string();
+    }
+    let mut out = String::with_capacity(v.len());
+    let mut rest = v;
+    while let Some(i) = rest.find('&') {
+        out.push_str(&rest[..i]);
+        rest = &rest[i..];
+        let Some(end) = rest.find(';') else { break };
+        let entity = &rest[1..end];
+        let c = match entity {
+            "amp" => Some('&'),
+            "lt" => Some('<'),
+            "gt" => Some('>'),
+            "quot" => Some('"'),
+            "apos" => Some('\''),
+            _ => entity
+                .strip_prefix("#x")
+                .map(|h| u32::from_str_radix(h, 16).ok())
+                .or_else(|| entity.strip_prefix('#').map(|d| d.parse().ok()))
+                .flatten()
+                .and_then(char::from_u32),
+        };
+        match c {
+            Some(c) => {
+                out.push(c);
+                rest = &rest[end + 1..];
+            }
+            None => {
+                out.push('&');
+                rest = &rest[1..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The elements whose text changes though their node does not: those holding a
+/// reference to an element renamed or removed since the read, and their ancestors.
+///
+/// Time: O(changed part) to find renamed and removed elements; O(n) more if any.
+fn dirty(model: &Model, read: &Model) -> HashSet<ElementId> {
+    let mut gone: HashSet<ElementId> = HashSet::new();
+    // Renamed (in the current tree, below nodes that differ from the read ones).
+    let mut stack = vec![&model.root];
+    while let Some(n) = stack.pop() {
+        match read.node_by_id(n.id()) {
+            Some(r) if r.ptr_eq(n) => continue,
+            Some(r) if r.identifier() != n.identifier() => {
+                gone.insert(n.id());
+            }
+            _ => {}
+        }
+        stack.extend(n.children().iter());
+    }
+    // Removed (in the read tree, below nodes that differ from the current ones).
+    let mut stack = vec![&read.root];
+    while let Some(r) = stack.pop() {
+        match model.node_by_id(r.id()) {
+            Some(n) if n.ptr_eq(r) => continue,
+            Some(_) => {}
+            None => {
+                gone.extend(r.descendants().map(Node::id));
+                continue;
+            }
+        }
+        stack.extend(r.children().iter());
+    }
+    let mut out = HashSet::new();
+    if gone.is_empty() {
+        return out;
+    }
+    // Every element naming one of them, with its ancestors.
+    let mut path: Vec<ElementId> = Vec::new();
+    let mut stack = vec![(&model.root, 0usize)];
+    while let Some((n, depth)) = stack.pop() {
+        path.truncate(depth);
+        path.push(n.id());
+        let names = n
+            .attrs()
+            .iter()
+            .any(|(_, v)| matches!(v, Value::Reference(Reference::Element(t)) if gone.contains(t)));
+        if names {
+            out.extend(path.iter().copied());
+        }
+        stack.extend(n.children().iter().map(|c| (c, depth + 1)));
+    }
+    out
+}
+
+/// What is written, in order.
+enum Item {
+    /// A span of a file's text.
+    Text(u32, u32, u32),
+    Str(String),
+    /// A recorded tag, with its content and end tag.
+    Record(u32),
+    /// An element without a record (or moved with several), written in full, with
+    /// its children indented by the given text.
+    New(Node, String),
+}
+
+struct Saver<'a> {
+    model: &'a Model,
+    src: &'a Source,
+    /// See [`dirty`].
+    dirty: HashSet<ElementId>,
+}
+
+impl Saver<'_> {
+    /// The text of file `f`.
+    fn file(&self, f: usize) -> Result<String, SaveError> {
+        let file = &self.src.files[f];
+        let text = &file.text;
+        if file.root == NO_RECORD {
+            return Ok(text.to_string());
+        }
+        let root = &self.src.records[file.root as usize];
+        let mut out = String::with_capacity(text.len() + 64);
+        out.push_str(&text[..root.start as usize]);
+        let mut stack = vec![Item::Record(file.root)];
+        while let Some(item) = stack.pop() {
+            match item {
+                Item::Text(f, a, b) => {
+                    out.push_str(&self.src.files[f as usize].text[a as usize..b as usize]);
+                }
+                Item::Str(s) => out.push_str(&s),
+                Item::Record(r) => {
+                    let items = self.expand(r)?;
+                    stack.extend(items.into_iter().rev());
+                }
+                Item::New(node, indent) => self.write_new(&node, &indent, &mut out)?,
+            }
+        }
+        out.push_str(&text[root.end_end as usize..]);
+        Ok(out)
+    }
+
+    /// Whether the element `id` is written as read.
+    fn clean(&self, id: ElementId) -> bool {
+        match (self.model.node_by_id(id), self.src.read.node_by_id(id)) {
+            (Some(n), Some(r)) => n.ptr_eq(r) && !self.dirty.contains(&id),
+            _ => false,
+        }
+    }
+
+    /// The items of the record `r`: its text as read if its element is clean, else
+    /// its start tag (rewritten), its children and its end tag.
+    fn expand(&self, r: u32) -> Result<Vec<Item>, SaveError> {
+        let rec = &self.src.records[r as usize];
+        let whole = Item::Text(rec.file, rec.start, rec.end_end);
+        if rec.kind == RecordKind::Include || self.clean(rec.id) {
+            return Ok(vec![whole]);
+        }
+        let Some(node) = self.model.node_by_id(rec.id) else { return Ok(Vec::new()) };
+        let children = self.children(r, node)?;
+        let open = rec.self_closing() && !children.is_empty();
+        let mut items = vec![Item::Str(self.start_tag(r, node, open)?)];
+        let text = self.src.text_of(r);
+        if open {
+            items.extend(children);
+            let name = Tag::parse(&text[rec.start as usize..rec.start_end as usize]).tag_name();
+            items.push(Item::Str(format!("\n{}</{name}>", indent_of(text, rec.start))));
+        } else if !rec.self_closing() {
+            items.extend(children);
+            // What follows the last child, and the end tag.
+            let last = self.src.children(r).last();
+            let from = last.map_or(rec.start_end, |c| self.src.records[c as usize].end_end);
+            items.push(Item::Text(rec.file, from, rec.end_end));
+        }
+        Ok(items)
+    }
+
+    /// The children of record `r` (of the element `node`) in the model's order: each
+    /// child read with the text before it, and the new ones.
+    fn children(&self, r: u32, node: &Node) -> Result<Vec<Item>, SaveError> {
+        let rec = &self.src.records[r as usize];
+        let id = rec.id;
+        let pos: HashMap<ElementId, usize> =
+            node.children().iter().enumerate().map(|(i, c)| (c.id(), i)).collect();
+        // (position in the model, position in the text) and the items.
+        let mut segments: Vec<((usize, usize), [Item; 2])> = Vec::new();
+        let mut waiting: Vec<(usize, [Item; 2])> = Vec::new();
+        let mut prev_end = rec.start_end;
+        let mut ws: Option<String> = None;
+        for (k, c) in self.src.children(r).enumerate() {
+            let crec = &self.src.records[c as usize];
+            let lead = Item::Text(rec.file, prev_end, crec.start);
+            if ws.is_none() && crec.kind != RecordKind::Include {
+                ws = line_break(&self.src.text_of(r)[prev_end as usize..crec.start as usize]);
+            }
+            prev_end = crec.end_end;
+            let at = match crec.kind {
+                RecordKind::Include => {
+                    waiting.push((k, [lead, Item::Record(c)]));
+                    continue;
+                }
+                // A tag standing for this very element (the root class's `/`).
+                _ if crec.id == id => Some(0),
+                _ => pos.get(&crec.id).copied(),
+            };
+            let Some(at) = at else { continue };
+            for (j, items) in waiting.drain(..) {
+                segments.push(((at, j), items));
+            }
+            segments.push(((at, k), [lead, Item::Record(c)]));
+        }
+        for (j, items) in waiting.drain(..) {
+            segments.push(((usize::MAX, j), items));
+        }
+        if self.src.primary(id) == Some(r) {
+            let text = self.src.text_of(r);
+            let ws = ws.unwrap_or_else(|| format!("\n{}  ", indent_of(text, rec.start)));
+            for (at, c) in node.children().iter().enumerate() {
+                if self.at_home(c.id(), id) || blank(c) {
+                    continue;
+                }
+                if c.attached().is_some() {
+                    return Err(SaveError::Attachments { scope: String::new() });
+                }
+                let mut own = self.src.records_of(c.id());
+                let item = match (own.next(), own.next()) {
+                    // Moved here with its one tag: its text, as read (or rewritten).
+                    (Some(one), None) => Item::Record(one),
+                    _ => Item::New(c.clone(), ws.trim_start_matches(['\n', '\r']).to_string()),
+                };
+                segments.push(((at, usize::MAX), [Item::Str(ws.clone()), item]));
+            }
+        }
+        segments.sort_by_key(|(key, _)| *key);
+        Ok(segments.into_iter().flat_map(|(_, items)| items).collect())
+    }
+
+    /// Whether the element `child` has a tag under a tag of `parent`.
+    fn at_home(&self, child: ElementId, parent: ElementId) -> bool {
+        self.src.records_of(child).any(|c| {
+            let p = self.src.records[c as usize].parent;
+            p != NO_RECORD && self.src.records[p as usize].id == parent
+        })
+    }
+
+    /// The start tag of record `r` for the element `node`, rewritten where the
+    /// element's attributes changed (`open`: a `<x/>` that now has children).
+    fn start_tag(&self, r: u32, node: &Node, open: bool) -> Result<String, SaveError> {
+        let rec = &self.src.records[r as usize];
+        let text = &self.src.text_of(r)[rec.start as usize..rec.start_end as usize];
+        let tag = Tag::parse(text);
+        let read = self.src.read.node_by_id(rec.id);
+        let unchanged = read.is_some_and(|n| std::ptr::eq(n.attrs(), node.attrs()))
+            && !self.dirty.contains(&rec.id);
+        if rec.kind == RecordKind::FileRoot || unchanged {
+            return Ok(tag.rewrite(&[], &[], &[], open));
+        }
+        let kind = node.kind();
+        let mut indices: Vec<usize> = node.attrs().iter().map(|(i, _)| *i as usize).collect();
+        if let Some(read) = read {
+            indices.extend(read.attrs().iter().map(|(i, _)| *i as usize));
+        }
+        indices.sort_unstable();
+        indices.dedup();
+        let (mut set, mut remove, mut append) = (Vec::new(), Vec::new(), Vec::new());
+        let primary = self.src.primary(rec.id) == Some(r);
+        for i in indices {
+            let before = read.and_then(|n| value_text(&self.src.read, n, i).ok().flatten());
+            let now = value_text(self.model, node, i)?;
+            if before == now {
+                continue;
+            }
+            let name = kind.attr(i).name;
+            let mine = tag.tokens.iter().rposition(|t| attr_of(kind, tag.name_of(t)) == Some(i));
+            // The last tag of the element that gives this attribute.
+            let last = self.src.records_of(rec.id).filter(|&q| self.gives(q, kind, i)).last();
+            match (now, mine) {
+                (Some(v), Some(k)) if last == Some(r) => set.push((k, v)),
+                (Some(v), _) if last.is_none() && primary => append.push((name, v)),
+                (None, Some(_)) => {
+                    let all = tag.tokens.iter().enumerate();
+                    remove.extend(
+                        all.filter(|(_, t)| attr_of(kind, tag.name_of(t)) == Some(i))
+                            .map(|(k, _)| k),
+                    );
+                }
+                _ => {}
+            }
+        }
+        Ok(tag.rewrite(&set, &remove, &append, open))
+    }
+
+    /// Whether the record `q` (an element's own tag) gives the attribute `i`.
+    fn gives(&self, q: u32, kind: ElementKind, i: usize) -> bool {
+        let rec = &self.src.records[q as usize];
+        if rec.kind != RecordKind::Element {
+            return false;
+        }
+        let t = Tag::parse(&self.src.text_of(q)[rec.start as usize..rec.start_end as usize]);
+        t.tokens.iter().any(|k| attr_of(kind, t.name_of(k)) == Some(i))
+    }
+
+    /// Writes `node` (and its children) in full, indented by `indent`.
+    fn write_new(&self, node: &Node, indent: &str, out: &mut String) -> Result<(), SaveError> {
+        // (node, depth, closing): an explicit stack, so nesting depth costs no stack.
+        let mut stack: Vec<(&Node, usize, bool)> = vec![(node, 0, false)];
+        let mut first = true;
+        while let Some((n, depth, closing)) = stack.pop() {
+            if !first {
+                out.push('\n');
+                out.push_str(indent);
+                (0..depth).for_each(|_| out.push_str("  "));
+            }
+            first = false;
+            let tag = n.kind().tag();
+            if closing {
+                let _ = write!(out, "</{tag}>");
+                continue;
+            }
+            if n.attached().is_some() {
+                return Err(SaveError::Attachments { scope: String::new() });
+            }
+            out.push('<');
+            out.push_str(tag);
+            for (i, _) in n.attrs() {
+                let Some(v) = value_text(self.model, n, *i as usize)? else { continue };
+                let _ = write!(
+                    out,
+                    " {}=\"{}\"",
+                    n.kind().attr(*i as usize).name,
+                    tag::escape(&v, b'"')
+                );
+            }
+            let kids: Vec<&Node> = n.children().iter().filter(|c| !blank(c)).collect();
+            if kids.is_empty() {
+                out.push_str("/>");
+                continue;
+            }
+            out.push('>');
+            stack.push((n, depth, true));
+            stack.extend(kids.into_iter().rev().map(|c| (c, depth + 1, false)));
+        }
+        Ok(())
+    }
+}
+
+/// The whitespace on the line of `at` before it (`""` if anything else is there).
+fn indent_of(text: &str, at: u32) -> &str {
+    let before = &text[..at as usize];
+    let line = before.rfind('\n').map_or(before, |i| &before[i + 1..]);
+    if line.chars().all(|c| c == ' ' || c == '\t') { line } else { "" }
+}
+
+/// The line break and indentation ending `lead` (the text before a child), if it
+/// ends with whitespace after its last line break; `lead` itself if it is all
+/// whitespace on one line.
+fn line_break(lead: &str) -> Option<String> {
+    let tail = lead.rfind('\n').map_or(lead, |i| &lead[i..]);
+    let tail = tail.strip_prefix('\n').map_or(tail, |t| t.trim_start_matches('\r'));
+    if !tail.chars().all(|c| c == ' ' || c == '\t') {
+        return None;
+    }
+    Some(match lead.rfind('\n') {
+        Some(i) => lead[i..].to_string(),
+        None => tail.to_string(),
+    })
+}
+
+/// Whether the node is an empty singleton (nothing written for it).
+fn blank(n: &Node) -> bool {
+    n.descendants().all(|d| d.attrs().is_empty() && d.attached().is_none())
+}
+
+/// The attribute index of the attribute named `name` (`dclass` is `class`).
+fn attr_of(kind: ElementKind, name: &str) -> Option<usize> {
+    kind.attr_index(if name == "dclass" { "class" } else { name })
+}
+
+/// The text of attribute `i` of `node` in `model` (`None`: not written, such as a
+/// reference to an element removed).
+fn value_text(model: &Model, node: &Node, i: usize) -> Result<Option<String>, SaveError> {
+    let Some(v) = node.attr(i) else { return Ok(None) };
+    let kind = node.kind();
+    let spec = kind.attr(i);
+    Ok(Some(match v {
+        Value::Reference(Reference::Element(t)) => {
+            let Some(target) = model.node_by_id(*t) else {
+                if spec.required {
+                    return Err(SaveError::MissingRequired {
+                        tag: kind.tag(),
+                        attribute: spec.name,
+                    });
+                }
+                return Ok(None);
+            };
+            match target.identifier() {
+                Some(n) => n.to_string(),
+                None if Some(target.id()) == root_class(model) => "main".to_string(),
+                None => {
+                    return Err(SaveError::UnnamedTarget { tag: kind.tag(), attribute: spec.name });
+                }
+            }
+        }
+        Value::File(f) => f.vfs_name(false),
+        v => {
+            let mut s = String::new();
+            v.write_plain(&mut s, FloatStyle::default());
+            s
+        }
+    }))
+}
+
+/// The root default class's element.
+fn root_class(model: &Model) -> Option<ElementId> {
+    let kind = ElementKind::ROOT.child("default")?;
+    model.root.child_of_kind(kind).map(Node::id)
+}
