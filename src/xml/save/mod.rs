@@ -31,7 +31,7 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
-use crate::schema::{AttrType, ElementKind};
+use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::{FloatStyle, Reference, Value};
 use crate::xml::source::{NO_RECORD, RecordKind, Source};
 use tag::Tag;
@@ -664,9 +664,14 @@ fn line_break(lead: &str) -> Option<String> {
     })
 }
 
-/// Whether the node is an empty singleton (nothing written for it).
+/// Whether the node is an empty singleton, holding only empty singletons (every
+/// model has them; nothing is written for them).
 fn blank(n: &Node) -> bool {
-    n.descendants().all(|d| d.attrs().is_empty() && d.attached().is_none())
+    n.descendants().all(|d| {
+        d.kind().multiplicity() == Multiplicity::Singleton
+            && d.attrs().is_empty()
+            && d.attached().is_none()
+    })
 }
 
 /// The attribute index of the attribute named `name` (`dclass` is `class`).
@@ -713,3 +718,6 @@ fn root_class(model: &Model) -> Option<ElementId> {
     let kind = ElementKind::ROOT.child("default")?;
     model.root.child_of_kind(kind).map(Node::id)
 }
+
+#[cfg(test)]
+mod tests;
