@@ -494,7 +494,12 @@ impl Saver<'_> {
             prev_end = crec.end_end;
             let at = match crec.kind {
                 RecordKind::Include => {
-                    waiting.push((k, [lead, Item::Record(c)]));
+                    // Where the elements it brings are (an include inside an element),
+                    // else with the next element read.
+                    match self.included_at(c, &pos) {
+                        Some(at) => segments.push(((at, k), [lead, Item::Record(c)])),
+                        None => waiting.push((k, [lead, Item::Record(c)])),
+                    }
                     continue;
                 }
                 // A tag standing for this very element (the root class's `/`).
@@ -531,6 +536,21 @@ impl Saver<'_> {
         }
         segments.sort_by_key(|(key, _)| *key);
         Ok(segments.into_iter().flat_map(|(_, items)| items).collect())
+    }
+
+    /// The last position among `pos` of the elements the include `c` brings (the
+    /// children of the included file's root, recorded right after the include).
+    fn included_at(&self, c: u32, pos: &HashMap<ElementId, usize>) -> Option<usize> {
+        let root = c + 1;
+        let rec = self.src.records.get(root as usize)?;
+        if rec.kind != RecordKind::FileRoot || rec.parent != NO_RECORD {
+            return None;
+        }
+        self.src
+            .children(root)
+            .filter_map(|k| pos.get(&self.src.records[k as usize].id))
+            .max()
+            .copied()
     }
 
     /// Whether the element `child` has a tag under a tag of `parent`.
