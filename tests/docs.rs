@@ -110,6 +110,15 @@ fn readme_real_model_floor_is_the_ci_floor() {
     assert!(sample >= ci, "the README's sample run passes {sample}, below the floor {ci}");
 }
 
+/// The README's lossless-save section: the floor it states is `.ci/run`'s.
+#[test]
+fn readme_lossless_floor_is_the_ci_floor() {
+    let ci = number_after(&read(".ci/run"), "\n  lossless_floor=", ".ci/run");
+    let readme = read("README.md");
+    let stated = number_after(&readme, "requires all ", "README.md, lossless save");
+    assert_eq!(stated, ci, "the README states a lossless floor of {stated}, .ci/run's is {ci}");
+}
+
 fn case_dirs() -> Vec<PathBuf> {
     let cases = root().join("tests/conformance/cases");
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(&cases)

@@ -245,3 +245,14 @@ impl SourceBuilder {
         Source { files: self.files, records: self.records, by_id, read }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The README states the cost per tag: a record and a by-element entry.
+    #[test]
+    fn a_tag_costs_64_bytes() {
+        assert_eq!(std::mem::size_of::<Record>() + std::mem::size_of::<(ElementId, u32)>(), 64);
+    }
+}

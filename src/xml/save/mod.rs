@@ -485,6 +485,7 @@ impl Saver<'_> {
         let mut waiting: Vec<(usize, [Item; 2])> = Vec::new();
         let mut prev_end = rec.start_end;
         let mut ws: Option<String> = None;
+        let mut last_at = 0;
         for (k, c) in self.src.children(r).enumerate() {
             let crec = &self.src.records[c as usize];
             let lead = Item::Text(rec.file, prev_end, crec.start);
@@ -503,10 +504,14 @@ impl Saver<'_> {
                     continue;
                 }
                 // A tag standing for this very element (the root class's `/`).
-                _ if crec.id == id => Some(0),
+                _ if crec.id == id => Some(last_at),
+                // Singletons keep their place in the text (the model holds them in
+                // schema order): with the element before them.
+                _ if self.single(crec.id) => pos.contains_key(&crec.id).then_some(last_at),
                 _ => pos.get(&crec.id).copied(),
             };
             let Some(at) = at else { continue };
+            last_at = at;
             for (j, items) in waiting.drain(..) {
                 segments.push(((at, j), items));
             }
@@ -538,19 +543,23 @@ impl Saver<'_> {
         Ok(segments.into_iter().flat_map(|(_, items)| items).collect())
     }
 
-    /// The last position among `pos` of the elements the include `c` brings (the
-    /// children of the included file's root, recorded right after the include).
+    /// The last position among `pos` of the repeated elements the include `c` brings
+    /// (the children of the included file's root, recorded right after the include).
     fn included_at(&self, c: u32, pos: &HashMap<ElementId, usize>) -> Option<usize> {
         let root = c + 1;
         let rec = self.src.records.get(root as usize)?;
         if rec.kind != RecordKind::FileRoot || rec.parent != NO_RECORD {
             return None;
         }
-        self.src
-            .children(root)
-            .filter_map(|k| pos.get(&self.src.records[k as usize].id))
-            .max()
-            .copied()
+        // Singletons say nothing of the order (the model holds them in schema order).
+        let brought = self.src.children(root).map(|k| self.src.records[k as usize].id);
+        brought.filter(|id| !self.single(*id)).filter_map(|id| pos.get(&id)).max().copied()
+    }
+
+    /// Whether the element `id` is a singleton or on-demand element (not repeated).
+    fn single(&self, id: ElementId) -> bool {
+        let node = self.model.node_by_id(id);
+        node.is_some_and(|n| n.kind().multiplicity() != Multiplicity::Repeated)
     }
 
     /// Whether the element `child` has a tag under a tag of `parent`.
