@@ -23,60 +23,7 @@ pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<
         }
     }
     let forget = !composed;
-    // One pass over the elements' attributes (cold since they were read): auto names
-    // forgotten, the index's names (document order, so that a duplicate is reported at
-    // its second occurrence, and first, so that references can be resolved in the
-    // arena), each element's identifier kept for its index entry, and which elements
-    // hold named references.
-    let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
-    // The names holding a `/`, by the part before it (`Index::slashed`).
-    let mut slashed: imbl::HashMap<SmolStr, u32> = imbl::HashMap::new();
-    let mut idents: Vec<Option<SmolStr>> = Vec::with_capacity(r.arena.len());
-    let mut with_refs: Vec<usize> = Vec::new();
-    for (i, p) in r.arena.iter_mut().enumerate() {
-        if forget {
-            forget_auto_name(p);
-        }
-        let ident = p.kind.identifier().and_then(|ident| {
-            match p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v) {
-                Some(Value::Identifier(n)) => Some(n.clone()),
-                _ => None,
-            }
-        });
-        if let (Some(ns), Some(n)) = (p.kind.namespace(), &ident) {
-            if names.insert((ns, n.clone()), p.id).is_some() {
-                let (kind, offset) =
-                    (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
-                return Err(r.err(kind, offset));
-            }
-            if let Some(segment) = crate::model::slashed_segment(n) {
-                *slashed.entry(segment.into()).or_insert(0) += 1;
-            }
-        }
-        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
-            with_refs.push(i);
-        }
-        idents.push(ident);
-    }
-    // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name) both
-    // name the root class, unless a class has that name.
-    let root_class = r
-        .arena
-        .iter()
-        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
-        .map(|d| d.id);
-    let lookup = |ns: crate::Namespace, n: &str| {
-        names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
-            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
-                .then_some(root_class)
-                .flatten()
-        })
-    };
-    for i in with_refs {
-        // Only lists with a named reference change (and are uniquely owned here).
-        let p = &mut r.arena[i];
-        resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
-    }
+    let (names, slashed, mut idents) = index_names(r, forget)?;
     if let Some(i) = ElementKind::ROOT.attr_index("model") {
         // A missing or empty name becomes `unnamed_model`, as in the reference.
         let name =
@@ -174,6 +121,79 @@ pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<
     drop(built);
     let index = index.finish(&root, names, slashed);
     Ok(Model::from_parts(root, index, r.ctx.clone()))
+}
+
+/// The index's names of the arena (`imbl` maps: by namespace and name; the names
+/// holding a `/`, counted by the part before it) and each entry's identifier; named
+/// references that name an element read are resolved to it, and (with `forget`)
+/// automatic names forgotten.
+#[allow(clippy::type_complexity)]
+fn index_names(
+    r: &mut Reader<'_>,
+    forget: bool,
+) -> Result<
+    (
+        imbl::HashMap<(crate::Namespace, SmolStr), ElementId>,
+        imbl::HashMap<SmolStr, u32>,
+        Vec<Option<SmolStr>>,
+    ),
+    ReadError,
+> {
+    // One pass over the elements' attributes (cold since they were read): auto names
+    // forgotten, the index's names (document order, so that a duplicate is reported at
+    // its second occurrence, and first, so that references can be resolved in the
+    // arena), each element's identifier kept for its index entry, and which elements
+    // hold named references.
+    let mut names: imbl::HashMap<(crate::Namespace, SmolStr), ElementId> = imbl::HashMap::new();
+    // The names holding a `/`, by the part before it (`Index::slashed`).
+    let mut slashed: imbl::HashMap<SmolStr, u32> = imbl::HashMap::new();
+    let mut idents: Vec<Option<SmolStr>> = Vec::with_capacity(r.arena.len());
+    let mut with_refs: Vec<usize> = Vec::new();
+    for (i, p) in r.arena.iter_mut().enumerate() {
+        if forget {
+            forget_auto_name(p);
+        }
+        let ident = p.kind.identifier().and_then(|ident| {
+            match p.attrs.iter().find(|(k, _)| *k as usize == ident).map(|(_, v)| v) {
+                Some(Value::Identifier(n)) => Some(n.clone()),
+                _ => None,
+            }
+        });
+        if let (Some(ns), Some(n)) = (p.kind.namespace(), &ident) {
+            if names.insert((ns, n.clone()), p.id).is_some() {
+                let (kind, offset) =
+                    (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
+                return Err(r.err(kind, offset));
+            }
+            if let Some(segment) = crate::model::slashed_segment(n) {
+                *slashed.entry(segment.into()).or_insert(0) += 1;
+            }
+        }
+        if p.attrs.iter().any(|(_, v)| matches!(v, Value::Reference(Reference::Name(_)))) {
+            with_refs.push(i);
+        }
+        idents.push(ident);
+    }
+    // `/` (as written by this crate and dm_control) and `main` (MuJoCo's name) both
+    // name the root class, unless a class has that name.
+    let root_class = r
+        .arena
+        .iter()
+        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
+        .map(|d| d.id);
+    let lookup = |ns: crate::Namespace, n: &str| {
+        names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
+            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
+                .then_some(root_class)
+                .flatten()
+        })
+    };
+    for i in with_refs {
+        // Only lists with a named reference change (and are uniquely owned here).
+        let p = &mut r.arena[i];
+        resolve_attrs(p.kind, Arc::make_mut(&mut p.attrs), lookup);
+    }
+    Ok((names, slashed, idents))
 }
 
 /// The number of nodes of an empty singleton of kind `k` (its own empty singletons
