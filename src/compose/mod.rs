@@ -3,3 +3,9 @@
 
 mod attach;
 mod include;
+mod reopen;
+mod scene;
+
+pub(crate) use reopen::reopen;
+
+pub use scene::{SavedScene, Scene, ScenePart};

@@ -706,7 +706,28 @@ fn parse(
     Ok(Parsed { includes, model_name })
 }
 
+/// Reads one document; the main one (not an include) with the `<attach>`es that have
+/// a saved scene's shape reopened as attachments (`compose::reopen`).
 fn read_document(
+    text: &str,
+    file: Option<PathBuf>,
+    ctx: FileContext,
+    max_depth: usize,
+    tree: &mut Includes,
+    model_files: &ModelFiles,
+) -> Result<Model, ReadError> {
+    let main = tree.stack.len() == 1;
+    let model = read_literal(text, file, ctx, max_depth, tree, model_files)?;
+    if !main {
+        return Ok(model);
+    }
+    Ok(crate::compose::reopen(model, text, &mut |text, path, ctx| {
+        let mut tree = Includes::new(canonical(path));
+        read_document(text, Some(path.to_path_buf()), ctx, max_depth, &mut tree, model_files)
+    }))
+}
+
+fn read_literal(
     text: &str,
     file: Option<PathBuf>,
     ctx: FileContext,
