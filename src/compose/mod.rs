@@ -9,3 +9,6 @@ mod scene;
 pub(crate) use reopen::reopen;
 
 pub use scene::{SavedScene, Scene, ScenePart};
+
+#[cfg(test)]
+mod scene_tests;

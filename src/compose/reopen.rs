@@ -53,9 +53,9 @@
 //! `robot/`-named geom, a rename that renames a literal name), so none is made: save
 //! with [`Model::save_scene`] to reopen composed.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use smol_str::SmolStr;
@@ -77,6 +77,11 @@ const MAX_NESTING: usize = 16;
 thread_local! {
     /// How many reopenings are in progress on this thread (a part reopens its parts).
     static NESTING: Cell<usize> = const { Cell::new(0) };
+    /// The parts read by the reopening in progress, by their file (its canonical
+    /// path and the SHA-1 of its contents): a part that several parts attach is read
+    /// once and shared, as it was before saving. Emptied when the outermost
+    /// reopening ends.
+    static READ: RefCell<HashMap<(PathBuf, String), Model>> = RefCell::new(HashMap::new());
 }
 
 /// Reads a part's file as a model (reopened in turn): its text, its path, and the
@@ -102,6 +107,9 @@ pub(crate) fn reopen(model: Model, text: &str, read: &mut ReadPart<'_>) -> Model
     NESTING.with(|n| n.set(depth + 1));
     let out = reopened(&model, text, read);
     NESTING.with(|n| n.set(depth));
+    if depth == 0 {
+        READ.with(|r| r.borrow_mut().clear());
+    }
     out.unwrap_or(model)
 }
 
@@ -136,8 +144,17 @@ fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model>
         };
         let Ok(text) = std::str::from_utf8(file.contents()) else { continue };
         let Ok((full, _)) = model.files.locate(None, path) else { continue };
+        let key = (
+            std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone()),
+            file.sha1_hex().to_string(),
+        );
+        if let Some(part) = READ.with(|r| r.borrow().get(&key).cloned()) {
+            parts.insert(node.id(), part);
+            continue;
+        }
         let ctx = model.files.for_included(&full);
         if let Ok(part) = read(text, &full, ctx) {
+            READ.with(|r| r.borrow_mut().insert(key, part.clone()));
             parts.insert(node.id(), part);
         }
     }

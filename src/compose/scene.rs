@@ -85,7 +85,8 @@ impl Scene {
     }
 
     /// Every part, each distinct attached model value once (at any depth), in the
-    /// order they are first met (document order, depth first).
+    /// order they are first met: the root's attached values in document order, then
+    /// those attached to each of them, and so on.
     ///
     /// Time: O(1).
     pub fn parts(&self) -> &[ScenePart] {
@@ -182,7 +183,7 @@ impl Model {
     /// # Ok::<(), mjcf::Error>(())
     /// ```
     pub fn to_scene(&self, file_name: &str) -> Result<Scene, WriteError> {
-        let order = distinct_models(self);
+        let (order, children) = distinct_models(self);
         // File names: the root's is reserved; each part's after its model's name.
         let mut taken: Vec<String> = vec![file_name.to_ascii_lowercase()];
         let mut names: Vec<String> = Vec::with_capacity(order.len());
@@ -200,23 +201,29 @@ impl Model {
             taken.push(name.to_ascii_lowercase());
             names.push(name);
         }
-        // Children before parents: a part's asset `<model>` holds its children's text.
+        // Children before parents (post-order over the values, which attach one
+        // another without cycles): a part's asset `<model>` holds its children's text.
         let mut files: Vec<Option<FileAsset>> = vec![None; order.len()];
         let mut parts: Vec<Option<Model>> = vec![None; order.len()];
-        let position = |m: &Model| order.iter().position(|o| o.ptr_eq(m));
-        for i in (0..order.len()).rev() {
-            let m = order[i];
-            // Its own attachments, each distinct value once, in attach order.
-            let mut children: Vec<(&Model, FileAsset)> = Vec::new();
-            for c in settings::attachments(m) {
-                if children.iter().any(|(d, _)| d.ptr_eq(c)) {
-                    continue;
-                }
-                if let Some(file) = position(c).and_then(|at| files[at].clone()) {
-                    children.push((c, file));
-                }
+        let mut stack: Vec<(usize, bool)> = vec![(0, false)];
+        while let Some((i, ready)) = stack.pop() {
+            if parts[i].is_some() {
+                continue;
             }
-            let part = transform(m, &children)?;
+            if !ready {
+                stack.push((i, true));
+                stack.extend(children[i].iter().map(|&c| (c, false)));
+                continue;
+            }
+            let mut own: Vec<(&Model, FileAsset)> = Vec::with_capacity(children[i].len());
+            for &c in &children[i] {
+                // Every child was made before its parent.
+                let file = files[c].clone().ok_or_else(|| {
+                    WriteError::Conflict(format!("the part of '{}' is missing", order[c].name()))
+                })?;
+                own.push((order[c], file));
+            }
+            let part = transform(order[i], &own)?;
             if i > 0 {
                 let text = write_part(&part)?;
                 let companions: Vec<(SmolStr, FileAsset)> = part
@@ -301,27 +308,56 @@ impl Model {
 }
 
 /// Every distinct model value of the composition (`model` first), each once, in the
-/// order first met: depth first, each model's attachments in document order.
-fn distinct_models(model: &Model) -> Vec<&Model> {
-    let mut order: Vec<&Model> = vec![model];
-    let mut by_root: HashMap<ElementId, Vec<usize>> = HashMap::new();
-    by_root.entry(model.root.id()).or_default().push(0);
+/// order first met (a model's attachments in document order, then theirs), and for
+/// each, the distinct values attached to it (their positions in that list, in attach
+/// order).
+fn distinct_models(model: &Model) -> (Vec<&Model>, Vec<Vec<usize>>) {
+    let mut values = Values { order: vec![model], by_root: HashMap::new() };
+    values.by_root.entry(model.root.id()).or_default().push(0);
     let mut stack: Vec<&Model> = vec![model];
     while let Some(m) = stack.pop() {
         let mut found = Vec::new();
         for node in m.root.descendants() {
-            let Some(a) = node.attached() else { continue };
-            let same = by_root.entry(a.model.root.id()).or_default();
-            if same.iter().any(|&i| order[i].ptr_eq(&a.model)) {
-                continue;
+            if let Some(a) = node.attached() {
+                if values.position(&a.model).is_none() {
+                    values.add(&a.model);
+                    found.push(&a.model);
+                }
             }
-            same.push(order.len());
-            order.push(&a.model);
-            found.push(&a.model);
         }
         stack.extend(found.into_iter().rev());
     }
-    order
+    let children = values
+        .order
+        .iter()
+        .map(|m| {
+            let mut own: Vec<usize> = Vec::new();
+            for i in settings::attachments(m).into_iter().filter_map(|c| values.position(c)) {
+                if !own.contains(&i) {
+                    own.push(i);
+                }
+            }
+            own
+        })
+        .collect();
+    (values.order, children)
+}
+
+/// Distinct model values, told apart by their root's id, then by `ptr_eq`.
+struct Values<'a> {
+    order: Vec<&'a Model>,
+    by_root: HashMap<ElementId, Vec<usize>>,
+}
+
+impl<'a> Values<'a> {
+    fn position(&self, m: &Model) -> Option<usize> {
+        self.by_root.get(&m.root.id())?.iter().copied().find(|&i| self.order[i].ptr_eq(m))
+    }
+
+    fn add(&mut self, m: &'a Model) {
+        self.by_root.entry(m.root.id()).or_default().push(self.order.len());
+        self.order.push(m);
+    }
 }
 
 /// A file stem for a model's name: its characters that are safe in a file name on
@@ -401,6 +437,8 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
             );
         }
     }
+    // Set if a frame's model has no asset (every attached value has one).
+    let mut missing = false;
     let root = model.root.rebuild(|n, children| {
         let parent_world = world_level.contains(&n.id());
         let mut changed = false;
@@ -413,6 +451,10 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
                     Some(_) => {
                         changed = true;
                         frame_as_body(new, n.kind(), parent_world, &joint_names, &asset_of)
+                            .unwrap_or_else(|| {
+                                missing = true;
+                                new.clone()
+                            })
                     }
                     None => new.clone(),
                 }
@@ -439,6 +481,12 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
         }
         if changed { n.with_children(children) } else { n.clone() }
     });
+    if missing {
+        return Err(WriteError::Conflict(format!(
+            "a model attached to '{}' has no part",
+            model.name()
+        )));
+    }
     let mut index = Index::default();
     index.insert_subtree(None, &root, 0).map_err(|d| {
         WriteError::Conflict(format!(
@@ -453,17 +501,23 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
 /// The attachment frame `frame` (a child of an element of kind `parent`) as a scene
 /// body named `scope/`, with its pose, its joints named as written and an `<attach>`
 /// of its model's asset; a MuJoCo `<frame>` where the composed writer writes one.
+/// `None` if its model has no asset in `asset_of`.
 fn frame_as_body(
     frame: &Node,
     parent: ElementKind,
     parent_world: bool,
     joint_names: &HashMap<ElementId, String>,
     asset_of: &[(&Model, ElementId)],
-) -> Node {
-    let Some(a) = frame.attached() else { return frame.clone() };
+) -> Option<Node> {
+    let a = frame.attached()?;
+    let asset = asset_of.iter().find(|(m, _)| m.ptr_eq(&a.model))?.1;
     let name = Value::Identifier(smol_str::format_smolstr!("{}/", a.scope));
-    let as_frame = parent_world && frame_keeps_bodies_top_level(frame);
-    let kind = if as_frame { parent.child("frame").unwrap_or(frame.kind()) } else { frame.kind() };
+    let kind = if kind_is_frame(frame, parent, parent_world) {
+        parent.child("frame")?
+    } else {
+        frame.kind()
+    };
+    let attach = kind.child("attach")?;
     let mut attrs: Vec<Attr> = frame
         .attrs()
         .iter()
@@ -489,19 +543,22 @@ fn frame_as_body(
             _ => c.clone(),
         })
         .collect();
-    if let (Some(attach), Some((_, asset))) =
-        (kind.child("attach"), asset_of.iter().find(|(m, _)| m.ptr_eq(&a.model)))
-    {
-        let attrs = attrs_of(
-            attach,
-            [
-                ("model", Value::Reference(Reference::Element(*asset))),
-                ("prefix", Value::String(smol_str::format_smolstr!("{}/", a.scope))),
-            ],
-        );
-        children.push_back(Node::new(ElementId::fresh(), attach, attrs, Default::default()));
-    }
-    Node::new(frame.id(), kind, attrs, children)
+    let attach_attrs = attrs_of(
+        attach,
+        [
+            ("model", Value::Reference(Reference::Element(asset))),
+            ("prefix", Value::String(smol_str::format_smolstr!("{}/", a.scope))),
+        ],
+    );
+    children.push_back(Node::new(ElementId::fresh(), attach, attach_attrs, Default::default()));
+    Some(Node::new(frame.id(), kind, attrs, children))
+}
+
+/// Whether the attachment frame `frame` (a child of an element of kind `parent`, in
+/// the world or not) is written as MuJoCo's `<frame>` (DESIGN D10), as the composed
+/// writer writes it.
+fn kind_is_frame(frame: &Node, parent: ElementKind, parent_world: bool) -> bool {
+    parent_world && parent.child("frame").is_some() && frame_keeps_bodies_top_level(frame)
 }
 
 /// The attributes `values` of an element of `kind` (those it has).
