@@ -41,7 +41,17 @@
 //!   actuators, sensors, keys, ... of the parts follow the parent's own in the order
 //!   of the `<attach>` elements in the document; the composed text takes attach order.
 //!   The two agree where models were attached in document order (a fleet attached
-//!   site by site, at the end of the worldbody).
+//!   site by site, at the end of the worldbody);
+//! - **automatic names**: an unnamed element of a part is written with its automatic
+//!   name in its file (`//unnamed_geom_0`), which MuJoCo prefixes
+//!   (`robot///unnamed_geom_0`, where the composed text has `robot//unnamed_geom_0`);
+//! - **a default class named `main`** below a part's root class: MuJoCo refuses the
+//!   part's file, as it refuses such a model written alone (the composed text prefixes
+//!   the class: `robot/main`).
+//!
+//! With the plain writer, a part whose root default class has a name of its own reads
+//! back as that class inside an unnamed root class (MuJoCo compiles it the same).
+//! The README's "Scenes" gives the figures (`mjcf-mujoco/tests/scenes.rs`).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
