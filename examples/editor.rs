@@ -1,4 +1,5 @@
-//! An editor session: a `History` of versions (O(1) clones), undo/redo, the library's diff.
+//! An editor session: a `History` of versions (O(1) clones), undo/redo, the library's diff,
+//! and the scene saved as MuJoCo composes files, reopened composed.
 use mjcf::Namespace::{Body, Geom, Joint, Site};
 use mjcf::{History, Model, element};
 
@@ -44,8 +45,10 @@ fn main() -> Result<(), mjcf::Error> {
     history.edit("rename", |m| m.rename_scope_mut("quadruped_1", "dog"))?;
     history.edit("mass", |m| m.set_attr_mut(&m.lookup(Geom, "dog/torso")?, "mass", 20))?;
     history.edit("remove", |m| m.remove_mut(&m.lookup(Joint, "dog/yaw_front_left")?))?;
-    let again = Model::from_xml_str(&history.current().to_xml_string()?)?; // names with '/' read
-    let bodies = again.find_all(Body).len();
-    println!("{} versions; read back: {bodies} bodies", history.len());
+    let current = history.current(); // saved as MuJoCo's <attach>es, reopened composed:
+    let saved = current.save_scene(std::env::temp_dir(), "editor.xml")?;
+    let reopened = Model::from_path(saved.path())?.detach("dog")?;
+    let bodies = reopened.find_all(Body).len();
+    println!("{} versions; reopened: {bodies} bodies", history.len());
     Ok(())
 }

@@ -83,6 +83,7 @@ mod suggest;
 mod value;
 mod xml;
 
+pub use crate::compose::{SavedScene, Scene, ScenePart};
 pub use crate::error::{
     EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
 };

@@ -23,6 +23,9 @@ struct FileData {
     /// For a model file (asset `<model file>`): the files it names, by their path
     /// relative to it.
     companions: Arc<[(SmolStr, FileAsset)]>,
+    /// Written as `stem.ext` whatever the writer's hash option: a file whose name was
+    /// chosen (a part of a saved scene, `compose::scene`), never one read.
+    fixed_name: bool,
 }
 
 impl FileAsset {
@@ -40,7 +43,22 @@ impl FileAsset {
             contents,
             sha1,
             companions: Arc::from([]),
+            fixed_name: false,
         }))
+    }
+
+    /// A file written under exactly `stem` + `extension`, with or without the
+    /// writer's hash option: the parts of a saved scene, named by the scene.
+    ///
+    /// Time: as [`FileAsset::new`].
+    pub(crate) fn with_fixed_name(
+        stem: &str,
+        extension: &str,
+        contents: impl Into<Arc<[u8]>>,
+    ) -> FileAsset {
+        let mut file = FileAsset::new(stem, extension, contents);
+        Arc::make_mut(&mut file.0).fixed_name = true;
+        file
     }
 
     /// Creates an asset from a path as written in MJCF and the file's contents: the
@@ -70,12 +88,13 @@ impl FileAsset {
             Some(original) if !original.is_empty() => original,
             _ => stem,
         };
-        if *self.0.stem == *stem && *self.0.extension == *ext {
+        if *self.0.stem == *stem && *self.0.extension == *ext && !self.0.fixed_name {
             return self.clone();
         }
         FileAsset(Arc::new(FileData {
             stem: stem.into(),
             extension: ext.into(),
+            fixed_name: false,
             ..FileData::clone(&self.0)
         }))
     }
@@ -132,6 +151,9 @@ impl FileAsset {
     /// Time: O(length of the name).
     pub fn vfs_name(&self, with_hash: bool) -> String {
         let d = &self.0;
+        if d.fixed_name {
+            return format!("{}{}", d.stem, d.extension);
+        }
         match (d.stem.is_empty(), with_hash) {
             (true, _) => format!("{}{}", d.sha1, d.extension),
             (false, true) => {
@@ -154,7 +176,8 @@ impl PartialEq for FileAsset {
         Arc::ptr_eq(&self.0, &other.0)
             || (self.0.sha1 == other.0.sha1
                 && self.0.stem == other.0.stem
-                && self.0.extension == other.0.extension)
+                && self.0.extension == other.0.extension
+                && self.0.fixed_name == other.0.fixed_name)
     }
 }
 
@@ -166,6 +189,7 @@ impl std::hash::Hash for FileAsset {
         self.0.sha1.hash(state);
         self.0.stem.hash(state);
         self.0.extension.hash(state);
+        self.0.fixed_name.hash(state);
     }
 }
 

@@ -926,7 +926,7 @@ fn emit_parts(
 /// freejoints, which MuJoCo accepts only on top-level bodies, and the frame itself
 /// neither moves nor has mass (no joints, no inertial) nor carries body-only
 /// attributes (`user`, `mocap`). Any other frame stays a body, as in the reference.
-fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
+pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
     let Some(a) = frame.attached() else { return false };
     if !frame.children().is_empty() {
         return false;

@@ -84,6 +84,11 @@ impl Includes {
         }
     }
 
+    /// Whether the document being read is the main one (no include is open).
+    pub(super) fn at_main(&self) -> bool {
+        self.stack.len() == 1
+    }
+
     /// Enters the file `key` (checked by [`include_source`]).
     pub(super) fn push(&mut self, key: PathBuf) {
         self.seen.insert(key.clone());

@@ -772,7 +772,35 @@ fn read_element(
     }
 }
 
+/// Reads one document; the main one (not an include) with the `<attach>`es that have
+/// a saved scene's shape reopened as attachments (`compose::reopen`), each part read
+/// from its file with its own source kept (so that it saves losslessly in turn).
 fn read_document(
+    text: &str,
+    file: Option<PathBuf>,
+    ctx: FileContext,
+    max_depth: usize,
+    tree: &mut Includes,
+    model_files: &ModelFiles,
+    src: Option<SrcFile>,
+) -> Result<Model, ReadError> {
+    let main = tree.at_main();
+    let keep_source = tree.src.is_some();
+    let model = read_literal(text, file, ctx, max_depth, tree, model_files, src)?;
+    if !main {
+        return Ok(model);
+    }
+    Ok(crate::compose::reopen(model, text, &mut |text, path, ctx| {
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let mut tree = Includes::new(canonical(path), Some(dir), keep_source);
+        let src = tree.record_file(Some(path), true, text, true, None);
+        let file = Some(path.to_path_buf());
+        let m = read_document(text, file, ctx, max_depth, &mut tree, model_files, src)?;
+        Ok(tree.attach_source(m))
+    }))
+}
+
+fn read_literal(
     text: &str,
     file: Option<PathBuf>,
     ctx: FileContext,

@@ -1,0 +1,494 @@
+//! Reading a scene back composed: MuJoCo's `<attach>` of an asset `<model>`, at a
+//! frame-shaped body, becomes an attachment of that model again.
+//!
+//! # What reopens
+//! A body (or, in the world, a MuJoCo `<frame>`) reopens as the attachment frame of
+//! scope `s` when it has exactly the shape [`Model::save_scene`] writes:
+//! - it is named `s/`, with `s` a scope name (not empty, no `/`), and sets nothing
+//!   but a frame's attributes (`pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`,
+//!   `euler`, and on a body `user` and `mocap`);
+//! - its children are joints (a freejoint only in the world), at most one inertial
+//!   (a body's), and last one `<attach model="M" prefix="s/"/>` with no `body` or
+//!   `frame`; `M` names an asset `<model name="M" file="...">` of the file itself
+//!   (not of an include), with no `content_type`, whose file reads as a model (and
+//!   reopens in turn: nested scenes nest);
+//! - its joints are named as the composed writer names frame joints: `s/` (the first
+//!   unnamed one), `s/j/` (a joint named `j`), or unnamed (written with its automatic
+//!   name); after reopening, each is written with exactly the name it had;
+//! - it is a `<frame>` exactly where the composed writer writes the attachment as one
+//!   (DESIGN D10: in the world, no joints, and the model's top-level bodies carry
+//!   free joints), a body everywhere else; it is not inside a `<replicate>`;
+//! - the file's own global settings already hold the model's (MuJoCo keeps the
+//!   parent's settings; merging the model's into them must change nothing), and no
+//!   other name of the file starts with `s/` (nor does another attachment use `s`).
+//!
+//! Each body that reopens becomes a frame holding the model read from `M`'s file (one
+//! value per asset, shared by all its attachments), in document order (which becomes
+//! the attach order); an asset `<model>` that only reopened attachments used is
+//! removed. So `detach`, `rename_scope`, `edit_attached` and the diff work after
+//! reopening, and the reopened model writes the same composed MJCF as the model that
+//! was saved.
+//!
+//! # What stays as it is
+//! Every other `<attach>` stays an element, as the file holds it (and MuJoCo reads
+//! it): one with `body=` or `frame=` (a subtree of the model, which an attachment
+//! cannot hold), a prefix that is not `<scope>/` or that differs from the name of the
+//! body holding it, a body holding other content (a geom, a site, a child body, a
+//! second `<attach>`) or other attributes (`childclass`, `gravcomp`, ...), an
+//! `<attach>` directly in the worldbody or in a `<frame>` that is not the D10 shape,
+//! a model whose settings the file does not already hold (MuJoCo keeps the file's;
+//! a composition would merge the model's), a model file that cannot be read. Never
+//! an error: the file reads as before, literally.
+//!
+//! # Flat files
+//! A composed model written as one flat file ([`Model::to_xml_string`], or
+//! dm_control's `export_with_assets`) does not reopen composed: it reads as one model
+//! with literal names (`robot/torso`, DESIGN D13). What separated the attached models
+//! is gone from such a file: their sections (actuators, sensors, keys, assets,
+//! default classes) are merged into one list each, told apart only by name prefixes
+//! that a literal name may hold too; their global settings are merged, with no trace
+//! of which model set what; and N attachments of one model are N copies, whose
+//! sharing (one value) could only be guessed from equal content. A guess that is
+//! wrong once changes the model silently (a detach that removes the parent's own
+//! `robot/`-named geom, a rename that renames a literal name), so none is made: save
+//! with [`Model::save_scene`] to reopen composed.
+
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use smol_str::SmolStr;
+
+use crate::error::ReadError;
+use crate::files::FileContext;
+use crate::model::frame::FRAME_ATTRS;
+use crate::model::naming::Written;
+use crate::model::settings;
+use crate::model::tree::{Attached, Attr, ElementId, Node};
+use crate::model::{Index, Model, Walk};
+use crate::schema::ElementKind;
+use crate::seq::Seq;
+use crate::value::{Reference, Value};
+
+/// How deep reopened scenes may nest (as asset model files may: `model::build`).
+const MAX_NESTING: usize = 16;
+
+thread_local! {
+    /// How many reopenings are in progress on this thread (a part reopens its parts).
+    static NESTING: Cell<usize> = const { Cell::new(0) };
+    /// The parts read by the reopening in progress, by their file (its canonical
+    /// path and the SHA-1 of its contents): a part that several parts attach is read
+    /// once and shared, as it was before saving. Emptied when the outermost
+    /// reopening ends.
+    static READ: RefCell<HashMap<(PathBuf, String), Model>> = RefCell::new(HashMap::new());
+}
+
+/// Reads a part's file as a model (reopened in turn): its text, its path, and the
+/// file context its own files resolve in.
+pub(crate) type ReadPart<'a> = dyn FnMut(&str, &Path, FileContext) -> Result<Model, ReadError> + 'a;
+
+/// `model`, read literally from `text`, with every `<attach>` that has the shape of a
+/// saved scene's reopened as an attachment (see the module documentation); `model`
+/// itself when none has.
+///
+/// Time: O(L) to look for `<attach` in the `L` bytes of text; where there is one,
+/// O(L + n log n) more (the asset models' paths read from the text, the tree rebuilt
+/// and indexed, at most once per attachment that does not reopen), plus reading
+/// each part.
+pub(crate) fn reopen(model: Model, text: &str, read: &mut ReadPart<'_>) -> Model {
+    if !text.contains("<attach") {
+        return model;
+    }
+    let depth = NESTING.with(Cell::get);
+    if depth >= MAX_NESTING {
+        return model;
+    }
+    NESTING.with(|n| n.set(depth + 1));
+    let out = reopened(&model, text, read);
+    NESTING.with(|n| n.set(depth));
+    if depth == 0 {
+        READ.with(|r| r.borrow_mut().clear());
+    }
+    out.unwrap_or(model)
+}
+
+/// A body that reopens, if the checks after building agree.
+#[derive(Clone)]
+struct Candidate {
+    /// The body (or `<frame>`); its id becomes the frame's.
+    id: ElementId,
+    scope: SmolStr,
+    /// The asset `<model>` its `<attach>` names.
+    asset: ElementId,
+    /// Written as MuJoCo's `<frame>`.
+    as_frame: bool,
+}
+
+fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model> {
+    let paths = asset_model_paths(text);
+    let asset_kind = ElementKind::ROOT.child("asset")?;
+    let asset = model.root.child_of_kind(asset_kind)?;
+    // The asset models this file names itself, read (each once).
+    let mut parts: HashMap<ElementId, Model> = HashMap::new();
+    for node in asset.children().iter().filter(|c| c.kind().tag() == "model") {
+        let kind = node.kind();
+        let Some(name) = node.identifier() else { continue };
+        let Some(path) = paths.get(name) else { continue };
+        let has = |a: &str| kind.attr_index(a).is_some_and(|i| node.attr(i).is_some());
+        if has("content_type") {
+            continue;
+        }
+        let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| node.attr(i)) else {
+            continue;
+        };
+        let Ok(text) = std::str::from_utf8(file.contents()) else { continue };
+        let Ok((full, _)) = model.files.locate(None, path) else { continue };
+        let key = (
+            std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone()),
+            file.sha1_hex().to_string(),
+        );
+        if let Some(part) = READ.with(|r| r.borrow().get(&key).cloned()) {
+            parts.insert(node.id(), part);
+            continue;
+        }
+        let ctx = model.files.for_included(&full);
+        if let Ok(part) = read(text, &full, ctx) {
+            READ.with(|r| r.borrow_mut().insert(key, part.clone()));
+            parts.insert(node.id(), part);
+        }
+    }
+    if parts.is_empty() {
+        return None;
+    }
+    // The parent's own settings must already hold each part's.
+    let own: Arc<[Node]> = settings::own_sections(model).into();
+    parts.retain(|_, part| {
+        settings::merged(part)
+            .and_then(|theirs| settings::folded(&own, &theirs))
+            .is_ok_and(|f| Arc::ptr_eq(&f, &own))
+    });
+    let mut candidates = find_candidates(model, &parts);
+    // Build; drop what the built model says did not reopen exactly; build again.
+    loop {
+        if candidates.is_empty() {
+            return None;
+        }
+        let (built, refused) = build(model, &candidates, &parts)?;
+        if refused.is_empty() {
+            return Some(built);
+        }
+        candidates.retain(|c| !refused.contains(&c.id));
+    }
+}
+
+/// The `file` of every asset `<model name=...>` written in `text` itself (not in an
+/// include), by name.
+fn asset_model_paths(text: &str) -> HashMap<String, String> {
+    use quick_xml::events::Event;
+    let mut out = HashMap::new();
+    let mut reader = quick_xml::Reader::from_str(text);
+    // The open elements' tags.
+    let mut open: Vec<String> = Vec::new();
+    loop {
+        let (tag, empty) = match reader.read_event() {
+            Ok(Event::Start(t)) => (t, false),
+            Ok(Event::Empty(t)) => (t, true),
+            Ok(Event::End(_)) => {
+                open.pop();
+                continue;
+            }
+            Ok(Event::Eof) | Err(_) => break,
+            Ok(_) => continue,
+        };
+        let name = tag.name().as_ref().to_string();
+        if open.len() == 2 && open[1] == "asset" && name == "model" {
+            let attr = |key: &str| {
+                let a = tag.try_get_attribute(key).ok()??;
+                a.normalized_value(quick_xml::XmlVersion::default()).ok().map(|v| v.into_owned())
+            };
+            if let (Some(n), Some(f)) = (attr("name"), attr("file")) {
+                out.insert(n, f);
+            }
+        }
+        if !empty {
+            open.push(name);
+        }
+    }
+    out
+}
+
+/// The bodies and frames with a scene's attachment shape whose model is among
+/// `parts` (before the checks that need the built model).
+fn find_candidates(model: &Model, parts: &HashMap<ElementId, Model>) -> Vec<Candidate> {
+    let Some(wb) = ElementKind::ROOT.child("worldbody").and_then(|k| model.root.child_of_kind(k))
+    else {
+        return Vec::new();
+    };
+    let mut out: Vec<Candidate> = Vec::new();
+    // (node, whether it is in the world: the worldbody or a `<frame>` there).
+    let mut stack: Vec<(&Node, bool)> = vec![(wb, true)];
+    while let Some((parent, world)) = stack.pop() {
+        for c in parent.children().iter().rev() {
+            match c.kind().tag() {
+                "body" => {
+                    if let Some(cand) = candidate(parent, c, world, parts) {
+                        out.push(cand);
+                    } else {
+                        stack.push((c, false));
+                    }
+                }
+                "frame" => {
+                    if let Some(cand) = candidate(parent, c, world, parts) {
+                        out.push(cand);
+                    } else {
+                        stack.push((c, world));
+                    }
+                }
+                // A `<replicate>`'s content stays as it is.
+                _ => {}
+            }
+        }
+    }
+    // Document order (the walk took the last child first).
+    out.reverse();
+    // A scope used twice is ambiguous: neither reopens.
+    let mut count: HashMap<SmolStr, usize> = HashMap::new();
+    for c in &out {
+        *count.entry(c.scope.clone()).or_default() += 1;
+    }
+    out.retain(|c| count[&c.scope] == 1);
+    out
+}
+
+/// `node` (a child of `parent`) as a candidate, if it has the shape.
+fn candidate(
+    parent: &Node,
+    node: &Node,
+    world: bool,
+    parts: &HashMap<ElementId, Model>,
+) -> Option<Candidate> {
+    let kind = node.kind();
+    let is_frame = kind.tag() == "frame";
+    if is_frame && !world {
+        return None;
+    }
+    let (attach, own) =
+        node.children().iter().collect::<Vec<_>>().split_last().map(|(a, o)| (*a, o.to_vec()))?;
+    if attach.kind().tag() != "attach" {
+        return None;
+    }
+    // The `<attach>`: a model and a prefix `s/`, nothing else.
+    let ak = attach.kind();
+    let mut asset = None;
+    let mut prefix = None;
+    for (i, v) in attach.attrs() {
+        match (ak.attr(*i as usize).name, v) {
+            ("model", Value::Reference(Reference::Element(id))) => asset = Some(*id),
+            ("prefix", Value::String(p)) => prefix = Some(p.clone()),
+            _ => return None,
+        }
+    }
+    let (asset, prefix) = (asset?, prefix?);
+    parts.get(&asset)?;
+    let scope = prefix.strip_suffix('/')?;
+    if scope.is_empty() || scope.contains('/') || crate::model::check_model_name(scope).is_err() {
+        return None;
+    }
+    if node.identifier() != Some(prefix.as_str()) {
+        return None;
+    }
+    // A frame's attributes only.
+    let ok_attr = |name: &str| {
+        name == "name"
+            || (is_frame && FRAME_ATTRS[..6].contains(&name))
+            || (!is_frame && (FRAME_ATTRS.contains(&name) || name == "mocap"))
+    };
+    if !node.attrs().iter().all(|(i, _)| ok_attr(kind.attr(*i as usize).name)) {
+        return None;
+    }
+    // Joints (a freejoint only in the world) and one inertial, on a body only.
+    if is_frame && !own.is_empty() {
+        return None;
+    }
+    let in_world = parent.kind().tag() == "worldbody" || world;
+    let mut inertials = 0;
+    for c in &own {
+        match c.kind().tag() {
+            "joint" => {}
+            "freejoint" if in_world => {}
+            "inertial" => inertials += 1,
+            _ => return None,
+        }
+        if c.kind().namespace().is_some() {
+            frame_joint_name(scope, c.identifier())?;
+        }
+    }
+    if inertials > 1 {
+        return None;
+    }
+    Some(Candidate { id: node.id(), scope: scope.into(), asset, as_frame: is_frame })
+}
+
+/// What a joint named `name` on the frame body of scope `scope` is named as a frame
+/// joint: `Some(None)` for unnamed (`s/`, or no name), `Some(Some(j))` for `s/j/`;
+/// `None` for a name no frame joint is written with.
+fn frame_joint_name(scope: &str, name: Option<&str>) -> Option<Option<SmolStr>> {
+    let Some(name) = name.filter(|n| !n.is_empty()) else { return Some(None) };
+    let rest = name.strip_prefix(scope)?.strip_prefix('/')?;
+    if rest.is_empty() {
+        return Some(None);
+    }
+    let j = rest.strip_suffix('/')?;
+    (!j.is_empty() && !j.contains('/')).then(|| Some(j.into()))
+}
+
+/// The model with `candidates` reopened, and the candidates the built model shows
+/// did not reopen exactly (their joints' or their tag's written form differs, or a
+/// literal name of the file starts with their scope). `None` if the model cannot be
+/// indexed (then nothing reopens).
+fn build(
+    model: &Model,
+    candidates: &[Candidate],
+    parts: &HashMap<ElementId, Model>,
+) -> Option<(Model, Vec<ElementId>)> {
+    let by_id: HashMap<ElementId, &Candidate> = candidates.iter().map(|c| (c.id, c)).collect();
+    // The names the file gave the joints of each frame body, by joint id.
+    let mut literal: HashMap<ElementId, Option<SmolStr>> = HashMap::new();
+    let used: Vec<ElementId> = candidates.iter().map(|c| c.asset).collect();
+    let root = model.root.rebuild(|n, children| {
+        let changed = children.iter().zip(n.children().iter()).any(|(a, b)| !a.ptr_eq(b));
+        let mut children: Vec<Node> = children.iter().cloned().collect();
+        for c in children.iter_mut() {
+            if let Some(cand) = by_id.get(&c.id()) {
+                if let Some(frame) = as_frame_node(n, c, cand, parts, &mut literal) {
+                    *c = frame;
+                }
+            }
+        }
+        let children: Vec<Node> = if n.kind().tag() == "asset" {
+            // Asset models only reopened attachments used go.
+            children
+                .into_iter()
+                .filter(|c| !(c.kind().tag() == "model" && used.contains(&c.id())))
+                .collect()
+        } else {
+            children
+        };
+        if !changed
+            && children.len() == n.children().len()
+            && children.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b))
+        {
+            return n.clone();
+        }
+        n.with_children(children.into_iter().collect::<Seq<Node>>())
+    });
+    // An asset model still named by an `<attach>` that stays is kept: then nothing
+    // of it is removed, so build again keeping every asset model.
+    let still_used = root.descendants().any(|n| {
+        n.kind().tag() == "attach"
+            && n.attrs().iter().any(
+                |(_, v)| matches!(v, Value::Reference(Reference::Element(id)) if used.contains(id)),
+            )
+    });
+    let root = if still_used { restore_assets(&root, &model.root) } else { root };
+    let mut index = Index::default();
+    index.insert_subtree(None, &root, 0).ok()?;
+    let mut refused = Vec::new();
+    for c in candidates {
+        let free = index.free_scope_name(&c.scope);
+        if free.name != c.scope || index.has_slashed_segment(&c.scope) {
+            refused.push(c.id);
+            continue;
+        }
+        index.scopes.push(&c.scope, free, c.id);
+    }
+    if !refused.is_empty() {
+        return Some((model.clone(), refused));
+    }
+    let built = Model::from_parts(root, index, FileContext::clone(&model.files));
+    settings::check(&built).ok()?;
+    // Each frame is written as the file had it: its tag, and its joints' names.
+    let walk = Walk::new(&built);
+    for c in candidates {
+        let Some(frame) = built.node_by_id(c.id) else {
+            refused.push(c.id);
+            continue;
+        };
+        let parent_world = c.as_frame || {
+            let parent = built.index.parent(c.id).and_then(|p| built.node_by_id(p));
+            parent.is_some_and(|p| p.kind().tag() == "worldbody")
+        };
+        if (parent_world && crate::xml::frame_keeps_bodies_top_level(frame)) != c.as_frame {
+            refused.push(c.id);
+            continue;
+        }
+        let same = frame.children().iter().filter(|j| j.kind().namespace().is_some()).all(|j| {
+            let written = walk.insts.name_of_id(0, j.id());
+            match (literal.get(&j.id()), written) {
+                (Some(Some(name)), Some(w)) => w.to_string_in("") == name.as_str(),
+                (Some(None), Some(Written::Auto { .. })) => true,
+                _ => false,
+            }
+        });
+        if !same {
+            refused.push(c.id);
+        }
+    }
+    Some((built, refused))
+}
+
+/// `root` with the asset models of `original` put back.
+fn restore_assets(root: &Node, original: &Node) -> Node {
+    let Some(kind) = ElementKind::ROOT.child("asset") else { return root.clone() };
+    let (Some(at), Some(asset)) =
+        (root.children().iter().position(|c| c.kind() == kind), original.child_of_kind(kind))
+    else {
+        return root.clone();
+    };
+    root.with_child_at(at, asset.clone())
+}
+
+/// The candidate body `node` (a child of `parent`) as an attachment frame of its
+/// part, its joints renamed as frame joints (their names in the file recorded in
+/// `literal`).
+fn as_frame_node(
+    parent: &Node,
+    node: &Node,
+    cand: &Candidate,
+    parts: &HashMap<ElementId, Model>,
+    literal: &mut HashMap<ElementId, Option<SmolStr>>,
+) -> Option<Node> {
+    let part = parts.get(&cand.asset)?;
+    let body = parent.kind().child("body")?;
+    let kind = node.kind();
+    let mut attrs: Vec<Attr> = node
+        .attrs()
+        .iter()
+        .filter(|(i, _)| Some(*i as usize) != kind.identifier())
+        .filter_map(|(i, v)| {
+            Some((body.attr_index(kind.attr(*i as usize).name)? as u16, v.clone()))
+        })
+        .collect();
+    attrs.sort_by_key(|(i, _)| *i);
+    let children: Seq<Node> = node
+        .children()
+        .iter()
+        .filter(|c| c.kind().tag() != "attach")
+        .map(|c| {
+            let Some(i) = c.kind().identifier().filter(|_| c.kind().namespace().is_some()) else {
+                return c.clone();
+            };
+            literal.insert(c.id(), c.identifier().filter(|n| !n.is_empty()).map(SmolStr::from));
+            let name = frame_joint_name(&cand.scope, c.identifier()).flatten();
+            let mut attrs: Vec<Attr> =
+                c.attrs().iter().filter(|(k, _)| *k as usize != i).cloned().collect();
+            if let Some(n) = name {
+                attrs.push((i as u16, Value::Identifier(n)));
+            }
+            c.with_attrs(attrs)
+        })
+        .collect();
+    let attached = Attached { scope: cand.scope.clone(), model: part.clone() };
+    Some(Node::frame(node.id(), body, attrs, attached).with_children(children))
+}
