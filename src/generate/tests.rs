@@ -18,7 +18,7 @@ mod names;
 
 use super::strategy::{model_recipe, models, scene_and_edits, scene_recipe};
 use super::*;
-use crate::schema::Multiplicity;
+use crate::schema::{Multiplicity, Role};
 
 fn config() -> Config {
     let mut c = Config::default();
@@ -210,7 +210,7 @@ fn generators_reach_every_kind_of_step() {
                 let kids: Vec<&str> = el.children().map(|c| c.tag()).collect();
                 free_frames += usize::from(kids.contains(&"freejoint"));
                 frame_joints += usize::from(kids.contains(&"joint"));
-                let joints: Vec<_> = el.children().filter(|c| c.tag() == "joint").collect();
+                let joints: Vec<_> = el.children().filter(|c| c.kind().is(Role::Joint)).collect();
                 two_unnamed +=
                     usize::from(joints.iter().filter(|j| j.identifier().is_none()).count() >= 2);
                 let scope = m.scope_of_frame(&el.loc()).unwrap();
@@ -375,7 +375,7 @@ fn remove_repairs_references() {
     let m = r.build();
     assert_eq!(m.find_all(Namespace::Actuator).len(), 1);
     let removable = elements(&m, |t| t.removable);
-    let target = removable.iter().position(|t| t.tag == "body").unwrap();
+    let target = removable.iter().position(|t| t.kind.is(Role::Body)).unwrap();
     let versions =
         EditRecipe { edits: vec![Edit::Remove { target: Pick(target as u16) }] }.apply(&m);
     assert_eq!(versions.len(), 2);

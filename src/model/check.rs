@@ -6,7 +6,7 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, Namespace};
+use crate::schema::{AttrType, Namespace, Role};
 use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
 use crate::xml::WriteOptions;
@@ -186,7 +186,7 @@ fn builtin(ns: Namespace, name: &str) -> bool {
 /// The joint type of a joint element, as written or as its classes set it: `free`,
 /// `ball`, `slide` or `hinge` (the default).
 pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
-    if node.kind().tag() == "freejoint" {
+    if node.kind().is(Role::Freejoint) {
         return "free";
     }
     let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
@@ -197,7 +197,9 @@ pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -
     let mut cur = class;
     while let Some(id) = cur {
         let Some(class_node) = model.node_by_id(id) else { break };
-        let joint_default = class_node.children().iter().find(|c| c.kind().tag() == "joint");
+        // The class's defaults of the joint's tag.
+        let joint_default =
+            class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
         if let Some(Value::Keyword(k)) =
             joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
         {
@@ -206,7 +208,7 @@ pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -
         cur = model
             .index
             .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().tag() == "default"));
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
     }
     "hinge"
 }
@@ -360,8 +362,8 @@ impl Model {
                         }
                     }
                     // Degrees of freedom (the layout's own count is in Model::layout).
-                    let parent_tag = open.last().map(|o| o.node.kind().tag());
-                    if matches!(kind.tag(), "joint" | "freejoint") && parent_tag == Some("body") {
+                    let in_body = open.last().is_some_and(|o| o.node.kind().is(Role::Body));
+                    if matches!(kind.role(), Some(Role::Joint | Role::Freejoint)) && in_body {
                         let ty = joint_type(m, node, class);
                         let v = match ty {
                             "free" => 6,
@@ -377,12 +379,12 @@ impl Model {
                     }
                     // Mass: an inertial with mass, or a geom (MuJoCo gives geoms a
                     // density) that does not set its mass to 0.
-                    let massive = match kind.tag() {
-                        "inertial" => node
+                    let massive = match kind.role() {
+                        Some(Role::Inertial) => node
                             .attr(kind.attr_index("mass").unwrap_or(0))
                             .and_then(Value::as_float)
                             .is_some_and(|x| x > 0.0),
-                        "geom" => {
+                        Some(Role::Geom) => {
                             node.attr(kind.attr_index("mass").unwrap_or(0))
                                 .and_then(Value::as_float)
                                 != Some(0.0)
@@ -399,8 +401,7 @@ impl Model {
                 Step::Leave(item) => {
                     classes.leave();
                     let Some(o) = open.pop() else { continue };
-                    let is_body = o.node.kind().tag() == "body"
-                        && o.node.kind().spec().parent.is_some_and(|p| p.tag() != "default");
+                    let is_body = o.node.kind().is(Role::Body);
                     let problem = |kind| {
                         let i = &walk.insts.list[o.inst];
                         let loc = Loc::scoped(i.frames.clone(), o.node.id(), name);

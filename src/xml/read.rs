@@ -35,7 +35,7 @@ use crate::model::{
     Basepaths, Input, Model, ModelFiles, ReadIndex, ValueCtx, check_class_named, check_required,
     empty_node, empty_node_with_id, name_from_file,
 };
-use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
+use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace, Role};
 use crate::value::{Reference, Value};
 
 /// How many `<include>`s may nest inside each other.
@@ -924,7 +924,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
     let root_class = r
         .arena
         .iter()
-        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
+        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.is(Role::DefaultClass))
         .map(|d| d.id);
     let lookup = |ns: crate::Namespace, n: &str| {
         names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
@@ -995,7 +995,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
                     }
                 }
             }
-            if p.kind.tag() == "default" {
+            if p.kind.is(Role::DefaultClass) {
                 // DESIGN D11: the actuator defaults in the order they were read.
                 crate::model::defaults::order(&mut singles, |(n, _)| n, |(_, at)| *at);
             }
@@ -1062,16 +1062,16 @@ fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
         return (false, None);
     };
     let is_slash = |p: &Pending| {
-        p.kind.tag() == "default"
+        p.kind.is(Role::DefaultClass)
             && p.kind.identifier().is_some_and(|i| {
                 p.attrs.iter().any(|(k, v)| *k as usize == i && v.as_str() == Some("/"))
             })
     };
     // A class `/` beside other classes, at any level (under a named root class too).
     let composed = arena.iter().enumerate().any(|(i, p)| {
-        p.kind.tag() == "default"
+        p.kind.is(Role::DefaultClass)
             && children_of(arena, i).any(|c| is_slash(&arena[c]))
-            && children_of(arena, i).filter(|&c| arena[c].kind.tag() == "default").count() > 1
+            && children_of(arena, i).filter(|&c| arena[c].kind.is(Role::DefaultClass)).count() > 1
     });
     let kids: Vec<usize> = children_of(arena, d).collect();
     let [only] = kids[..] else { return (composed, None) };
