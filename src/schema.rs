@@ -17,8 +17,6 @@
 //! A kind may be the child of several kinds: `<frame>` is a child of the worldbody, of
 //! bodies, of frames and of `<replicate>`, and holds the same child kinds as a body.
 
-use crate::value::Value;
-
 /// How often an element may appear under its parent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Multiplicity {
@@ -55,18 +53,27 @@ pub enum RefTarget {
 }
 
 impl RefTarget {
-    /// The namespace a reference names into, given the value of the element's
-    /// attribute at an index (`None` where the reference names nothing of this model).
-    pub(crate) fn namespace<'v>(
-        self,
-        attr: impl Fn(usize) -> Option<&'v Value>,
-    ) -> Option<Namespace> {
+    /// The index of the element's attribute the namespace depends on, if any.
+    ///
+    /// Time: O(1).
+    pub(crate) fn depends_on(self) -> Option<usize> {
+        match self {
+            RefTarget::Fixed(_) => None,
+            RefTarget::ByAttribute(k) | RefTarget::Unless(_, k) => Some(k),
+        }
+    }
+
+    /// The namespace a reference names into, given the text of the attribute
+    /// [`RefTarget::depends_on`] names (`None` when it is not set; any text when it is
+    /// set to what is not text). `None` where the reference names nothing of this
+    /// model.
+    ///
+    /// Time: O(1).
+    pub(crate) fn namespace(self, other: Option<&str>) -> Option<Namespace> {
         match self {
             RefTarget::Fixed(ns) => Some(ns),
-            RefTarget::ByAttribute(k) => {
-                attr(k).and_then(Value::as_str).and_then(namespace_of_objtype)
-            }
-            RefTarget::Unless(ns, k) => attr(k).is_none().then_some(ns),
+            RefTarget::ByAttribute(_) => other.and_then(namespace_of_objtype),
+            RefTarget::Unless(ns, _) => other.is_none().then_some(ns),
         }
     }
 }
@@ -415,6 +422,24 @@ mod tests {
         assert_eq!(f.ty, AttrType::Reference(RefTarget::Unless(Namespace::Frame, 0)));
         let asset_model = ElementKind::ROOT.child("asset").unwrap().child("model").unwrap();
         assert_eq!(asset_model.namespace(), Some(Namespace::Model));
+    }
+
+    #[test]
+    fn reference_namespaces_follow_the_attribute_they_depend_on() {
+        let fixed = RefTarget::Fixed(Namespace::Joint);
+        assert_eq!((fixed.depends_on(), fixed.namespace(None)), (None, Some(Namespace::Joint)));
+        let by = RefTarget::ByAttribute(3);
+        assert_eq!(by.depends_on(), Some(3));
+        assert_eq!(by.namespace(Some("xbody")), Some(Namespace::Body));
+        assert_eq!(by.namespace(Some("site")), Some(Namespace::Site));
+        assert_eq!(by.namespace(Some("nonsense")), None);
+        assert_eq!(by.namespace(None), None);
+        // `<attach body=…>`: this model's body unless `model` is set.
+        let unless = RefTarget::Unless(Namespace::Body, 0);
+        assert_eq!(unless.depends_on(), Some(0));
+        assert_eq!(unless.namespace(None), Some(Namespace::Body));
+        assert_eq!(unless.namespace(Some("hand")), None);
+        assert_eq!(unless.namespace(Some("")), None);
     }
 
     #[test]

@@ -12,7 +12,8 @@ use crate::value::{Reference, Value};
 use crate::xml::WriteOptions;
 
 use super::cursor::{Insts, Item, Step, Walk};
-use super::tree::{ElementId, Node};
+use super::layout::joint_type;
+use super::tree::Node;
 use super::{Loc, Model};
 
 /// A problem [`Model::check`] found: what, and on which element.
@@ -117,7 +118,7 @@ impl fmt::Display for Problem {
                 f,
                 "{}: '{attribute}' names {namespace} '{name}', which does not exist{}",
                 self.path,
-                crate::suggest::hint(suggestions)
+                crate::error::hint(suggestions)
             ),
             ProblemKind::MissingRequired { attribute } => {
                 write!(f, "{}: required attribute '{attribute}' is not set", self.path)
@@ -172,7 +173,10 @@ impl fmt::Display for Problem {
 fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
     let kind = node.kind();
     match kind.attr(i).ty {
-        AttrType::Reference(target) => target.namespace(|k| node.attr(k)),
+        AttrType::Reference(target) => {
+            let other = target.depends_on().and_then(|k| node.attr(k));
+            target.namespace(other.map(|v| v.as_str().unwrap_or("")))
+        }
         _ => None,
     }
 }
@@ -181,36 +185,6 @@ fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
 /// the world body, the main default class.
 fn builtin(ns: Namespace, name: &str) -> bool {
     matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
-}
-
-/// The joint type of a joint element, as written or as its classes set it: `free`,
-/// `ball`, `slide` or `hinge` (the default).
-pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
-    if node.kind().is(Role::Freejoint) {
-        return "free";
-    }
-    let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
-    if let Some(Value::Keyword(k)) = explicit {
-        return k;
-    }
-    // The class chain: the element's class, then its ancestors in the default tree.
-    let mut cur = class;
-    while let Some(id) = cur {
-        let Some(class_node) = model.node_by_id(id) else { break };
-        // The class's defaults of the joint's tag.
-        let joint_default =
-            class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
-        if let Some(Value::Keyword(k)) =
-            joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
-        {
-            return k;
-        }
-        cur = model
-            .index
-            .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
-    }
-    "hinge"
 }
 
 /// An element open in [`Model::check`]'s walk, with what its subtree showed so far.

@@ -16,7 +16,6 @@
 
 use std::collections::HashMap;
 
-use crate::model::check::joint_type;
 use crate::model::pose::{self, Angles, IDENTITY, Pose};
 use crate::model::tree::{ElementId, Node};
 use crate::model::{Loc, Model, Step, Walk, settings};
@@ -279,6 +278,36 @@ pub(crate) fn from_classes<'m>(
             .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
     }
     None
+}
+
+/// The joint type of a joint element, as written or as its classes set it: `free`,
+/// `ball`, `slide` or `hinge` (the default).
+pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
+    if node.kind().is(Role::Freejoint) {
+        return "free";
+    }
+    let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
+    if let Some(Value::Keyword(k)) = explicit {
+        return k;
+    }
+    // The class chain: the element's class, then its ancestors in the default tree.
+    let mut cur = class;
+    while let Some(id) = cur {
+        let Some(class_node) = model.node_by_id(id) else { break };
+        // The class's defaults of the joint's tag.
+        let joint_default =
+            class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
+        if let Some(Value::Keyword(k)) =
+            joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
+        {
+            return k;
+        }
+        cur = model
+            .index
+            .parent(id)
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
+    }
+    "hinge"
 }
 
 /// The controls and activations of an actuator element, as MuJoCo 4.0 counts them

@@ -1201,7 +1201,8 @@ fn resolve_attrs(
         let (i, v) = &attrs[j];
         let Value::Reference(Reference::Name(n)) = v else { continue };
         let AttrType::Reference(target) = kind.attr(*i as usize).ty else { continue };
-        let ns = target.namespace(|k| attrs.iter().find(|(x, _)| *x as usize == k).map(|(_, v)| v));
+        let other = target.depends_on().and_then(|k| attrs.iter().find(|(x, _)| *x as usize == k));
+        let ns = target.namespace(other.map(|(_, v)| v.as_str().unwrap_or("")));
         if let Some(id) = ns.and_then(|ns| lookup(ns, n)) {
             attrs[j].1 = Value::Reference(Reference::Element(id));
         }

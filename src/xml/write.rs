@@ -330,7 +330,7 @@ struct Writer<'a> {
     /// Index entries looked up by references, with the map they came from: an
     /// attached model's elements are looked up again for each attachment of it
     /// (the same shared map), and a class is looked up twice (is it there, its name).
-    entries: HashMap<ElementId, (&'a ElemMap, Option<&'a Entry>), IdHash>,
+    entries: HashMap<ElementId, (&'a ElemMap<Entry>, Option<&'a Entry>), IdHash>,
 }
 
 /// Whether a singleton writes anything: a written attribute, or a child that does.
