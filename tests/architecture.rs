@@ -7,10 +7,10 @@
 //!   the exemptions listed, each with the issue item that removes it);
 //! - no import circle between the files of `src/`, nor between its top-level
 //!   modules (edges from `use crate::…`, `use super::…` and `crate::…`/`super::…`
-//!   paths in code);
-//! - no comment cites a line number (`line 123`, `file.rs:123`): lines move.
+//!   paths in code).
 //!
-//! The README's real-model floor is tied to `.ci/run`'s in `tests/docs.rs`.
+//! `tests/docs.rs` holds the checks over documents: no comment or document cites a
+//! line of code by number, and the README's real-model floor is `.ci/run`'s.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -589,46 +589,4 @@ fn the_import_scan_reads_use_trees_and_paths() {
     g.insert("c".into(), ["a".to_string()].into());
     g.insert("d".into(), ["a".to_string()].into());
     assert_eq!(circles(&g), [["a", "b", "c"]]);
-}
-
-/// Whether a comment cites a line number: `line 123`, `lines 12-20`, `L123`,
-/// `foo.rs:123`.
-fn cites_line_number(comment: &str) -> bool {
-    let words: Vec<&str> = comment.split_whitespace().collect();
-    let number = |w: &str| {
-        let w = w.trim_end_matches([',', '.', ')', ';', ':']);
-        !w.is_empty() && w.chars().next().is_some_and(|c| c.is_ascii_digit())
-    };
-    let after_line = words.windows(2).any(|w| {
-        matches!(w[0].to_ascii_lowercase().trim_start_matches('('), "line" | "lines")
-            && number(w[1])
-    });
-    let file_colon = words.iter().any(|w| {
-        w.split_once(".rs:").or_else(|| w.split_once(".py:")).is_some_and(|(_, n)| number(n))
-    });
-    after_line || file_colon
-}
-
-#[test]
-fn no_comment_cites_a_line_number() {
-    let mut found = Vec::new();
-    for (path, text) in sources() {
-        for (n, line) in text.lines().enumerate() {
-            let Some(i) = line.find("//") else { continue };
-            if cites_line_number(&line[i + 2..]) {
-                found.push(format!("{}:{}: {}", path.display(), n + 1, line.trim()));
-            }
-        }
-    }
-    assert!(found.is_empty(), "name the function or the item instead:\n{}", found.join("\n"));
-}
-
-#[test]
-fn the_line_number_scan_finds_citations() {
-    assert!(cites_line_number(" see line 123 of read.rs"));
-    assert!(cites_line_number(" (lines 12-20)"));
-    assert!(cites_line_number(" as in write.rs:512"));
-    assert!(!cites_line_number(" one line per element"));
-    assert!(!cites_line_number(" the line number of the error"));
-    assert!(!cites_line_number(" MuJoCo's XML parser ('Line number=3')"));
 }
