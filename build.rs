@@ -26,7 +26,9 @@
 //!   of several (`<frame>` is a child of the worldbody, of bodies, of frames and of
 //!   `<replicate>`);
 //! - per element, its attributes (schema order) and a perfect hash table of their names
-//!   (a seed and a table of attribute indices, see `perfect_table`).
+//!   (a seed and a table of attribute indices, see `perfect_table`);
+//! - `enum Role` and `static ROLES`, the role of each element, from `schema/roles.txt`
+//!   (the behaviour the crate gives element kinds, as data: see `parse_roles`).
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -190,6 +192,7 @@ fn main() {
     println!("cargo::rerun-if-changed=schema/schema.xml");
     println!("cargo::rerun-if-changed={MUJOCO40_SCHEMA}");
     println!("cargo::rerun-if-changed={MUJOCO40_TYPES}");
+    println!("cargo::rerun-if-changed={ROLES}");
     println!("cargo::rerun-if-changed=build.rs");
     let text = std::fs::read_to_string(path).expect("read schema/schema.xml");
     let mut elems = parse(&text);
@@ -197,6 +200,8 @@ fn main() {
     let printed = std::fs::read_to_string(MUJOCO40_SCHEMA).expect("read MuJoCo 4.0 schema");
     let types = std::fs::read_to_string(MUJOCO40_TYPES).expect("read MuJoCo 4.0 types");
     merge_mujoco40(&mut elems, &parse_printed(&printed), &types);
+    let roles_text = std::fs::read_to_string(ROLES).expect("read the element roles");
+    let roles = parse_roles(&roles_text, &elems);
 
     let namespaces: BTreeSet<String> = elems.iter().filter_map(namespace_of).collect();
     let ns_list: Vec<&String> = namespaces.iter().collect();
@@ -388,6 +393,7 @@ fn main() {
         .unwrap();
     }
     writeln!(out, "];").unwrap();
+    write_roles(&mut out, &roles);
 
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("schema_tables.rs");
     std::fs::write(dest, out).expect("write schema tables");
@@ -440,6 +446,116 @@ fn path_ns(p: Option<&str>) -> &'static str {
         Some("asset") => "Some(PathNamespace::Asset)",
         Some(o) => panic!("schema: path namespace {o}"),
     }
+}
+
+/// The element roles: the behaviour the crate gives element kinds (the file says how to
+/// read it).
+const ROLES: &str = "schema/roles.txt";
+
+/// The roles of `roles.txt`, in its order, and the role of each element.
+struct Roles {
+    /// Per role: its name, its group, its doc.
+    decls: Vec<(String, Option<String>, String)>,
+    /// Per element: the index of its role.
+    of: Vec<Option<usize>>,
+}
+
+/// Reads `roles.txt` (`role` and `element` lines) against the element tree: every
+/// path names an element, an element gets one role, every role has an element.
+fn parse_roles(text: &str, elems: &[Elem]) -> Roles {
+    let mut roles = Roles { decls: Vec::new(), of: vec![None; elems.len()] };
+    for (n, line) in text.lines().enumerate() {
+        let at = format!("{ROLES}:{}", n + 1);
+        if line.trim_start().starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let (spec, doc) = line.split_once('|').unwrap_or((line, ""));
+        let w: Vec<&str> = spec.split_whitespace().collect();
+        match w.as_slice() {
+            ["role", name, opts @ ..] => {
+                assert!(!doc.trim().is_empty(), "{at}: role {name} without a doc");
+                assert!(roles.decls.iter().all(|(r, _, _)| r != name), "{at}: {name} twice");
+                let group = match opts {
+                    [] => None,
+                    [g] => Some(g.strip_prefix("group=").unwrap_or_else(|| panic!("{at}: {g}"))),
+                    _ => panic!("{at}: cannot read: {line}"),
+                };
+                roles.decls.push((name.to_string(), group.map(str::to_string), doc.trim().into()));
+            }
+            ["element", key, role] => {
+                let r = roles.decls.iter().position(|(n, _, _)| n == role);
+                let r = r.unwrap_or_else(|| panic!("{at}: role {role} is not declared above"));
+                let mut found = false;
+                for (i, e) in elems.iter().enumerate() {
+                    if e.key == *key {
+                        assert!(roles.of[i].is_none(), "{at}: {key} has a role already");
+                        roles.of[i] = Some(r);
+                        found = true;
+                    }
+                }
+                assert!(found, "{at}: no element at {key}");
+            }
+            _ => panic!("{at}: cannot read: {line}"),
+        }
+    }
+    for (r, (name, _, _)) in roles.decls.iter().enumerate() {
+        assert!(roles.of.contains(&Some(r)), "{ROLES}: no element has role {name}");
+    }
+    roles
+}
+
+/// Writes `enum Role`, its group predicates and `static ROLES` (one per element).
+fn write_roles(out: &mut String, roles: &Roles) {
+    writeln!(
+        out,
+        "\n/// What the crate does with an element kind: its role, from `schema/roles.txt`.\n\
+         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]\npub(crate) enum Role {{"
+    )
+    .unwrap();
+    for (name, _, doc) in &roles.decls {
+        writeln!(out, "    /// {doc}\n    {},", camel(name)).unwrap();
+    }
+    writeln!(out, "}}\n\nimpl Role {{").unwrap();
+    writeln!(out, "    /// Every role, in the file's order.\n    #[cfg(test)]").unwrap();
+    let all: Vec<String> =
+        roles.decls.iter().map(|(n, _, _)| format!("Role::{}", camel(n))).collect();
+    writeln!(out, "    pub(crate) const ALL: &'static [Role] = &[{}];", all.join(", ")).unwrap();
+    writeln!(out, "    /// The role's name in `schema/roles.txt`.\n    #[cfg(test)]").unwrap();
+    writeln!(out, "    pub(crate) const fn name(self) -> &'static str {{\n        match self {{")
+        .unwrap();
+    for (name, _, _) in &roles.decls {
+        writeln!(out, "            Role::{} => {name:?},", camel(name)).unwrap();
+    }
+    writeln!(out, "        }}\n    }}").unwrap();
+    let mut groups: Vec<&str> = Vec::new();
+    for g in roles.decls.iter().filter_map(|(_, g, _)| g.as_deref()) {
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    for g in groups {
+        let members: Vec<String> = roles
+            .decls
+            .iter()
+            .filter(|(_, gr, _)| gr.as_deref() == Some(g))
+            .map(|(n, _, _)| format!("Role::{}", camel(n)))
+            .collect();
+        writeln!(
+            out,
+            "    /// Whether the role is in group `{g}` of `schema/roles.txt`.\n    \
+             pub(crate) const fn is_{g}(self) -> bool {{\n        matches!(self, {})\n    }}",
+            members.join(" | ")
+        )
+        .unwrap();
+    }
+    writeln!(out, "}}\n\nstatic ROLES: [Option<Role>; {}] = [", roles.of.len()).unwrap();
+    for r in &roles.of {
+        match r {
+            Some(r) => writeln!(out, "    Some(Role::{}),", camel(&roles.decls[*r].0)).unwrap(),
+            None => writeln!(out, "    None,").unwrap(),
+        }
+    }
+    writeln!(out, "];").unwrap();
 }
 
 /// MuJoCo 4.0's own element tree (`mujoco.mj_printSchema`): every element and the

@@ -246,7 +246,7 @@ pub enum ErrorKind {
         "no {namespace} named '{}'{}{}",
         cut(.name),
         in_scope(scope),
-        crate::suggest::hint(suggestions)
+        hint(suggestions)
     )]
     UnknownName {
         /// The namespace looked in.
@@ -342,7 +342,17 @@ fn cut_quoted(message: &str) -> String {
 }
 
 fn hint_one(suggestion: Option<&str>) -> String {
-    crate::suggest::hint(suggestion.as_slice())
+    hint(suggestion.as_slice())
+}
+
+/// ` (did you mean 'a', 'b'?)`, or nothing: the suggestions of [`crate::suggest`] as
+/// messages show them, each [`cut`].
+pub(crate) fn hint(suggestions: &[impl AsRef<str>]) -> String {
+    if suggestions.is_empty() {
+        return String::new();
+    }
+    let list: Vec<String> = suggestions.iter().map(|s| format!("'{}'", cut(s.as_ref()))).collect();
+    format!(" (did you mean {}?)", list.join(", "))
 }
 
 fn in_scope(scope: &str) -> String {
@@ -642,6 +652,17 @@ pub enum Error {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hints_quote_each_suggestion_cut() {
+        assert_eq!(hint(&["a", "b"]), " (did you mean 'a', 'b'?)");
+        assert_eq!(hint(&[] as &[&str]), "");
+        let long = "x".repeat(QUOTE_LIMIT + 5);
+        assert_eq!(
+            hint(&[long.as_str()]),
+            format!(" (did you mean '{}...'?)", &long[..QUOTE_LIMIT])
+        );
+    }
 
     #[test]
     fn positions_count_lines_and_characters() {

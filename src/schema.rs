@@ -17,8 +17,6 @@
 //! A kind may be the child of several kinds: `<frame>` is a child of the worldbody, of
 //! bodies, of frames and of `<replicate>`, and holds the same child kinds as a body.
 
-use crate::value::Value;
-
 /// How often an element may appear under its parent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Multiplicity {
@@ -55,18 +53,27 @@ pub enum RefTarget {
 }
 
 impl RefTarget {
-    /// The namespace a reference names into, given the value of the element's
-    /// attribute at an index (`None` where the reference names nothing of this model).
-    pub(crate) fn namespace<'v>(
-        self,
-        attr: impl Fn(usize) -> Option<&'v Value>,
-    ) -> Option<Namespace> {
+    /// The index of the element's attribute the namespace depends on, if any.
+    ///
+    /// Time: O(1).
+    pub(crate) fn depends_on(self) -> Option<usize> {
+        match self {
+            RefTarget::Fixed(_) => None,
+            RefTarget::ByAttribute(k) | RefTarget::Unless(_, k) => Some(k),
+        }
+    }
+
+    /// The namespace a reference names into, given the text of the attribute
+    /// [`RefTarget::depends_on`] names (`None` when it is not set; any text when it is
+    /// set to what is not text). `None` where the reference names nothing of this
+    /// model.
+    ///
+    /// Time: O(1).
+    pub(crate) fn namespace(self, other: Option<&str>) -> Option<Namespace> {
         match self {
             RefTarget::Fixed(ns) => Some(ns),
-            RefTarget::ByAttribute(k) => {
-                attr(k).and_then(Value::as_str).and_then(namespace_of_objtype)
-            }
-            RefTarget::Unless(ns, k) => attr(k).is_none().then_some(ns),
+            RefTarget::ByAttribute(_) => other.and_then(namespace_of_objtype),
+            RefTarget::Unless(ns, _) => other.is_none().then_some(ns),
         }
     }
 }
@@ -198,6 +205,21 @@ impl ElementKind {
     /// Time: O(1).
     pub fn tag(self) -> &'static str {
         self.spec().tag
+    }
+
+    /// What the crate does with elements of this kind (`schema/roles.txt`), if
+    /// anything beyond what the schema says.
+    ///
+    /// Time: O(1).
+    pub(crate) fn role(self) -> Option<Role> {
+        ROLES[self.0 as usize]
+    }
+
+    /// Whether this kind has this role.
+    ///
+    /// Time: O(1).
+    pub(crate) fn is(self, role: Role) -> bool {
+        self.role() == Some(role)
     }
 
     /// The child kind with this tag, if the schema allows one.
@@ -403,6 +425,24 @@ mod tests {
     }
 
     #[test]
+    fn reference_namespaces_follow_the_attribute_they_depend_on() {
+        let fixed = RefTarget::Fixed(Namespace::Joint);
+        assert_eq!((fixed.depends_on(), fixed.namespace(None)), (None, Some(Namespace::Joint)));
+        let by = RefTarget::ByAttribute(3);
+        assert_eq!(by.depends_on(), Some(3));
+        assert_eq!(by.namespace(Some("xbody")), Some(Namespace::Body));
+        assert_eq!(by.namespace(Some("site")), Some(Namespace::Site));
+        assert_eq!(by.namespace(Some("nonsense")), None);
+        assert_eq!(by.namespace(None), None);
+        // `<attach body=…>`: this model's body unless `model` is set.
+        let unless = RefTarget::Unless(Namespace::Body, 0);
+        assert_eq!(unless.depends_on(), Some(0));
+        assert_eq!(unless.namespace(None), Some(Namespace::Body));
+        assert_eq!(unless.namespace(Some("hand")), None);
+        assert_eq!(unless.namespace(Some("")), None);
+    }
+
+    #[test]
     fn attribute_lookup_finds_every_attribute() {
         for k in ElementKind::all() {
             for (i, a) in k.spec().attrs.iter().enumerate() {
@@ -428,5 +468,293 @@ mod tests {
                 }
             }
         }
+    }
+}
+
+/// Each role's elements against MuJoCo 4.0's printed schema (`schema/mujoco-4.0.0-
+/// schema.txt`): the elements with a role are those the printed schema's tree says
+/// have it, by a rule over that tree written here, independent of `roles.txt`.
+#[cfg(test)]
+mod role_tests {
+    use std::collections::BTreeSet;
+
+    use super::*;
+
+    /// One element of MuJoCo's printed schema: its path, marker and parent path.
+    struct Printed {
+        key: String,
+        marker: char,
+        parent: Option<String>,
+    }
+
+    impl Printed {
+        /// The last name of its path (its tag).
+        fn name(&self) -> &str {
+            self.key.rsplit('/').next().unwrap_or(&self.key)
+        }
+    }
+
+    /// The printed schema's elements, paths as `build.rs` (and `roles.txt`) write
+    /// them: `mujoco` for the root, `(world)body/geom` below it.
+    fn printed() -> Vec<Printed> {
+        let text = include_str!("../schema/mujoco-4.0.0-schema.txt");
+        let mut out = Vec::new();
+        let mut stack: Vec<String> = Vec::new();
+        for line in text.lines() {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            let indent = line.len() - line.trim_start().len();
+            let marker = words
+                .get(1)
+                .and_then(|m| m.strip_prefix('(')?.strip_suffix(')'))
+                .filter(|m| m.len() == 1)
+                .and_then(|m| m.chars().next());
+            let Some(marker) = marker.filter(|_| indent < 30) else { continue };
+            stack.truncate(indent / 3);
+            stack.push(words[0].to_string());
+            let key = if stack.len() == 1 { "mujoco".to_string() } else { stack[1..].join("/") };
+            let parent = match stack.len() {
+                1 => None,
+                2 => Some("mujoco".to_string()),
+                n => Some(stack[1..n - 1].join("/")),
+            };
+            out.push(Printed { key, marker, parent });
+        }
+        assert!(out.len() > 150, "read {} elements", out.len());
+        out
+    }
+
+    /// The path of a kind as the printed schema names it (`build.rs`'s `key_of`).
+    fn key(kind: ElementKind) -> String {
+        let mut tags = vec![kind.tag()];
+        let mut cur = kind.spec().parent;
+        while let Some(p) = cur {
+            tags.push(p.tag());
+            cur = p.spec().parent;
+        }
+        tags.pop(); // <mujoco>
+        tags.reverse();
+        if tags.is_empty() {
+            return "mujoco".into();
+        }
+        tags.dedup();
+        match tags.as_slice() {
+            ["worldbody"] => "worldbody".into(),
+            ["worldbody", "body", tail @ ..] | ["worldbody", tail @ ..] => {
+                std::iter::once("(world)body")
+                    .chain(tail.iter().copied())
+                    .collect::<Vec<_>>()
+                    .join("/")
+            }
+            _ => tags.join("/"),
+        }
+    }
+
+    /// The printed schema's paths that pass `rule`, with `not_printed` (elements MuJoCo
+    /// reads but does not print, each named in `mujoco-4.0-types.txt`).
+    fn expected(rule: impl Fn(&Printed) -> bool, not_printed: &[&str]) -> BTreeSet<String> {
+        let mut out: BTreeSet<String> =
+            printed().iter().filter(|p| rule(p)).map(|p| p.key.clone()).collect();
+        out.extend(not_printed.iter().map(|k| k.to_string()));
+        out
+    }
+
+    /// The elements with `role` are exactly those at the `expected` paths (all of them,
+    /// at every position in the schema tree such a path names).
+    fn assert_role(role: Role, expected: BTreeSet<String>) {
+        assert!(!expected.is_empty(), "{}: the rule finds nothing", role.name());
+        let with: BTreeSet<String> = ElementKind::all().filter(|k| k.is(role)).map(key).collect();
+        assert_eq!(with, expected, "{}", role.name());
+        for k in ElementKind::all().filter(|k| expected.contains(&key(*k))) {
+            assert!(k.is(role), "{} at {} lacks {}", k.tag(), key(k), role.name());
+        }
+    }
+
+    fn child_of(parent: &str, tags: &[&str]) -> impl Fn(&Printed) -> bool {
+        move |p| p.parent.as_deref() == Some(parent) && tags.contains(&p.name())
+    }
+
+    #[test]
+    fn every_role_is_tested_here() {
+        // A role added to roles.txt needs its rule below, and its name here.
+        use Role::*;
+        let tested = [
+            DefaultClass,
+            Worldbody,
+            Body,
+            Frame,
+            Replicate,
+            Joint,
+            Freejoint,
+            Inertial,
+            Geom,
+            Site,
+            Attach,
+            MakesBodies,
+            SettingsSection,
+            Keyframe,
+            Key,
+            Material,
+            Mesh,
+            Hfield,
+            Texture,
+            AssetModel,
+            Tendon,
+            Actuator,
+            ActuatorStateful,
+            ActuatorGeneral,
+            ActuatorFiltered,
+            ActuatorDcmotor,
+            ActuatorPid,
+            DefaultActuator,
+        ];
+        for r in Role::ALL {
+            assert!(tested.contains(r), "{} has no test", r.name());
+        }
+    }
+
+    #[test]
+    fn default_class_is_mujocos_recursive_default() {
+        let rule = |p: &Printed| p.key == "default" && p.marker == 'R';
+        assert_role(Role::DefaultClass, expected(rule, &[]));
+        // The root class and the classes nested in it.
+        let root = ElementKind::ROOT.child("default").unwrap();
+        assert!(root.is(Role::DefaultClass));
+        assert!(root.child("default").unwrap().is(Role::DefaultClass));
+    }
+
+    #[test]
+    fn worldbody_is_the_root_worldbody() {
+        // MuJoCo prints the worldbody merged with the body, as `(world)body`.
+        assert_role(Role::Worldbody, expected(|_| false, &["worldbody"]));
+        assert!(ElementKind::ROOT.child("worldbody").unwrap().is(Role::Worldbody));
+    }
+
+    #[test]
+    fn body_is_mujocos_recursive_body() {
+        let rule = |p: &Printed| p.key == "(world)body" && p.marker == 'R';
+        assert_role(Role::Body, expected(rule, &[]));
+    }
+
+    #[test]
+    fn frame_and_replicate_are_the_meta_elements_of_bodies() {
+        // MuJoCo does not print `<frame>` and `<replicate>` (the types file adds them).
+        let meta = ["frame", "replicate"];
+        assert!(printed().iter().all(|p| !meta.contains(&p.name())));
+        assert_role(Role::Frame, expected(|_| false, &["(world)body/frame"]));
+        assert_role(Role::Replicate, expected(|_| false, &["(world)body/replicate"]));
+    }
+
+    #[test]
+    fn joint_roles_are_the_joints_of_bodies_only() {
+        // Not `default/joint`, `equality/joint` or `tendon/fixed/joint`.
+        assert_role(Role::Joint, expected(child_of("(world)body", &["joint"]), &[]));
+        assert_role(Role::Freejoint, expected(child_of("(world)body", &["freejoint"]), &[]));
+        let joints = printed().iter().filter(|p| p.name() == "joint").count();
+        assert!(joints > 1, "the printed schema has joints beside the bodies'");
+    }
+
+    #[test]
+    fn body_children_roles_are_mujocos_body_children() {
+        let body = |tag| expected(child_of("(world)body", &[tag]), &[]);
+        assert_role(Role::Inertial, body("inertial"));
+        assert_role(Role::Geom, body("geom"));
+        assert_role(Role::Site, body("site"));
+        assert_role(Role::Attach, body("attach"));
+    }
+
+    #[test]
+    fn makes_bodies_is_flexcomp_and_dm_controls_composite() {
+        // `<composite>` is dm_control's schema's; MuJoCo 4.0 no longer has it.
+        let rule = child_of("(world)body", &["flexcomp"]);
+        assert!(printed().iter().all(|p| p.name() != "composite"));
+        assert_role(Role::MakesBodies, expected(rule, &["(world)body/composite"]));
+    }
+
+    #[test]
+    fn settings_sections_are_root_sections_of_singletons() {
+        // A root section, not recursive, whose every element below is once only.
+        let all = printed();
+        let rule = |p: &Printed| {
+            p.parent.as_deref() == Some("mujoco")
+                && p.marker != 'R'
+                && all.iter().all(|d| !d.key.starts_with(&format!("{}/", p.key)) || d.marker == '?')
+        };
+        let found = expected(rule, &[]);
+        assert_eq!(
+            found.iter().map(String::as_str).collect::<Vec<_>>(),
+            ["compiler", "option", "size", "statistic", "visual"]
+        );
+        assert_role(Role::SettingsSection, found);
+        // The crate's schema agrees: singletons whose subtree is singletons.
+        for k in ElementKind::ROOT.spec().children {
+            let mut stack = vec![*k];
+            let mut seen = vec![*k];
+            let mut singletons = k.multiplicity() == Multiplicity::Singleton;
+            while let Some(s) = stack.pop() {
+                for c in s.spec().children {
+                    singletons &= c.multiplicity() == Multiplicity::Singleton;
+                    if !seen.contains(c) {
+                        seen.push(*c);
+                        stack.push(*c);
+                    }
+                }
+            }
+            let structural = singletons && !k.is(Role::DefaultClass) && !k.is(Role::Worldbody);
+            assert_eq!(k.is(Role::SettingsSection), structural, "{}", k.tag());
+        }
+    }
+
+    #[test]
+    fn keyframe_roles_are_the_keyframe_section_and_its_keys() {
+        assert_role(Role::Keyframe, expected(child_of("mujoco", &["keyframe"]), &[]));
+        assert_role(Role::Key, expected(child_of("keyframe", &["key"]), &[]));
+    }
+
+    #[test]
+    fn asset_roles_are_mujocos_assets() {
+        let asset = |tag| expected(child_of("asset", &[tag]), &[]);
+        assert_role(Role::Material, asset("material"));
+        assert_role(Role::Mesh, asset("mesh"));
+        assert_role(Role::Hfield, asset("hfield"));
+        assert_role(Role::Texture, asset("texture"));
+        assert_role(Role::AssetModel, asset("model"));
+    }
+
+    #[test]
+    fn tendon_is_every_tendon_kind() {
+        assert_role(Role::Tendon, expected(|p| p.parent.as_deref() == Some("tendon"), &[]));
+    }
+
+    #[test]
+    fn actuator_roles_cover_every_actuator_of_mujoco_once() {
+        let by_role = [
+            (Role::Actuator, &["motor", "orientation", "damper", "adhesion", "plugin"][..]),
+            (Role::ActuatorStateful, &["intvelocity", "cylinder", "muscle"]),
+            (Role::ActuatorGeneral, &["general"]),
+            (Role::ActuatorFiltered, &["position", "velocity"]),
+            (Role::ActuatorDcmotor, &["dcmotor"]),
+            (Role::ActuatorPid, &["pid"]),
+        ];
+        for (role, tags) in by_role {
+            assert!(role.is_actuator());
+            assert_role(role, expected(child_of("actuator", tags), &[]));
+        }
+        // Together: every child of MuJoCo's `<actuator>`, and nothing else.
+        let every = expected(|p| p.parent.as_deref() == Some("actuator"), &[]);
+        let covered: BTreeSet<String> = ElementKind::all()
+            .filter(|k| k.role().is_some_and(Role::is_actuator))
+            .map(key)
+            .collect();
+        assert_eq!(covered, every);
+    }
+
+    #[test]
+    fn default_actuator_is_the_defaults_of_mujocos_actuators() {
+        let all = printed();
+        let is_actuator = |tag: &str| {
+            all.iter().any(|a| a.parent.as_deref() == Some("actuator") && a.name() == tag)
+        };
+        let rule = |p: &Printed| p.parent.as_deref() == Some("default") && is_actuator(p.name());
+        assert_role(Role::DefaultActuator, expected(rule, &[]));
     }
 }

@@ -144,16 +144,6 @@ pub(crate) fn closest<'a>(
     nearest(word, candidates, 1).into_iter().next()
 }
 
-/// ` (did you mean 'a', 'b'?)`, or nothing.
-pub(crate) fn hint(suggestions: &[impl AsRef<str>]) -> String {
-    if suggestions.is_empty() {
-        return String::new();
-    }
-    let list: Vec<String> =
-        suggestions.iter().map(|s| format!("'{}'", crate::error::cut(s.as_ref()))).collect();
-    format!(" (did you mean {}?)", list.join(", "))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,7 +157,6 @@ mod tests {
         assert_eq!(closest("zzzzzz", ["rgba", "size"]), None);
         assert_eq!(closest("rgba", ["rgba"]), None, "an exact match is no suggestion");
         assert_eq!(nearest("torsoo", ["torso", "torso2", "leg"], 3), vec!["torso", "torso2"]);
-        assert_eq!(hint(&["a", "b"]), " (did you mean 'a', 'b'?)");
     }
 
     /// A typo at either end is found among 20,000 names, and each question compares

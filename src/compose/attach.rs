@@ -12,6 +12,7 @@ use crate::model::frame::placed_frame_attrs;
 use crate::model::settings;
 use crate::model::tree::{Attached, ElementId, Node};
 use crate::model::{Attachment, Loc, MergedCache, Model, ScopeRef};
+use crate::schema::Role;
 use smol_str::SmolStr;
 use std::sync::Arc;
 
@@ -209,13 +210,13 @@ impl Model {
             }));
         }
         let tag = node.kind().tag();
-        let (parent_path, parent, position, body_kind, attrs) = match tag {
-            "worldbody" => {
+        let (parent_path, parent, position, body_kind, attrs) = match node.kind().role() {
+            Some(Role::Worldbody) => {
                 let kind =
                     node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 (path.clone(), node, node.children().len(), kind, Vec::new())
             }
-            "site" if !path.is_empty() => {
+            Some(Role::Site) if !path.is_empty() => {
                 let (last, parent_path) =
                     path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
                 let parent = self.node_at(&parent_path).ok_or_else(|| err(ErrorKind::NotFound))?;

@@ -17,7 +17,7 @@ use crate::error::{EditError, ErrorKind};
 use crate::model::settings::combine;
 use crate::model::tree::{Attr, ElementId, Node};
 use crate::model::{Index, Model};
-use crate::schema::{ElementKind, Multiplicity};
+use crate::schema::{ElementKind, Multiplicity, Role};
 use crate::value::{Reference, Value};
 
 struct Copier<'a> {
@@ -200,7 +200,7 @@ impl Copier<'_> {
                 continue;
             }
             let Some(mut done) = stack.pop() else { break };
-            if done.dest.kind().tag() == "default" {
+            if done.dest.kind().is(Role::DefaultClass) {
                 done.children = actuator_defaults_in_order(&done.dest, done.src, &done.children);
             }
             let node = done.dest.with_parts(done.attrs, done.children);

@@ -67,7 +67,7 @@ use crate::model::naming::Written;
 use crate::model::settings;
 use crate::model::tree::{Attached, Attr, ElementId, Node};
 use crate::model::{Index, Model, Walk};
-use crate::schema::ElementKind;
+use crate::schema::{ElementKind, Role};
 use crate::seq::Seq;
 use crate::value::{Reference, Value};
 
@@ -131,7 +131,7 @@ fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model>
     let asset = model.root.child_of_kind(asset_kind)?;
     // The asset models this file names itself, read (each once).
     let mut parts: HashMap<ElementId, Model> = HashMap::new();
-    for node in asset.children().iter().filter(|c| c.kind().tag() == "model") {
+    for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
         let kind = node.kind();
         let Some(name) = node.identifier() else { continue };
         let Some(path) = paths.get(name) else { continue };
@@ -230,15 +230,15 @@ fn find_candidates(model: &Model, parts: &HashMap<ElementId, Model>) -> Vec<Cand
     let mut stack: Vec<(&Node, bool)> = vec![(wb, true)];
     while let Some((parent, world)) = stack.pop() {
         for c in parent.children().iter().rev() {
-            match c.kind().tag() {
-                "body" => {
+            match c.kind().role() {
+                Some(Role::Body) => {
                     if let Some(cand) = candidate(parent, c, world, parts) {
                         out.push(cand);
                     } else {
                         stack.push((c, false));
                     }
                 }
-                "frame" => {
+                Some(Role::Frame) => {
                     if let Some(cand) = candidate(parent, c, world, parts) {
                         out.push(cand);
                     } else {
@@ -269,13 +269,13 @@ fn candidate(
     parts: &HashMap<ElementId, Model>,
 ) -> Option<Candidate> {
     let kind = node.kind();
-    let is_frame = kind.tag() == "frame";
+    let is_frame = kind.is(Role::Frame);
     if is_frame && !world {
         return None;
     }
     let (attach, own) =
         node.children().iter().collect::<Vec<_>>().split_last().map(|(a, o)| (*a, o.to_vec()))?;
-    if attach.kind().tag() != "attach" {
+    if !attach.kind().is(Role::Attach) {
         return None;
     }
     // The `<attach>`: a model and a prefix `s/`, nothing else.
@@ -311,13 +311,13 @@ fn candidate(
     if is_frame && !own.is_empty() {
         return None;
     }
-    let in_world = parent.kind().tag() == "worldbody" || world;
+    let in_world = parent.kind().is(Role::Worldbody) || world;
     let mut inertials = 0;
     for c in &own {
-        match c.kind().tag() {
-            "joint" => {}
-            "freejoint" if in_world => {}
-            "inertial" => inertials += 1,
+        match c.kind().role() {
+            Some(Role::Joint) => {}
+            Some(Role::Freejoint) if in_world => {}
+            Some(Role::Inertial) => inertials += 1,
             _ => return None,
         }
         if c.kind().namespace().is_some() {
@@ -366,11 +366,11 @@ fn build(
                 }
             }
         }
-        let children: Vec<Node> = if n.kind().tag() == "asset" {
+        let children: Vec<Node> = if Some(n.kind()) == ElementKind::ROOT.child("asset") {
             // Asset models only reopened attachments used go.
             children
                 .into_iter()
-                .filter(|c| !(c.kind().tag() == "model" && used.contains(&c.id())))
+                .filter(|c| !(c.kind().is(Role::AssetModel) && used.contains(&c.id())))
                 .collect()
         } else {
             children
@@ -386,7 +386,7 @@ fn build(
     // An asset model still named by an `<attach>` that stays is kept: then nothing
     // of it is removed, so build again keeping every asset model.
     let still_used = root.descendants().any(|n| {
-        n.kind().tag() == "attach"
+        n.kind().is(Role::Attach)
             && n.attrs().iter().any(
                 |(_, v)| matches!(v, Value::Reference(Reference::Element(id)) if used.contains(id)),
             )
@@ -417,7 +417,7 @@ fn build(
         };
         let parent_world = c.as_frame || {
             let parent = built.index.parent(c.id).and_then(|p| built.node_by_id(p));
-            parent.is_some_and(|p| p.kind().tag() == "worldbody")
+            parent.is_some_and(|p| p.kind().is(Role::Worldbody))
         };
         if (parent_world && crate::xml::frame_keeps_bodies_top_level(frame)) != c.as_frame {
             refused.push(c.id);
@@ -474,7 +474,7 @@ fn as_frame_node(
     let children: Seq<Node> = node
         .children()
         .iter()
-        .filter(|c| c.kind().tag() != "attach")
+        .filter(|c| !c.kind().is(Role::Attach))
         .map(|c| {
             let Some(i) = c.kind().identifier().filter(|_| c.kind().namespace().is_some()) else {
                 return c.clone();

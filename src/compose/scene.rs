@@ -63,7 +63,7 @@ use crate::model::naming::Written;
 use crate::model::settings;
 use crate::model::tree::{Attr, ElementId, Node};
 use crate::model::{Index, Model, Walk};
-use crate::schema::{ElementKind, Namespace};
+use crate::schema::{ElementKind, Namespace, Role};
 use crate::value::{FileAsset, Reference, Value};
 use crate::xml::{WriteOptions, frame_keeps_bodies_top_level};
 
@@ -443,7 +443,7 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
         while let Some(n) = stack.pop() {
             world_level.push(n.id());
             stack.extend(
-                n.children().iter().filter(|c| c.kind().tag() == "frame" && c.attached().is_none()),
+                n.children().iter().filter(|c| c.kind().is(Role::Frame) && c.attached().is_none()),
             );
         }
     }

@@ -93,7 +93,7 @@ use std::collections::HashSet;
 
 use crate::error::ErrorKind;
 use crate::model::{Attrs, Element, Event, Loc, Model, ProblemKind};
-use crate::schema::{ArrayType, AttrType, ElementKind, Namespace};
+use crate::schema::{ArrayType, AttrType, ElementKind, Namespace, Role};
 use crate::value::AttrInput;
 
 /// The element names recipes use ([`Word`] picks one); a taken name gets a suffix.
@@ -990,7 +990,7 @@ fn is_frame(m: &Model, loc: &Loc) -> bool {
 /// freedom, and no rotation after a ball (MuJoCo: "ball followed by rotation").
 fn joint_fits(m: &Model, body: &Loc, kind: JointKind) -> bool {
     let ball = m.element(body).is_some_and(|e| {
-        e.children().any(|c| c.tag() == "joint" && c.string("type") == Some("ball"))
+        e.children().any(|c| c.kind().is(Role::Joint) && c.string("type") == Some("ball"))
     });
     dofs(m, body) + kind.dofs() <= 6 && !(ball && kind != JointKind::Slide)
 }
@@ -999,10 +999,10 @@ fn joint_fits(m: &Model, body: &Loc, kind: JointKind) -> bool {
 fn dofs(m: &Model, loc: &Loc) -> usize {
     m.element(loc).map_or(6, |e| {
         e.children()
-            .map(|c| match (c.tag(), c.string("type")) {
-                ("freejoint", _) | ("joint", Some("free")) => 6,
-                ("joint", Some("ball")) => 3,
-                ("joint", _) => 1,
+            .map(|c| match (c.kind().role(), c.string("type")) {
+                (Some(Role::Freejoint), _) | (Some(Role::Joint), Some("free")) => 6,
+                (Some(Role::Joint), Some("ball")) => 3,
+                (Some(Role::Joint), _) => 1,
                 _ => 0,
             })
             .sum()
@@ -1023,7 +1023,7 @@ fn named(m: &Model, ns: Namespace, keep: impl Fn(&Model, &Loc) -> bool) -> Vec<S
 /// Whether a joint moves along or about one axis (a hinge or a slide).
 fn scalar_joint(m: &Model, loc: &Loc) -> bool {
     m.element(loc).is_some_and(|e| {
-        e.tag() == "joint" && matches!(e.string("type"), None | Some("hinge" | "slide"))
+        e.kind().is(Role::Joint) && matches!(e.string("type"), None | Some("hinge" | "slide"))
     })
 }
 
@@ -1491,7 +1491,7 @@ impl Builder {
             && (place == m.worldbody()
                 || m.element(&place)
                     .and_then(|e| e.parent())
-                    .is_some_and(|p| p.tag() == "worldbody"));
+                    .is_some_and(|p| p.kind().is(Role::Worldbody)));
         let (mut next, a) = m.attach(&place, child).ok()?;
         let frame_loc = a.frame().clone();
         let inertial = || {
@@ -1565,7 +1565,10 @@ impl Builder {
                 let next = match name {
                     None => {
                         // Only elements nothing refers to, that need no name.
-                        let needs_name = matches!(t.tag, "default" | "material" | "mesh");
+                        let needs_name = matches!(
+                            t.kind.role(),
+                            Some(Role::DefaultClass | Role::Material | Role::Mesh)
+                        );
                         if needs_name || !m.references_to(&t.loc).is_empty() {
                             return None;
                         }
@@ -1643,11 +1646,12 @@ struct Target {
 /// The elements of the composed model (walk order) that pass `keep`.
 fn elements(m: &Model, keep: impl Fn(&Target) -> bool) -> Vec<Target> {
     let mut out = Vec::new();
-    let mut stack: Vec<(&'static str, bool)> = Vec::new();
+    // Per open element: whether it is an attachment frame.
+    let mut stack: Vec<bool> = Vec::new();
     for event in m.walk() {
         match event {
             Event::Enter(e) => {
-                let (parent, parent_frame) = stack.last().copied().unwrap_or(("", false));
+                let parent_frame = stack.last().copied().unwrap_or(false);
                 let kind = e.kind();
                 let multiplicity = kind.multiplicity();
                 let t = Target {
@@ -1655,13 +1659,13 @@ fn elements(m: &Model, keep: impl Fn(&Target) -> bool) -> Vec<Target> {
                     tag: e.tag(),
                     kind,
                     frame: e.is_frame(),
-                    in_default: parent == "default",
+                    in_default: kind.spec().parent.is_some_and(|p| p.is(Role::DefaultClass)),
                     in_frame: parent_frame,
                     removable: stack.len() >= 2
                         && !e.is_frame()
                         && multiplicity != crate::schema::Multiplicity::Singleton,
                 };
-                stack.push((e.tag(), e.is_frame()));
+                stack.push(e.is_frame());
                 if keep(&t) {
                     out.push(t);
                 }
@@ -1702,29 +1706,36 @@ fn remove_repaired(m: &Model, loc: &Loc, allowed: usize) -> Option<Model> {
             _ => return None,
         };
         let optional = !e.kind().attr(e.kind().attr_index(attribute)?).required;
-        let in_tree = matches!(
-            e.tag(),
-            "body"
-                | "geom"
-                | "site"
-                | "joint"
-                | "camera"
-                | "light"
-                | "material"
-                | "mesh"
-                | "texture"
-        ) && !matches!(parent.tag(), "fixed" | "spatial");
-        cur = if e.tag() == "geom" && attribute == "mesh" {
+        let in_tendon = parent.kind().is(Role::Tendon);
+        let in_tree = !in_tendon && (in_body_tree(e.kind()) || in_assets(e.kind()));
+        cur = if e.kind().is(Role::Geom) && attribute == "mesh" {
             // A mesh geom without its mesh becomes a sphere.
             let attrs = Attrs::new().clear("mesh").set("type", "sphere").set("size", [0.1]);
             cur.set(&p.loc, attrs).ok()?
         } else if optional && in_tree {
             cur.clear_attr(&p.loc, attribute).ok()?
-        } else if matches!(parent.tag(), "fixed" | "spatial") {
+        } else if in_tendon {
             cur.remove(&parent.loc()).ok()?
         } else {
             cur.remove(&p.loc).ok()?
         };
     }
     None
+}
+
+/// Whether elements of `kind` are in the kinematic tree (below the worldbody).
+fn in_body_tree(kind: ElementKind) -> bool {
+    let mut cur = kind.spec().parent;
+    while let Some(k) = cur {
+        if k.is(Role::Worldbody) {
+            return true;
+        }
+        cur = k.spec().parent;
+    }
+    false
+}
+
+/// Whether elements of `kind` are assets (children of the `<asset>` section).
+fn in_assets(kind: ElementKind) -> bool {
+    kind.spec().parent.is_some_and(|p| Some(p) == ElementKind::ROOT.child("asset"))
 }

@@ -18,7 +18,7 @@ use std::sync::OnceLock;
 use crate::model::check::{Problem, ProblemKind};
 use crate::model::layout::{ClassesInForce, effective, from_classes};
 use crate::model::{Loc, Model, Step, Walk};
-use crate::schema::{AttrType, ElementKind};
+use crate::schema::{AttrType, ElementKind, Role};
 use crate::value::Value;
 
 const TABLE: &str = include_str!("../../schema/mujoco-4.0-array-minimums.txt");
@@ -136,8 +136,7 @@ impl Model {
                     }
                 }
             }
-            let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
-            if kind.tag() == "geom" && !in_default {
+            if kind.is(Role::Geom) {
                 let m = inst.model;
                 let ty =
                     effective(m, node, class, "type").and_then(Value::as_str).unwrap_or("sphere");

@@ -15,7 +15,7 @@ use smol_str::SmolStr;
 use super::tree::{Attr, ElementId, Node};
 use crate::error::{ErrorKind, ValueError};
 use crate::files::{FileContext, Located};
-use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
+use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace, Role};
 use crate::value::{self, AttrInput, FileAsset, Value};
 
 /// A set of attribute assignments: values to set and attributes to clear, in order.
@@ -346,13 +346,13 @@ impl ValueCtx<'_> {
             }
             if let AttrType::File { path_namespace } = spec.ty {
                 let base = self.basepaths.for_namespace(path_namespace);
-                let asset = if kind.tag() == "model" {
+                let asset = if kind.is(Role::AssetModel) {
                     // A model file brings the files it names (exported beside it).
                     self.model_files.read(self.files, base, text, 0)?.0
                 } else {
                     FileAsset::from_path_and_contents(text, self.files.read(base, text)?.1)
                 };
-                if kind.tag() == "mesh"
+                if kind.is(Role::Mesh)
                     && !matches!(
                         asset.extension().to_ascii_lowercase().as_str(),
                         ".stl" | ".msh" | ".obj"
@@ -638,7 +638,7 @@ pub(crate) fn check_class_named(
     kind: ElementKind,
     attrs: &[Attr],
 ) -> Result<(), ErrorKind> {
-    if kind.tag() != "default" || parent.tag() != "default" {
+    if !kind.is(Role::DefaultClass) || !parent.is(Role::DefaultClass) {
         return Ok(());
     }
     let named = kind
@@ -655,9 +655,9 @@ pub(crate) fn check_class_named(
 /// as the reference does; and a nameless asset `model` the name of the model its file
 /// holds, as MuJoCo does (`<attach model=…>` names it so).
 pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
-    let from_stem = match kind.tag() {
-        "mesh" | "hfield" | "texture" => true,
-        "model" => false,
+    let from_stem = match kind.role() {
+        Some(Role::Mesh | Role::Hfield | Role::Texture) => true,
+        Some(Role::AssetModel) => false,
         _ => return,
     };
     let (Some(ident), Some(file)) = (kind.identifier(), kind.attr_index("file")) else { return };
@@ -806,7 +806,7 @@ fn fill(
             continue;
         }
         let Some(mut done) = stack.pop() else { break };
-        if done.kind.tag() == "default" && done.given.len() > 1 {
+        if done.kind.is(Role::DefaultClass) && done.given.len() > 1 {
             // DESIGN D11: the actuator defaults in the order given.
             let mut children: Vec<Node> = done.children.iter().cloned().collect();
             let given = &done.given;

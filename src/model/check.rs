@@ -6,13 +6,14 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
-use crate::schema::{AttrType, Namespace};
+use crate::schema::{AttrType, Namespace, Role};
 use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
 use crate::xml::WriteOptions;
 
 use super::cursor::{Insts, Item, Step, Walk};
-use super::tree::{ElementId, Node};
+use super::layout::joint_type;
+use super::tree::Node;
 use super::{Loc, Model};
 
 /// A problem [`Model::check`] found: what, and on which element.
@@ -117,7 +118,7 @@ impl fmt::Display for Problem {
                 f,
                 "{}: '{attribute}' names {namespace} '{name}', which does not exist{}",
                 self.path,
-                crate::suggest::hint(suggestions)
+                crate::error::hint(suggestions)
             ),
             ProblemKind::MissingRequired { attribute } => {
                 write!(f, "{}: required attribute '{attribute}' is not set", self.path)
@@ -172,7 +173,10 @@ impl fmt::Display for Problem {
 fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
     let kind = node.kind();
     match kind.attr(i).ty {
-        AttrType::Reference(target) => target.namespace(|k| node.attr(k)),
+        AttrType::Reference(target) => {
+            let other = target.depends_on().and_then(|k| node.attr(k));
+            target.namespace(other.map(|v| v.as_str().unwrap_or("")))
+        }
         _ => None,
     }
 }
@@ -181,34 +185,6 @@ fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
 /// the world body, the main default class.
 fn builtin(ns: Namespace, name: &str) -> bool {
     matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
-}
-
-/// The joint type of a joint element, as written or as its classes set it: `free`,
-/// `ball`, `slide` or `hinge` (the default).
-pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
-    if node.kind().tag() == "freejoint" {
-        return "free";
-    }
-    let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
-    if let Some(Value::Keyword(k)) = explicit {
-        return k;
-    }
-    // The class chain: the element's class, then its ancestors in the default tree.
-    let mut cur = class;
-    while let Some(id) = cur {
-        let Some(class_node) = model.node_by_id(id) else { break };
-        let joint_default = class_node.children().iter().find(|c| c.kind().tag() == "joint");
-        if let Some(Value::Keyword(k)) =
-            joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
-        {
-            return k;
-        }
-        cur = model
-            .index
-            .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().tag() == "default"));
-    }
-    "hinge"
 }
 
 /// An element open in [`Model::check`]'s walk, with what its subtree showed so far.
@@ -360,8 +336,8 @@ impl Model {
                         }
                     }
                     // Degrees of freedom (the layout's own count is in Model::layout).
-                    let parent_tag = open.last().map(|o| o.node.kind().tag());
-                    if matches!(kind.tag(), "joint" | "freejoint") && parent_tag == Some("body") {
+                    let in_body = open.last().is_some_and(|o| o.node.kind().is(Role::Body));
+                    if matches!(kind.role(), Some(Role::Joint | Role::Freejoint)) && in_body {
                         let ty = joint_type(m, node, class);
                         let v = match ty {
                             "free" => 6,
@@ -377,12 +353,12 @@ impl Model {
                     }
                     // Mass: an inertial with mass, or a geom (MuJoCo gives geoms a
                     // density) that does not set its mass to 0.
-                    let massive = match kind.tag() {
-                        "inertial" => node
+                    let massive = match kind.role() {
+                        Some(Role::Inertial) => node
                             .attr(kind.attr_index("mass").unwrap_or(0))
                             .and_then(Value::as_float)
                             .is_some_and(|x| x > 0.0),
-                        "geom" => {
+                        Some(Role::Geom) => {
                             node.attr(kind.attr_index("mass").unwrap_or(0))
                                 .and_then(Value::as_float)
                                 != Some(0.0)
@@ -399,8 +375,7 @@ impl Model {
                 Step::Leave(item) => {
                     classes.leave();
                     let Some(o) = open.pop() else { continue };
-                    let is_body = o.node.kind().tag() == "body"
-                        && o.node.kind().spec().parent.is_some_and(|p| p.tag() != "default");
+                    let is_body = o.node.kind().is(Role::Body);
                     let problem = |kind| {
                         let i = &walk.insts.list[o.inst];
                         let loc = Loc::scoped(i.frames.clone(), o.node.id(), name);

@@ -30,7 +30,7 @@ use std::sync::Arc;
 
 use crate::error::{EditError, ErrorKind};
 use crate::id::IdHash;
-use crate::schema::{ElementKind, Namespace};
+use crate::schema::{ElementKind, Namespace, Role};
 use crate::value::{Reference, Value};
 
 use super::naming::{ElemCtx, InstNames, Named, Written, first_unnamed_joint};
@@ -305,7 +305,7 @@ impl<'a> Walk<'a> {
     /// documentation).
     pub(crate) fn expand(&mut self, item: Item<'a>) -> Vec<Item<'a>> {
         let Item { inst, node, depth, replicated, .. } = item;
-        let below = replicated || node.kind().tag() == "replicate";
+        let below = replicated || node.kind().is(Role::Replicate);
         let plain = |n: &'a Node, inst: usize| Item::plain(inst, n, depth + 1, false);
         let mut out: Vec<Item<'a>> = Vec::with_capacity(node.children().len());
         if node.attached().is_some() {
@@ -335,7 +335,7 @@ impl<'a> Walk<'a> {
         }
         if depth == 0 {
             // The root: after the root default class, every attached root class.
-            let Some(p) = out.iter().position(|c| c.node.kind().tag() == "default") else {
+            let Some(p) = out.iter().position(|c| c.node.kind().is(Role::DefaultClass)) else {
                 return out;
             };
             let kind = out[p].node.kind();
@@ -351,7 +351,9 @@ impl<'a> Walk<'a> {
             return out;
         }
         let kind = node.kind();
-        if matches!(kind.tag(), "worldbody" | "default") || is_settings_section(kind) {
+        if matches!(kind.role(), Some(Role::Worldbody | Role::DefaultClass))
+            || is_settings_section(kind)
+        {
             return out;
         }
         for &j in self.attached_under_root().iter() {
@@ -399,7 +401,7 @@ impl<'a> Iterator for Walk<'a> {
                 let children = node.children();
                 if !children.is_empty() {
                     let prune = self.prune.filter(|_| depth >= 1);
-                    let below = item.replicated || node.kind().tag() == "replicate";
+                    let below = item.replicated || node.kind().is(Role::Replicate);
                     self.stack.reserve(children.len());
                     for c in children.iter().rev() {
                         if prune.is_some_and(|p| p(c)) {
@@ -426,7 +428,7 @@ fn in_replicate(model: &Model, id: ElementId) -> bool {
     let mut cur = model.index.parent(id);
     while let Some(p) = cur {
         let Some(e) = model.index.entry(p) else { return false };
-        if e.kind.tag() == "replicate" {
+        if e.kind.is(Role::Replicate) {
             return true;
         }
         cur = e.parent;
@@ -781,7 +783,7 @@ impl<'a> ElementRef<'a> {
         let pnode = self.model.node_by_id(parent)?;
         let is_section = pnode.kind().spec().parent == Some(ElementKind::ROOT);
         match self.frames.split_last() {
-            Some((frame, outer)) if pnode.kind().tag() == "worldbody" && is_section => {
+            Some((frame, outer)) if pnode.kind().is(Role::Worldbody) && is_section => {
                 let outer_model = self.top.scoped_model(outer)?;
                 let fnode = outer_model.node_by_id(*frame)?;
                 Some(ElementRef::new(self.top, outer_model, &Arc::from(outer), fnode))

@@ -9,24 +9,14 @@
 //! order of its children), and `include_copy` (the receiving class's, then the
 //! copied class's).
 
-use crate::schema::ElementKind;
+use crate::schema::{ElementKind, Role};
 
 use super::tree::Node;
 
-/// Whether `kind` is an actuator default of a default class (`position` in a class):
-/// from a table made once for every kind.
+/// Whether `kind` is an actuator default of a default class (`position` in a class;
+/// [`Role::DefaultActuator`]). Time: O(1).
 pub(crate) fn is_actuator_default(kind: ElementKind) -> bool {
-    static TABLE: std::sync::OnceLock<Vec<bool>> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| {
-        let actuators = ElementKind::ROOT.child("actuator").map_or(&[][..], |a| a.spec().children);
-        ElementKind::all()
-            .map(|k| {
-                k.spec().parent.is_some_and(|p| p.tag() == "default")
-                    && actuators.iter().any(|a| a.tag() == k.tag())
-            })
-            .collect()
-    });
-    table.get(kind.0 as usize).copied().unwrap_or(false)
+    kind.is(Role::DefaultActuator)
 }
 
 /// Places the actuator defaults among `children` (a default class's) in the order of

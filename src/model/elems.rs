@@ -20,38 +20,43 @@
 
 use std::sync::Arc;
 
-use super::index::Entry;
 use crate::id::ElementId;
 
 /// Entries per leaf and children per branch, at most.
 const MAX: usize = 16;
 
 #[derive(Clone)]
-enum Node {
+enum Node<V> {
     /// Entries in increasing key order.
-    Leaf(Vec<(ElementId, Entry)>),
+    Leaf(Vec<(ElementId, V)>),
     /// Children in key order, each with a lower bound of its keys (its smallest key
     /// when it was built or last lowered; removals leave it as it was).
-    Branch(Vec<(ElementId, Arc<Node>)>),
+    Branch(Vec<(ElementId, Arc<Node<V>>)>),
 }
 
-/// A persistent map from element ids to index entries.
-#[derive(Clone, Default)]
-pub(crate) struct ElemMap {
-    root: Option<Arc<Node>>,
+/// A persistent map from element ids to values (the index's entries).
+#[derive(Clone)]
+pub(crate) struct ElemMap<V> {
+    root: Option<Arc<Node<V>>>,
     /// A leaf of entries above every key of `root`, at most `MAX` (module docs);
     /// `None` rather than empty.
-    tail: Option<Arc<Node>>,
+    tail: Option<Arc<Node<V>>>,
     /// Entries in `root` and `tail`.
     len: usize,
 }
 
-impl ElemMap {
+impl<V> Default for ElemMap<V> {
+    fn default() -> Self {
+        ElemMap { root: None, tail: None, len: 0 }
+    }
+}
+
+impl<V: Clone> ElemMap<V> {
     /// The map of `entries` (distinct keys), in any order. O(n) for entries in
     /// increasing order, in a few increasing runs, or with ids from a range at most
     /// about twice their number (a model read: its ids were handed out together);
     /// O(n log n) otherwise.
-    pub(crate) fn from_entries(mut entries: Vec<(ElementId, Entry)>) -> ElemMap {
+    pub(crate) fn from_entries(mut entries: Vec<(ElementId, V)>) -> ElemMap<V> {
         // Where the order breaks: a few runs (a read model's empty singletons under
         // the root) are merged by the stable sort, many are placed by id.
         let breaks = entries.windows(2).filter(|w| w[0].0 >= w[1].0).count();
@@ -66,7 +71,7 @@ impl ElemMap {
             if span < entries.len().saturating_mul(2).saturating_add(1024) {
                 // Dense ids (a read model's: in document order they are not sorted,
                 // its empty singletons being made last): each put in its place.
-                let mut slots: Vec<Option<(ElementId, Entry)>> = Vec::new();
+                let mut slots: Vec<Option<(ElementId, V)>> = Vec::new();
                 slots.resize_with(span + 1, || None);
                 for e in entries.drain(..) {
                     let k = (e.0.get() - lo) as usize;
@@ -80,17 +85,17 @@ impl ElemMap {
             }
         }
         let len = entries.len();
-        let mut level: Vec<(ElementId, Arc<Node>)> = Vec::with_capacity(len.div_ceil(MAX));
+        let mut level: Vec<(ElementId, Arc<Node<V>>)> = Vec::with_capacity(len.div_ceil(MAX));
         let mut rest = entries.into_iter().peekable();
         while let Some(&(first, _)) = rest.peek() {
-            let leaf: Vec<(ElementId, Entry)> = rest.by_ref().take(MAX).collect();
+            let leaf: Vec<(ElementId, V)> = rest.by_ref().take(MAX).collect();
             level.push((first, Arc::new(Node::Leaf(leaf))));
         }
         while level.len() > 1 {
             let mut up = Vec::with_capacity(level.len().div_ceil(MAX));
             let mut rest = level.into_iter().peekable();
             while let Some(&(first, _)) = rest.peek() {
-                let kids: Vec<(ElementId, Arc<Node>)> = rest.by_ref().take(MAX).collect();
+                let kids: Vec<(ElementId, Arc<Node<V>>)> = rest.by_ref().take(MAX).collect();
                 up.push((first, Arc::new(Node::Branch(kids))));
             }
             level = up;
@@ -103,7 +108,7 @@ impl ElemMap {
     }
 
     /// Whether both are one map (the same root, or both empty): O(1).
-    pub(crate) fn ptr_eq(&self, other: &ElemMap) -> bool {
+    pub(crate) fn ptr_eq(&self, other: &ElemMap<V>) -> bool {
         let roots = match (&self.root, &other.root) {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),
             (None, None) => true,
@@ -118,7 +123,7 @@ impl ElemMap {
     }
 
     /// The tail's entries.
-    fn tail_entries(&self) -> Option<&[(ElementId, Entry)]> {
+    fn tail_entries(&self) -> Option<&[(ElementId, V)]> {
         match self.tail.as_deref()? {
             Node::Leaf(v) => Some(v),
             Node::Branch(_) => None,
@@ -126,11 +131,11 @@ impl ElemMap {
     }
 
     /// The tail's entries, if `id` belongs there (it is at least the tail's first key).
-    fn tail_for(&self, id: &ElementId) -> Option<&[(ElementId, Entry)]> {
+    fn tail_for(&self, id: &ElementId) -> Option<&[(ElementId, V)]> {
         self.tail_entries().filter(|t| t.first().is_some_and(|(k, _)| k <= id))
     }
 
-    pub(crate) fn get(&self, id: &ElementId) -> Option<&Entry> {
+    pub(crate) fn get(&self, id: &ElementId) -> Option<&V> {
         if let Some(t) = self.tail_for(id) {
             return t.binary_search_by_key(id, |(k, _)| *k).ok().map(|i| &t[i].1);
         }
@@ -154,7 +159,7 @@ impl ElemMap {
     }
 
     /// Sets the entry of `id`; returns the one it replaces.
-    pub(crate) fn insert(&mut self, id: ElementId, entry: Entry) -> Option<Entry> {
+    pub(crate) fn insert(&mut self, id: ElementId, entry: V) -> Option<V> {
         if self.tail_for(&id).is_some() {
             return self.insert_in_tail(id, entry);
         }
@@ -186,7 +191,7 @@ impl ElemMap {
     /// tail sends the tail into the tree as it is (not copied: other versions may
     /// share it) and starts a new one; a tail grown past `MAX` otherwise gives its
     /// first `MAX` entries to the tree, as its new last leaf.
-    fn insert_in_tail(&mut self, id: ElementId, entry: Entry) -> Option<Entry> {
+    fn insert_in_tail(&mut self, id: ElementId, entry: V) -> Option<V> {
         let full = self
             .tail_entries()
             .is_some_and(|t| t.len() >= MAX && t.last().is_some_and(|(k, _)| *k < id));
@@ -215,7 +220,7 @@ impl ElemMap {
 
     /// Adds `leaf` (a non-empty leaf, its keys above every key of the tree) as the
     /// tree's last leaf.
-    fn push_leaf(&mut self, leaf: Arc<Node>) {
+    fn push_leaf(&mut self, leaf: Arc<Node<V>>) {
         let Some(key) = first_key(&leaf) else { return };
         let Some(root) = self.root.as_mut() else {
             self.root = Some(leaf);
@@ -236,7 +241,7 @@ impl ElemMap {
     }
 
     /// Removes the entry of `id`, if any, and returns it.
-    pub(crate) fn remove(&mut self, id: &ElementId) -> Option<Entry> {
+    pub(crate) fn remove(&mut self, id: &ElementId) -> Option<V> {
         // Not there: nothing is copied.
         self.get(id)?;
         if self.tail_for(id).is_some() {
@@ -267,9 +272,9 @@ impl ElemMap {
     }
 
     /// Every entry in key order (for `Debug` and tests).
-    fn entries(&self) -> Vec<(&ElementId, &Entry)> {
+    fn entries(&self) -> Vec<(&ElementId, &V)> {
         let mut out = Vec::with_capacity(self.len);
-        let mut stack: Vec<&Node> = self.root.as_deref().into_iter().collect();
+        let mut stack: Vec<&Node<V>> = self.root.as_deref().into_iter().collect();
         while let Some(n) = stack.pop() {
             match n {
                 Node::Leaf(v) => out.extend(v.iter().map(|(k, e)| (k, e))),
@@ -283,7 +288,7 @@ impl ElemMap {
 
 /// `Arc::make_mut` for a node about to take one more entry or child: a copy (of a
 /// shared node) is made with room for it, so adding does not allocate again.
-fn node_to_grow(n: &mut Arc<Node>) -> &mut Node {
+fn node_to_grow<V: Clone>(n: &mut Arc<Node<V>>) -> &mut Node<V> {
     if Arc::get_mut(n).is_none() {
         let copy = match &**n {
             Node::Leaf(v) => Node::Leaf(with_room(v)),
@@ -296,7 +301,7 @@ fn node_to_grow(n: &mut Arc<Node>) -> &mut Node {
 
 /// The node an insert goes down to: a leaf takes one more entry (a copy made has room
 /// for it), a branch only on a split below.
-fn for_insert(n: &mut Arc<Node>) -> &mut Node {
+fn for_insert<V: Clone>(n: &mut Arc<Node<V>>) -> &mut Node<V> {
     match &**n {
         Node::Leaf(_) => node_to_grow(n),
         Node::Branch(_) => Arc::make_mut(n),
@@ -311,7 +316,7 @@ fn with_room<T: Clone>(v: &[T]) -> Vec<T> {
 }
 
 /// The largest key of the subtree `n` (the last entry of its last leaf).
-fn last_key(mut n: &Node) -> Option<ElementId> {
+fn last_key<V>(mut n: &Node<V>) -> Option<ElementId> {
     loop {
         match n {
             Node::Leaf(v) => return v.last().map(|(k, _)| *k),
@@ -324,11 +329,11 @@ fn last_key(mut n: &Node) -> Option<ElementId> {
 /// right edge of the branch, at the depth of its leaves; returns the branch's new
 /// right sibling if it split. A full branch stays full (keys only arrive at the
 /// end here).
-fn push_right(
-    v: &mut Vec<(ElementId, Arc<Node>)>,
+fn push_right<V: Clone>(
+    v: &mut Vec<(ElementId, Arc<Node<V>>)>,
     key: ElementId,
-    leaf: Arc<Node>,
-) -> Option<(ElementId, Arc<Node>)> {
+    leaf: Arc<Node<V>>,
+) -> Option<(ElementId, Arc<Node<V>>)> {
     let split = match v.last_mut() {
         // The children are branches: down the right edge (copied if shared).
         Some((_, last)) if matches!(&**last, Node::Branch(_)) => match node_to_grow(last) {
@@ -346,7 +351,7 @@ fn push_right(
     Some((right[0].0, Arc::new(Node::Branch(right))))
 }
 
-fn first_key(n: &Node) -> Option<ElementId> {
+fn first_key<V>(n: &Node<V>) -> Option<ElementId> {
     match n {
         Node::Leaf(v) => v.first().map(|(k, _)| *k),
         Node::Branch(v) => v.first().map(|(k, _)| *k),
@@ -361,13 +366,16 @@ fn split_at<T>(v: &mut Vec<T>, added_at_end: bool) -> Vec<T> {
     v.split_off(at)
 }
 
+/// A node's new right sibling after a split, with its first key.
+type Sibling<V> = (ElementId, Arc<Node<V>>);
+
 /// Inserts into the subtree `node`; returns the replaced entry and, if the node
 /// split, its new right sibling with its first key.
-fn insert_into(
-    node: &mut Node,
+fn insert_into<V: Clone>(
+    node: &mut Node<V>,
     id: ElementId,
-    entry: Entry,
-) -> (Option<Entry>, Option<(ElementId, Arc<Node>)>) {
+    entry: V,
+) -> (Option<V>, Option<Sibling<V>>) {
     match node {
         Node::Leaf(v) => match v.binary_search_by_key(&id, |(k, _)| *k) {
             Ok(i) => (Some(std::mem::replace(&mut v[i].1, entry)), None),
@@ -403,7 +411,7 @@ fn insert_into(
 
 /// Removes `id` from the subtree `node` (known to hold it); an emptied child is
 /// dropped from its parent.
-fn remove_from(node: &mut Node, id: &ElementId) -> Option<Entry> {
+fn remove_from<V: Clone>(node: &mut Node<V>, id: &ElementId) -> Option<V> {
     match node {
         Node::Leaf(v) => {
             let i = v.binary_search_by_key(id, |(k, _)| *k).ok()?;
@@ -425,7 +433,7 @@ fn remove_from(node: &mut Node, id: &ElementId) -> Option<Entry> {
     }
 }
 
-impl std::fmt::Debug for ElemMap {
+impl<V: Clone + std::fmt::Debug> std::fmt::Debug for ElemMap<V> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_map().entries(self.entries()).finish()
     }
@@ -434,6 +442,7 @@ impl std::fmt::Debug for ElemMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::index::Entry;
     use crate::schema::ElementKind;
     use std::collections::BTreeMap;
 
@@ -455,7 +464,7 @@ mod tests {
         }
     }
 
-    fn same(m: &ElemMap, model: &BTreeMap<u64, u64>) {
+    fn same(m: &ElemMap<Entry>, model: &BTreeMap<u64, u64>) {
         assert_eq!(m.len(), model.len());
         let got: Vec<(ElementId, u64)> = m.entries().iter().map(|(k, e)| (**k, e.ord)).collect();
         let want: Vec<(ElementId, u64)> = model.iter().map(|(k, v)| (id(*k), *v)).collect();
@@ -507,7 +516,7 @@ mod tests {
         let mut state = 0x2545_F491_4F6C_DD1D;
         let mut m = ElemMap::from_entries((0..500).map(|k| (id(k * 3), entry(k))).collect());
         let mut model: BTreeMap<u64, u64> = (0..500).map(|k| (k * 3, k)).collect();
-        let mut versions: Vec<(ElemMap, BTreeMap<u64, u64>)> = Vec::new();
+        let mut versions: Vec<(ElemMap<Entry>, BTreeMap<u64, u64>)> = Vec::new();
         for step in 0..20_000u64 {
             let r = rng(&mut state);
             let k = match r % 4 {
@@ -554,8 +563,8 @@ mod tests {
 
     /// Leaves at one depth, keys in order within and across nodes, every bound at
     /// most its subtree's keys, the tail above the tree.
-    fn sound(m: &ElemMap) {
-        fn walk(n: &Node, depth: usize, leaves: &mut Vec<usize>, keys: &mut Vec<ElementId>) {
+    fn sound(m: &ElemMap<Entry>) {
+        fn walk(n: &Node<Entry>, depth: usize, leaves: &mut Vec<usize>, keys: &mut Vec<ElementId>) {
             match n {
                 Node::Leaf(v) => {
                     assert!(!v.is_empty() && v.len() <= MAX);

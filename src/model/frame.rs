@@ -2,7 +2,7 @@
 //! attributes can be set later, and which children it takes.
 
 use crate::error::ErrorKind;
-use crate::schema::ElementKind;
+use crate::schema::{ElementKind, Role};
 
 use super::tree::{Attr, Node};
 
@@ -116,7 +116,6 @@ pub(crate) fn check_frame_child(
     child: &Node,
     scope: &str,
 ) -> Result<(), ErrorKind> {
-    let tag = child.kind().tag();
     // The frame's joints have a namespace of their own.
     if let (Some(ns), Some(name)) = (child.kind().namespace(), child.identifier()) {
         if frame.children().iter().any(|c| c.identifier() == Some(name)) {
@@ -127,10 +126,12 @@ pub(crate) fn check_frame_child(
     // (`robot/`), the others with their automatic names (`model::naming`). A
     // freejoint beside other joints is MuJoCo's to refuse (more than 6 degrees of
     // freedom), as for any body: `Model::check` reports it.
-    match tag {
-        "joint" => Ok(()),
-        "inertial" | "freejoint" => {
-            if tag == "freejoint" && parent.is_none_or(|p| p.kind().tag() != "worldbody") {
+    let role = child.kind().role();
+    match role {
+        Some(Role::Joint) => Ok(()),
+        Some(Role::Inertial | Role::Freejoint) => {
+            let in_world = parent.is_some_and(|p| p.kind().is(Role::Worldbody));
+            if role == Some(Role::Freejoint) && !in_world {
                 return Err(ErrorKind::FreejointNotTopLevel(scope.into()));
             }
             if frame.children().iter().any(|c| c.kind() == child.kind()) {
@@ -138,6 +139,9 @@ pub(crate) fn check_frame_child(
             }
             Ok(())
         }
-        _ => Err(ErrorKind::InvalidChild { parent: "body", tag: tag.into(), suggestion: None }),
+        _ => {
+            let tag = child.kind().tag().into();
+            Err(ErrorKind::InvalidChild { parent: "body", tag, suggestion: None })
+        }
     }
 }

@@ -56,7 +56,7 @@ pub(crate) struct Entry {
 pub(crate) struct Index {
     pub(crate) names: HashMap<(Namespace, SmolStr), ElementId>,
     /// Read through [`Index::entry`], which also knows the members of `runs`.
-    pub(crate) elems: ElemMap,
+    pub(crate) elems: ElemMap<Entry>,
     /// Runs of singleton children without an entry of their own (module docs): the
     /// first child's id → (the parent, the run's length).
     pub(crate) runs: OrdMap<ElementId, (ElementId, u8)>,
@@ -434,7 +434,7 @@ impl Scopes {
     /// names from the frames' entries in `elems`. O(a log a) for `a` attachments.
     fn iter<'a>(
         &'a self,
-        elems: &'a ElemMap,
+        elems: &'a ElemMap<Entry>,
     ) -> impl DoubleEndedIterator<Item = (&'a SmolStr, ElementId)> + 'a {
         let mut frames: Vec<ElementId> =
             self.by_hash.values().chain(self.collided.values()).copied().collect();
@@ -443,7 +443,7 @@ impl Scopes {
     }
 
     /// The frame of the attachment named `scope` (`elems` holds the frames' names).
-    fn frame_of(&self, scope: &str, hash: u64, elems: &ElemMap) -> Option<ElementId> {
+    fn frame_of(&self, scope: &str, hash: u64, elems: &ElemMap<Entry>) -> Option<ElementId> {
         if let Some(&f) = self.by_hash.get(&hash) {
             if elems.get(&f).and_then(Entry::scope).is_some_and(|s| s == scope) {
                 return Some(f);

@@ -16,11 +16,10 @@
 
 use std::collections::HashMap;
 
-use crate::model::check::joint_type;
 use crate::model::pose::{self, Angles, IDENTITY, Pose};
 use crate::model::tree::{ElementId, Node};
 use crate::model::{Loc, Model, Step, Walk, settings};
-use crate::schema::ElementKind;
+use crate::schema::{ElementKind, Role};
 use crate::value::{Reference, Value};
 
 /// A joint's type, as MuJoCo compiles it (the element's own `type`, else its default
@@ -268,16 +267,47 @@ pub(crate) fn from_classes<'m>(
     let mut cur = class;
     while let Some(id) = cur {
         let class_node = model.node_by_id(id)?;
-        let default = class_node.children().iter().find(|c| c.kind().tag() == kind.tag());
+        // The class's defaults of the element's tag.
+        let default = class_node.kind().child(kind.tag()).and_then(|k| class_node.child_of_kind(k));
         if let Some(v) = default.and_then(|d| d.attr(d.kind().attr_index(attr)?)) {
             return Some(v);
         }
         cur = model
             .index
             .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().tag() == "default"));
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
     }
     None
+}
+
+/// The joint type of a joint element, as written or as its classes set it: `free`,
+/// `ball`, `slide` or `hinge` (the default).
+pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
+    if node.kind().is(Role::Freejoint) {
+        return "free";
+    }
+    let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
+    if let Some(Value::Keyword(k)) = explicit {
+        return k;
+    }
+    // The class chain: the element's class, then its ancestors in the default tree.
+    let mut cur = class;
+    while let Some(id) = cur {
+        let Some(class_node) = model.node_by_id(id) else { break };
+        // The class's defaults of the joint's tag.
+        let joint_default =
+            class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
+        if let Some(Value::Keyword(k)) =
+            joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
+        {
+            return k;
+        }
+        cur = model
+            .index
+            .parent(id)
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
+    }
+    "hinge"
 }
 
 /// The controls and activations of an actuator element, as MuJoCo 4.0 counts them
@@ -294,21 +324,21 @@ fn actuator_size(model: &Model, node: &Node, class: Option<ElementId>) -> (usize
     let set = |attr: &str| value(attr).is_some();
     let dyntype = value("dyntype").and_then(Value::as_str);
     let explicit = value("actdim").and_then(Value::as_int).and_then(|n| usize::try_from(n).ok());
-    let tag = node.kind().tag();
-    let act = match tag {
-        "muscle" | "cylinder" | "intvelocity" => 1,
-        "general" => usize::from(dyntype.is_some_and(|d| d != "none")),
-        "position" | "velocity" => usize::from(positive("timeconst")),
-        "dcmotor" => [positive("inductance"), set("thermal"), set("lugre")]
+    let role = node.kind().role();
+    let act = match role {
+        Some(Role::ActuatorStateful) => 1,
+        Some(Role::ActuatorGeneral) => usize::from(dyntype.is_some_and(|d| d != "none")),
+        Some(Role::ActuatorFiltered) => usize::from(positive("timeconst")),
+        Some(Role::ActuatorDcmotor) => [positive("inductance"), set("thermal"), set("lugre")]
             .into_iter()
             .map(usize::from)
             .sum(),
-        "pid" => usize::from(positive("ki")) + usize::from(positive("slewmax")),
+        Some(Role::ActuatorPid) => usize::from(positive("ki")) + usize::from(positive("slewmax")),
         _ => 0,
     };
     // One control per word of `input` (`pos vel`); a <pid> takes both by default.
     let words = value("input").and_then(Value::as_str).map(|s| s.split_whitespace().count());
-    let ctrl = words.unwrap_or(if tag == "pid" { 2 } else { 1 });
+    let ctrl = words.unwrap_or(if role == Some(Role::ActuatorPid) { 2 } else { 1 });
     (ctrl, explicit.unwrap_or(act))
 }
 
@@ -338,8 +368,9 @@ impl Model {
     /// ```
     pub fn layout(&self) -> Layout<'_> {
         let merged = settings::merged(self).ok();
+        let compiler_kind = ElementKind::ROOT.child("compiler");
         let compiler =
-            merged.as_deref().and_then(|m| m.iter().find(|n| n.kind().tag() == "compiler"));
+            merged.as_deref().and_then(|m| m.iter().find(|n| Some(n.kind()) == compiler_kind));
         let angles = Angles::of(compiler);
         let name = self.name();
         let mut out = Layout {
@@ -381,18 +412,18 @@ impl Model {
                 out.origins.entry(item.inst).or_insert(parent_pose);
             }
             let class = classes.enter(m, item.inst, node);
-            let in_default = kind.spec().parent.is_some_and(|p| p.tag() == "default");
-            let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().tag() == "replicate");
-            let is_body = kind.tag() == "body" && !in_default;
-            let frame_like = node.attached().is_some() || kind.tag() == "frame";
+            let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().is(Role::Replicate));
+            let role = kind.role();
+            let is_body = role == Some(Role::Body);
+            let frame_like = node.attached().is_some() || role == Some(Role::Frame);
             let pose = if is_body || frame_like {
                 pose::compose(parent_pose, pose::local_pose(node, &angles))
             } else {
                 parent_pose
             };
-            match kind.tag() {
+            match role {
                 // Joints of a body, directly or inside its `<frame>`s.
-                "joint" | "freejoint" if !in_default && in_body => {
+                Some(Role::Joint | Role::Freejoint) if in_body => {
                     let joint_type = JointType::of(joint_type(m, node, class));
                     let qpos0 = match joint_type {
                         JointType::Free => [parent_pose.pos.as_slice(), &parent_pose.quat].concat(),
@@ -415,7 +446,7 @@ impl Model {
                     };
                     recs[rec].joints.push((joint, parent_pose));
                 }
-                "attach" | "composite" | "flexcomp" if !in_default => out.unexpanded.push(loc()),
+                Some(Role::Attach | Role::MakesBodies) => out.unexpanded.push(loc()),
                 _ => {}
             }
             if is_body || node.attached().is_some() {
@@ -429,7 +460,7 @@ impl Model {
                         Some(LayoutMocap { loc: loc(), index: 0, inst: item.inst, own: 0, pose });
                 }
             }
-            if kind.tag() == "replicate" && !in_default {
+            if role == Some(Role::Replicate) {
                 let count = node
                     .attr(kind.attr_index("count").unwrap_or(usize::MAX))
                     .and_then(Value::as_int)
@@ -441,10 +472,7 @@ impl Model {
                 recs[rec].children.push(Child::Repeat { rec: new, count, at: pose, step });
                 rec = new;
             }
-            let parent_tag = parent.map(|p| p.node.kind().tag());
-            if parent_tag == Some("actuator")
-                && kind.spec().parent.is_some_and(|p| p.tag() == "actuator")
-            {
+            if role.is_some_and(Role::is_actuator) {
                 let (nctrl, nact) = actuator_size(m, node, class);
                 actuators.push(LayoutActuator {
                     loc: loc(),
@@ -457,7 +485,7 @@ impl Model {
                     own_act: 0,
                 });
             }
-            if parent_tag == Some("keyframe") && kind.tag() == "key" {
+            if role == Some(Role::Key) {
                 out.keys.push((item.inst, node, loc()));
             }
             open.push(Open { inst: item.inst, node, pose, rec });

@@ -16,37 +16,15 @@ use std::sync::Arc;
 use super::Model;
 use super::tree::{Attr, Node};
 use crate::error::ErrorKind;
-use crate::schema::{AttrType, ElementKind, Merge, Multiplicity};
+use crate::schema::{AttrType, ElementKind, Merge, Role};
 
 use crate::value::{Value, number};
 
 /// Whether a root section takes part in the settings fold: a singleton whose whole
-/// subtree is made of singletons (`compiler`, `option`, `size`, `visual`, `statistic`).
-/// O(1): computed once per kind (every edit asks, through `Model::next`).
+/// subtree is made of singletons (`compiler`, `option`, `size`, `visual`, `statistic`;
+/// [`Role::SettingsSection`]). Time: O(1) (every edit asks, through `Model::next`).
 pub(crate) fn is_settings_section(kind: ElementKind) -> bool {
-    static SECTIONS: std::sync::OnceLock<Vec<bool>> = std::sync::OnceLock::new();
-    let table =
-        SECTIONS.get_or_init(|| ElementKind::all().map(compute_is_settings_section).collect());
-    table.get(kind.0 as usize).copied().unwrap_or(false)
-}
-
-fn compute_is_settings_section(kind: ElementKind) -> bool {
-    if kind.tag() == "default"
-        || kind.tag() == "worldbody"
-        || kind.multiplicity() != Multiplicity::Singleton
-    {
-        return false;
-    }
-    let mut stack = vec![kind];
-    while let Some(k) = stack.pop() {
-        for c in k.spec().children {
-            if c.multiplicity() != Multiplicity::Singleton || *c == k {
-                return false;
-            }
-            stack.push(*c);
-        }
-    }
-    true
+    kind.is(Role::SettingsSection)
 }
 
 /// Folds `theirs` (an attachment's merged section) into `ours`, by the merge rules.

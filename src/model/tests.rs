@@ -45,9 +45,7 @@ fn singletons_indexed_as_runs_are_found_like_any_element_through_edits() {
     // (its map was read) are not.
     assert!(m.index.runs.len() >= 4, "{} runs", m.index.runs.len());
     let class = |m: &Model, name| m.find(Namespace::Default, name).unwrap();
-    let geom_of = |m: &Model, class: &Loc| {
-        m.element(class).unwrap().children().find(|c| c.tag() == "geom").unwrap().loc()
-    };
+    let geom_of = |m: &Model, class: &Loc| m.child(class, "geom").unwrap();
     // An edit of a member of a run, then a removal of the class holding it.
     let g = geom_of(&m, &class(&m, "b"));
     let m = m.set_attr(&g, "rgba", [0.0, 1.0, 0.0, 1.0]).unwrap();

@@ -3,7 +3,7 @@
 
 use crate::error::{EditError, ErrorKind};
 use crate::model::{Element, Loc, Model};
-use crate::schema::ElementKind;
+use crate::schema::{ElementKind, Role};
 
 impl Model {
     /// The top-level section that takes an element of tag `tag`: `worldbody` for
@@ -33,7 +33,7 @@ impl Model {
             .spec()
             .children
             .iter()
-            .filter(|s| s.tag() != "default" && s.child(tag).is_some());
+            .filter(|s| !s.is(Role::DefaultClass) && s.child(tag).is_some());
         match (sections.next(), sections.next()) {
             (Some(section), None) => Ok(self.must_section(section.tag())),
             _ => Err(refuse()),

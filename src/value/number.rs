@@ -53,6 +53,25 @@ pub(crate) fn parse_int(text: &str) -> Option<i64> {
     float_to_int(parse_float(t)?)
 }
 
+/// The fast path of `scan`, then the general parser: how arrays read their numbers.
+impl super::scan::Number for f64 {
+    fn lead(bytes: &[u8], i: &mut usize) -> Option<f64> {
+        super::scan::lead_float(bytes, i)
+    }
+    fn parse(text: &str) -> Option<f64> {
+        parse_float(text)
+    }
+}
+
+impl super::scan::Number for i64 {
+    fn lead(bytes: &[u8], i: &mut usize) -> Option<i64> {
+        super::scan::lead_int(bytes, i)
+    }
+    fn parse(text: &str) -> Option<i64> {
+        parse_int(text)
+    }
+}
+
 /// Converts an integral, in-range float to an integer.
 pub(crate) fn float_to_int(v: f64) -> Option<i64> {
     // 2^63 is exactly representable; every double below it in magnitude fits.

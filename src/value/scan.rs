@@ -3,6 +3,8 @@
 //! only text whose value it gets exactly right and returns `None` for anything else,
 //! which the general parser (`number::parse_float`, `number::parse_int`) then reads:
 //! what is accepted, and the value read, are the same as with the general parser alone.
+//! A leaf module: the general parser comes in through [`Number`], which `number`
+//! implements for `f64` and `i64`.
 
 use std::sync::Arc;
 
@@ -27,7 +29,7 @@ pub(crate) fn plain_float(text: &[u8]) -> Option<f64> {
 /// The plain decimal (as [`plain_float`] reads it) that starts at `bytes[*i]` and
 /// ends at the end or at ASCII whitespace; `*i` is moved to where the digits and
 /// point stop (also when the text there is not a plain decimal: `None`).
-fn lead_float(bytes: &[u8], i: &mut usize) -> Option<f64> {
+pub(super) fn lead_float(bytes: &[u8], i: &mut usize) -> Option<f64> {
     let neg = bytes.get(*i) == Some(&b'-');
     if neg {
         *i += 1;
@@ -67,7 +69,7 @@ pub(crate) fn plain_int(text: &[u8]) -> Option<i64> {
 
 /// The plain integer (as [`plain_int`] reads it) that starts at `bytes[*i]` and ends
 /// at the end or at ASCII whitespace; `*i` is moved to where the digits stop.
-fn lead_int(bytes: &[u8], i: &mut usize) -> Option<i64> {
+pub(super) fn lead_int(bytes: &[u8], i: &mut usize) -> Option<i64> {
     let neg = bytes.get(*i) == Some(&b'-');
     if neg {
         *i += 1;
@@ -98,24 +100,6 @@ pub(crate) trait Number: Copy + Default {
     fn lead(bytes: &[u8], i: &mut usize) -> Option<Self>;
     /// The general parser, for parts that are not plain.
     fn parse(text: &str) -> Option<Self>;
-}
-
-impl Number for f64 {
-    fn lead(bytes: &[u8], i: &mut usize) -> Option<f64> {
-        lead_float(bytes, i)
-    }
-    fn parse(text: &str) -> Option<f64> {
-        super::number::parse_float(text)
-    }
-}
-
-impl Number for i64 {
-    fn lead(bytes: &[u8], i: &mut usize) -> Option<i64> {
-        lead_int(bytes, i)
-    }
-    fn parse(text: &str) -> Option<i64> {
-        super::number::parse_int(text)
-    }
 }
 
 /// The whitespace-separated parts of `text` (as `str::split_ascii_whitespace` splits),

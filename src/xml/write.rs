@@ -23,7 +23,7 @@ use crate::model::naming::{RootClass, Written as WrittenName};
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
 use crate::model::{ElemMap, Entry, Insts, Item, Model, Step, Walk};
-use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget, Role};
 use crate::value::{FloatStyle, Reference, Value, is_clean};
 
 /// The output reserved per element of the composed model, before writing: about what
@@ -330,7 +330,7 @@ struct Writer<'a> {
     /// Index entries looked up by references, with the map they came from: an
     /// attached model's elements are looked up again for each attachment of it
     /// (the same shared map), and a class is looked up twice (is it there, its name).
-    entries: HashMap<ElementId, (&'a ElemMap, Option<&'a Entry>), IdHash>,
+    entries: HashMap<ElementId, (&'a ElemMap<Entry>, Option<&'a Entry>), IdHash>,
 }
 
 /// Whether a singleton writes anything: a written attribute, or a child that does.
@@ -358,7 +358,7 @@ fn singleton_emits(node: &Node) -> bool {
 /// the reader folds into the root class).
 fn lone_slash_class(node: &Node) -> bool {
     let (classes, own): (Vec<&Node>, Vec<&Node>) =
-        node.children().iter().partition(|c| c.kind().tag() == "default");
+        node.children().iter().partition(|c| c.kind().is(Role::DefaultClass));
     matches!(classes[..], [c] if c.identifier() == Some("/")) && !own.into_iter().any(emits)
 }
 
@@ -386,7 +386,7 @@ impl<'a> Writer<'a> {
                     if substitute
                         && self.options.merge_keyframes
                         && item.depth == 1
-                        && item.node.kind().tag() == "keyframe" =>
+                        && item.node.kind().is(Role::Keyframe) =>
                 {
                     walk.skip_subtree();
                     self.write_merged_keys(&walk.insts)?;
@@ -536,7 +536,7 @@ impl<'a> Writer<'a> {
         // The `<default>` wrapper of the root classes opens at the first one and
         // closes before the next section.
         if depth == 1 && substitute {
-            let is_default = kind.tag() == "default";
+            let is_default = kind.is(Role::DefaultClass);
             if is_default && !self.in_default {
                 self.finish_parent(insts)?;
                 self.indent(1);
@@ -567,7 +567,7 @@ impl<'a> Writer<'a> {
         if top && settings::is_settings_section(kind) {
             return Ok(false);
         }
-        if top && kind.tag() == "worldbody" && !emits(node) {
+        if top && kind.is(Role::Worldbody) && !emits(node) {
             return Ok(false);
         }
         if !top && depth > 0 && !item.in_frame && node.attached().is_none() && !emits(node) {
@@ -582,7 +582,7 @@ impl<'a> Writer<'a> {
         let transparent = inst == 0
             && substitute
             && item.depth == 1
-            && kind.tag() == "default"
+            && kind.is(Role::DefaultClass)
             && names.root_class == RootClass::Main;
         // Whether a `childclass` of the same model is above: attached models start
         // without one.
@@ -597,15 +597,15 @@ impl<'a> Writer<'a> {
             None => kind.tag(),
         };
         // MuJoCo's own `<frame>`s in the world pass the world on too.
-        let world_level = (kind.tag() == "worldbody" && inst == 0 && substitute)
+        let world_level = (kind.is(Role::Worldbody) && inst == 0 && substitute)
             || as_frame
-            || (parent_world && kind.tag() == "frame");
+            || (parent_world && kind.is(Role::Frame));
         let depth = if transparent { depth - 1 } else { depth };
         self.open.push(Open { inst, child_cc, depth, tag, world_level, transparent });
         if transparent {
             return Ok(true);
         }
-        if top && kind.tag() != "default" && kind.tag() != "worldbody" {
+        if top && !matches!(kind.role(), Some(Role::DefaultClass | Role::Worldbody)) {
             self.finish_parent(insts)?;
             self.pending = Some((Pending::Unwritten(Inst0Section { depth }), item));
             return Ok(true);
@@ -940,11 +940,11 @@ pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
     }
     let Some(wb) = section_of(&a.model, "worldbody") else { return false };
     wb.children().iter().any(|b| {
-        b.kind().tag() == "body"
+        b.kind().is(Role::Body)
             && b.attached().is_none()
-            && b.children().iter().any(|j| match j.kind().tag() {
-                "freejoint" => true,
-                "joint" => j
+            && b.children().iter().any(|j| match j.kind().role() {
+                Some(Role::Freejoint) => true,
+                Some(Role::Joint) => j
                     .kind()
                     .attr_index("type")
                     .and_then(|i| j.attr(i))

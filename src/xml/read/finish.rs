@@ -10,7 +10,7 @@ use super::{NONE, Pending, Reader, children_of, push_unique, unique_child};
 use crate::error::{ErrorKind, ReadError};
 use crate::model::tree::{Attr, ElementId, Node, no_attrs};
 use crate::model::{Model, ReadIndex, empty_node, empty_node_with_id};
-use crate::schema::{AttrType, ElementKind, Multiplicity};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{Reference, Value};
 
 /// Turns the arena into nodes, indexes them and resolves references.
@@ -81,7 +81,7 @@ pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<
                     }
                 }
             }
-            if p.kind.tag() == "default" {
+            if p.kind.is(Role::DefaultClass) {
                 // DESIGN D11: the actuator defaults in the order they were read.
                 crate::model::defaults::order(&mut singles, |(n, _)| n, |(_, at)| *at);
             }
@@ -179,7 +179,7 @@ fn index_names(
     let root_class = r
         .arena
         .iter()
-        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.tag() == "default")
+        .find(|p| p.kind.spec().parent == Some(ElementKind::ROOT) && p.kind.is(Role::DefaultClass))
         .map(|d| d.id);
     let lookup = |ns: crate::Namespace, n: &str| {
         names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
@@ -221,16 +221,16 @@ pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
         return (false, None);
     };
     let is_slash = |p: &Pending| {
-        p.kind.tag() == "default"
+        p.kind.is(Role::DefaultClass)
             && p.kind.identifier().is_some_and(|i| {
                 p.attrs.iter().any(|(k, v)| *k as usize == i && v.as_str() == Some("/"))
             })
     };
     // A class `/` beside other classes, at any level (under a named root class too).
     let composed = arena.iter().enumerate().any(|(i, p)| {
-        p.kind.tag() == "default"
+        p.kind.is(Role::DefaultClass)
             && children_of(arena, i).any(|c| is_slash(&arena[c]))
-            && children_of(arena, i).filter(|&c| arena[c].kind.tag() == "default").count() > 1
+            && children_of(arena, i).filter(|&c| arena[c].kind.is(Role::DefaultClass)).count() > 1
     });
     let kids: Vec<usize> = children_of(arena, d).collect();
     let [only] = kids[..] else { return (composed, None) };
@@ -303,7 +303,8 @@ pub(super) fn resolve_attrs(
         let (i, v) = &attrs[j];
         let Value::Reference(Reference::Name(n)) = v else { continue };
         let AttrType::Reference(target) = kind.attr(*i as usize).ty else { continue };
-        let ns = target.namespace(|k| attrs.iter().find(|(x, _)| *x as usize == k).map(|(_, v)| v));
+        let other = target.depends_on().and_then(|k| attrs.iter().find(|(x, _)| *x as usize == k));
+        let ns = target.namespace(other.map(|(_, v)| v.as_str().unwrap_or("")));
         if let Some(id) = ns.and_then(|ns| lookup(ns, n)) {
             attrs[j].1 = Value::Reference(Reference::Element(id));
         }
