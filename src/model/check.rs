@@ -177,12 +177,6 @@ fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
     }
 }
 
-/// Whether a plain name reference is one MuJoCo resolves without a named element:
-/// the world body, the main default class.
-fn builtin(ns: Namespace, name: &str) -> bool {
-    matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
-}
-
 /// The joint type of a joint element, as written or as its classes set it: `free`,
 /// `ball`, `slide` or `hinge` (the default).
 pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
@@ -318,7 +312,9 @@ impl Model {
                         match v {
                             Value::Reference(Reference::Name(n)) => {
                                 let Some(ns) = ref_namespace(node, i) else { continue };
-                                if builtin(ns, n) || m.index.names.contains_key(&(ns, n.clone())) {
+                                if super::naming::is_builtin_name(ns, n)
+                                    || m.index.names.contains_key(&(ns, n.clone()))
+                                {
                                     continue;
                                 }
                                 if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {

@@ -930,7 +930,7 @@ fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, Read
         .map(|d| d.id);
     let lookup = |ns: crate::Namespace, n: &str| {
         names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
-            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
+            (ns == crate::Namespace::Default && crate::model::naming::is_builtin_name(ns, n))
                 .then_some(root_class)
                 .flatten()
         })

@@ -223,6 +223,7 @@ enum Pending {
 /// The rules' decisions for one element, taken as the writer enters it.
 #[derive(Clone, Copy)]
 struct Decisions {
+    /// How it appears ([`policy::presence`]).
     presence: Presence,
     /// The tag written ([`policy::written_tag`]).
     tag: &'static str,
@@ -236,13 +237,14 @@ struct Decisions {
     world_below: bool,
 }
 
-/// An element entered and not yet left: its instance and the decisions its
-/// children's ask of it.
+/// An element entered and not yet left: its instance, and the decisions taken for
+/// it (its children's rules ask them; its end tag is written from them).
 struct Open {
     inst: usize,
     d: Decisions,
 }
 
+/// The writer: the text so far, and where it stands in the composed walk.
 struct Writer<'a> {
     text: Text,
     options: &'a WriteOptions,

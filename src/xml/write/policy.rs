@@ -8,7 +8,7 @@
 //! drift apart.
 
 use crate::error::WriteError;
-use crate::model::naming::RootClass;
+use crate::model::naming::{self, RootClass};
 use crate::model::tree::Node;
 use crate::model::{Item, Model, settings};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget};
@@ -282,16 +282,16 @@ pub(super) enum NamedReference {
 /// instance's prefix.
 pub(super) fn named_reference(model: &Model, node: &Node, i: usize, name: &str) -> NamedReference {
     let ty = node.kind().attr(i).ty;
-    if ty == AttrType::Reference(RefTarget::Fixed(Namespace::Default))
-        && matches!(name, "main" | "/")
+    let builtin =
+        |ns| ty == AttrType::Reference(RefTarget::Fixed(ns)) && naming::is_builtin_name(ns, name);
+    if builtin(Namespace::Default)
         && !model.index.names.contains_key(&(Namespace::Default, name.into()))
     {
         return NamedReference::RootClass;
     }
-    let to_body = ty == AttrType::Reference(RefTarget::Fixed(Namespace::Body));
     let elsewhere =
         matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
-    if elsewhere || to_body && name == "world" {
+    if elsewhere || builtin(Namespace::Body) {
         NamedReference::Bare
     } else {
         NamedReference::Prefixed
@@ -438,11 +438,11 @@ fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
 // Files.
 
 /// Rule *file names*: a file attribute is written as the file's name in the text's
-/// folder, where `Model::export` and `Model::assets` put it: `stem-<sha1>.ext` with
+/// folder, where `Model::export` and `Model::assets` put it (they ask this too): `stem-<sha1>.ext` with
 /// [`WriteOptions::filename_with_hash`] (the reference's), `stem.ext` without. The
 /// reader reads `stem-<sha1 of the contents>` back as `stem`
 /// (`FileAsset::named_as`), so writing it again gives the same name.
-pub(super) fn file_name(file: &FileAsset, options: &WriteOptions) -> String {
+pub(in crate::xml) fn file_name(file: &FileAsset, options: &WriteOptions) -> String {
     file.vfs_name(options.filename_with_hash)
 }
 
