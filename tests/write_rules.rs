@@ -208,7 +208,12 @@ fn a_root_class_beside_a_class_named_slash_is_numbered() {
         r#"<mujoco model="m"><default><geom rgba="1 0 0 1"/><default class="a"><default class="/"/></default></default><worldbody><geom size="1"/></worldbody></mujoco>"#,
     );
     m.attach_mut(&m.worldbody(), &robot("robot")).unwrap();
+    // After the attachment: its automatic name counts the outermost model's geoms
+    // only, which the flat model read back does not tell apart (a composed output).
+    m.add_mut(&m.worldbody(), element!("geom", size = [2])).unwrap();
     let (xml, back) = round_trip(&m);
+    assert!(xml.contains(r#"<geom name="//unnamed_geom_1" class="/1" size="2"/>"#), "{xml}");
+    assert!(has_name(&back, Namespace::Geom, "//unnamed_geom_1"), "kept as a literal name");
     assert!(
         xml.contains("<default>\n    <default class=\"/1\">\n      <geom rgba=\"1 0 0 1\"/>"),
         "{xml}"

@@ -211,21 +211,28 @@ pub(in crate::xml) fn folds_into_root_class<'n>(
 }
 
 /// Rule *composed output*, the reader's side: a `<default>` whose classes
-/// (`children`) are a class named `/` and others beside it is how a composed model
-/// is written (the outermost root class `/` beside the attached models' root
-/// classes `robot/`, which must not inherit from it). A file holding one is read
-/// with its automatic names kept (see [`is_auto_name`]).
+/// (`children`) are the outermost root class and others beside it is how a composed
+/// model is written (the root class `/`, or `/1` where a class holds `/`
+/// (naming's `RootClass::Numbered`), beside the attached models' root classes
+/// `robot/`, which must not inherit from it). A file holding one is read with its
+/// automatic names kept (see [`is_auto_name`]).
 pub(in crate::xml) fn is_composed_output<'n>(
     children: impl IntoIterator<Item = DefaultChild<'n>>,
 ) -> bool {
-    let (mut classes, mut slash) = (0usize, false);
+    let (mut classes, mut root) = (0usize, false);
     for c in children {
         if let DefaultChild::Class(name) = c {
             classes += 1;
-            slash |= name == Some("/");
+            root |= name.is_some_and(is_outermost_root_class_name);
         }
     }
-    slash && classes > 1
+    root && classes > 1
+}
+
+/// Whether `name` is one the outermost root class is written with beside attached
+/// root classes: `/`, or `/k` for a number `k` (naming's `RootClass::Numbered`).
+fn is_outermost_root_class_name(name: &str) -> bool {
+    name.strip_prefix('/').is_some_and(|k| k.is_empty() || k.parse::<u32>().is_ok_and(|k| k > 0))
 }
 
 // ---------------------------------------------------------------------------------
@@ -484,5 +491,8 @@ mod tests {
         assert!(is_composed_output([Setting, Class(None), slash]));
         assert!(!is_composed_output([slash, Setting]));
         assert!(!is_composed_output([Class(Some("a")), Class(Some("b"))]));
+        assert!(is_composed_output([Class(Some("/1")), Class(Some("robot/"))]));
+        assert!(!is_composed_output([Class(Some("/x")), Class(Some("robot/"))]));
+        assert!(!is_composed_output([Class(Some("/0")), Class(Some("robot/"))]));
     }
 }
