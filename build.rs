@@ -188,6 +188,13 @@ fn main() {
     // tests/support's own tests are left out where the binding crate includes those
     // files (it sets this cfg); declared here for the mjcf crate's targets.
     println!("cargo::rustc-check-cfg=cfg(mjcf_mujoco)");
+    // The real models beside the checkout (`../shared/realmodels`, as CI has it): the
+    // tests over them are ignored, with a note, where they are not (as this script
+    // finds them when it runs).
+    println!("cargo::rustc-check-cfg=cfg(mjcf_realmodels)");
+    if Path::new("../shared/realmodels/cases").is_dir() {
+        println!("cargo::rustc-cfg=mjcf_realmodels");
+    }
     let path = Path::new("schema/schema.xml");
     println!("cargo::rerun-if-changed=schema/schema.xml");
     println!("cargo::rerun-if-changed={MUJOCO40_SCHEMA}");

@@ -5,11 +5,28 @@
 //! literal names read from a composed file, root classes beside a class named `/`.
 //! `tools/mujoco_cases.py` compiles the same shapes in MuJoCo
 //! (`examples/mujoco_cases.rs`).
+//!
+//! Issue 20 item 1 over every model at hand: every conformance output, every
+//! conformance file read on its own (the inputs, dm_control's expected outputs),
+//! the real models beside the checkout (`../shared/realmodels`; the test is ignored,
+//! saying so, without them), and the generated models and scenes
+//! (`src/generate/tests.rs`, through the same `support/names.rs`).
 
+#[path = "support/case.rs"]
+mod case;
+#[path = "support/compare.rs"]
+mod compare;
 #[path = "support/names.rs"]
 mod names;
+#[allow(dead_code)]
+#[path = "support/replay.rs"]
+mod replay;
+#[path = "support/text.rs"]
+mod text;
 
-use mjcf::{Element, ErrorKind, Model, Namespace, ProblemKind, element};
+use std::path::{Path, PathBuf};
+
+use mjcf::{Element, ErrorKind, Model, Namespace, ProblemKind, ReadOptions, WriteOptions, element};
 
 fn write(m: &Model) -> String {
     m.to_xml_string().unwrap_or_else(|e| panic!("cannot write: {e}"))
@@ -324,3 +341,129 @@ fn a_composed_model_written_read_and_written_again_is_the_same_text() {
     assert!(xml.contains(r#"<body name="robot/" pos="1 2 3" euler="0 0 90">"#), "{xml}");
     assert!(xml.contains(r#"<frame name="ball/" pos="1 2 3" euler="0 0 90">"#), "{xml}");
 }
+
+/// The names of `m` written with `options` hold (`names::check_names`), and so do
+/// those of what the text reads back as (with the files it names), written again.
+fn names_hold_with(m: &Model, options: &WriteOptions) -> Result<(), String> {
+    let xml = m.to_xml_string_with(options).map_err(|e| format!("cannot write: {e}"))?;
+    names::check_names(m, &xml)?;
+    let mut read = ReadOptions::new();
+    for (name, file) in m.assets(options).map_err(|e| e.to_string())? {
+        read = read.asset(&name, file.contents().to_vec());
+    }
+    let back = read.read_str(&xml).map_err(|e| format!("does not read back: {e}"))?;
+    let again = back.to_xml_string_with(options).map_err(|e| e.to_string())?;
+    names::check_names(&back, &again).map_err(|e| format!("read back: {e}"))
+}
+
+/// What [`check_case_folders`] checked.
+#[derive(Debug, Default)]
+struct Checked {
+    cases: usize,
+    /// The models the cases' `output` ops write.
+    outputs: usize,
+    /// The `.xml` files of the case folders that read on their own.
+    files: usize,
+    /// Those that do not (a file the case expects to fail to read).
+    unreadable: usize,
+    failures: Vec<String>,
+}
+
+/// Checks the names of every case under `root` (`tests/conformance/README.md`'s
+/// format): of every model its ops output, and of every `.xml` file in its folder
+/// that reads on its own.
+fn check_case_folders(root: &Path) -> Checked {
+    let mut checked = Checked::default();
+    for dir in case::list_cases(root).unwrap_or_else(|e| panic!("{e}")) {
+        let c = case::load_case(&dir).unwrap_or_else(|e| panic!("{e}"));
+        checked.cases += 1;
+        let (_, outputs) = replay::run_case_collecting(&c, None);
+        for (file, model, options) in outputs {
+            checked.outputs += 1;
+            if let Err(e) = names_hold_with(&model, &options) {
+                checked.failures.push(format!("{}: output {file}: {e}", c.name));
+            }
+        }
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "xml"))
+            .collect();
+        files.sort();
+        for f in files {
+            let Some(model) = read_case_file(&dir, &f) else {
+                checked.unreadable += 1;
+                continue;
+            };
+            checked.files += 1;
+            if let Err(e) = names_hold_with(&model, &WriteOptions::default()) {
+                checked.failures.push(format!("{}: {e}", f.display()));
+            }
+        }
+    }
+    checked
+}
+
+/// `file` of the case folder `dir` read on its own, if it reads: as it is, or with
+/// the folder's other files (its subfolders' too) also under the names the writer
+/// gives them (`stem-<sha1>.ext`), as dm_control's expected outputs name them.
+fn read_case_file(dir: &Path, file: &Path) -> Option<Model> {
+    if let Ok(m) = Model::from_path(file) {
+        return Some(m);
+    }
+    let mut read = ReadOptions::new();
+    let mut folders = vec![dir.to_path_buf()];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).ok()? {
+            let path = entry.ok()?.path();
+            if path.is_dir() {
+                folders.push(path);
+                continue;
+            }
+            if path.extension().is_some_and(|x| x == "xml" || x == "json") {
+                continue;
+            }
+            let contents = std::fs::read(&path).ok()?;
+            let name = path.file_name()?.to_str()?;
+            let asset = mjcf::FileAsset::from_path_and_contents(name, contents.clone());
+            read = read.asset(&asset.vfs_name(true), contents);
+        }
+    }
+    read.read_path(file).ok()
+}
+
+fn assert_checked(what: &str, checked: &Checked, cases: usize, files: usize) {
+    eprintln!("{what}: {checked:?}");
+    assert!(checked.failures.is_empty(), "{what}: {:#?}", checked.failures);
+    assert!(checked.cases >= cases, "{what}: {} cases, fewer than {cases}", checked.cases);
+    assert!(checked.outputs >= cases, "{what}: {} outputs checked", checked.outputs);
+    assert!(checked.files >= files, "{what}: {} files read, fewer than {files}", checked.files);
+}
+
+/// Item 1 over the conformance corpus: every output, and every file of it read on
+/// its own (the inputs and dm_control's expected outputs, composed ones included,
+/// whose names read back as literal names).
+#[test]
+fn every_conformance_output_and_file_read_is_named_as_written() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/conformance/cases");
+    let checked = check_case_folders(&root);
+    assert_checked("conformance", &checked, 155, FLOOR_CONFORMANCE_FILES);
+}
+
+/// Item 1 over the real models (`../shared/realmodels`): every output of their cases
+/// (each model read and written, as `.ci/run` runs them), and every file of their
+/// folders that reads on its own.
+#[test]
+#[cfg_attr(not(mjcf_realmodels), ignore = "../shared/realmodels is not beside the checkout")]
+fn every_real_model_is_named_as_written() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/realmodels/cases");
+    let checked = check_case_folders(&root);
+    assert_checked("real models", &checked, 179, FLOOR_REAL_MODEL_FILES);
+}
+
+/// The conformance files that read on their own (the 7 others are the inputs of the
+/// cases that expect reading them to fail); fewer means files stopped reading.
+const FLOOR_CONFORMANCE_FILES: usize = 468;
+
+/// The real models' files (every one reads on its own).
+const FLOOR_REAL_MODEL_FILES: usize = 346;

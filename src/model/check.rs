@@ -181,12 +181,6 @@ fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
     }
 }
 
-/// Whether a plain name reference is one MuJoCo resolves without a named element:
-/// the world body, the main default class.
-fn builtin(ns: Namespace, name: &str) -> bool {
-    matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
-}
-
 /// An element open in [`Model::check`]'s walk, with what its subtree showed so far.
 struct Open<'a> {
     inst: usize,
@@ -294,7 +288,9 @@ impl Model {
                         match v {
                             Value::Reference(Reference::Name(n)) => {
                                 let Some(ns) = ref_namespace(node, i) else { continue };
-                                if builtin(ns, n) || m.index.names.contains_key(&(ns, n.clone())) {
+                                if super::naming::is_builtin_name(ns, n)
+                                    || m.index.names.contains_key(&(ns, n.clone()))
+                                {
                                     continue;
                                 }
                                 if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {

@@ -337,6 +337,15 @@ impl Written<'_> {
     }
 }
 
+/// Whether `name` in namespace `ns` names what MuJoCo resolves without an element
+/// of that name: the world body `world`, and the root default class as `main`
+/// (MuJoCo's name) or `/` (dm_control's). The reader resolves the class names to the
+/// root class unless a class holds the name, `check` accepts them, and the writer
+/// writes them as the root class is named (`world` as it is, in every scope).
+pub(crate) fn is_builtin_name(ns: Namespace, name: &str) -> bool {
+    matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
+}
+
 /// The kind of the root default class (looked up once: every element named asks).
 pub(crate) fn root_default_kind() -> Option<ElementKind> {
     static KIND: std::sync::OnceLock<Option<ElementKind>> = std::sync::OnceLock::new();

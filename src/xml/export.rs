@@ -21,11 +21,13 @@ use crate::model::Model;
 use crate::value::{FileAsset, Value};
 
 use super::WriteOptions;
+use super::write::policy;
 
 impl Model {
     /// Every file the MJCF written with `options` names (this model's own, and those
     /// of included and attached models, at any depth), each once, under the name the
-    /// writer gives it ([`FileAsset::vfs_name`] with `options.filename_with_hash`).
+    /// writer gives it (the writer's rule "file names": [`FileAsset::vfs_name`] with
+    /// `options.filename_with_hash`).
     ///
     /// This is the asset map MuJoCo takes beside the XML
     /// (`MjModel.from_xml_string(xml, assets)`; dm_control's `get_assets()`): name →
@@ -82,7 +84,7 @@ impl Model {
                 }
                 for (_, value) in node.attrs() {
                     if let Value::File(file) = value {
-                        add_file(&mut out, file.vfs_name(options.filename_with_hash), file)?;
+                        add_file(&mut out, policy::file_name(file, options), file)?;
                         // A model file's own files, at their paths relative to it.
                         for (path, companion) in file.companions() {
                             add_file(&mut out, path.to_string(), companion)?;

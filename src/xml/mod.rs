@@ -10,5 +10,5 @@ pub(crate) use source::Source;
 
 pub use read::ReadOptions;
 pub use save::{SaveError, SourceText};
-pub(crate) use write::frame_keeps_bodies_top_level;
+pub(crate) use write::policy::frame_keeps_bodies_top_level;
 pub use write::{WriteOptions, Written, WrittenElement};

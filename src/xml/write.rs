@@ -6,6 +6,40 @@
 //! on every element that can have one and has no `childclass` above it, and
 //! `//unnamed_<namespace>_<i>` names for unnamed elements that have an identifier.
 //!
+//! # The writer's rules
+//!
+//! Each rule is one function of [`policy`] (or of the module named), asked as the
+//! writer walks the composed model; each is inverted by a rule of the reader
+//! (`xml::read`), and round-tripped by a test of `tests/write_rules.rs` (write, read
+//! back: what the rule wrote reads back as the table says, writing that gives the
+//! same text, and reading that gives the same model). Where the reader asks the
+//! same question, it asks the same function.
+//!
+//! | Rule | Function | Writes | Read back by | Test |
+//! |---|---|---|---|---|
+//! | names | `model::naming` | every name slot from the naming rules: own names with the instance's prefix (`robot/torso`), attachment frames and their joints by scope (`robot/`) | literal names, `/` included (DESIGN D13) | `scoped_names_read_back_as_literal_names` |
+//! | automatic names | [`policy::is_auto_name`] | `//unnamed_<ns>_<i>` for an unnamed element with a name slot (`naming::Written::Auto`) | `forget_auto_name`: no name, derived again when written | `automatic_names_are_forgotten_and_derived_again` |
+//! | replicate suffix | [`policy::is_auto_name`] | `_` after an automatic name inside a `<replicate>` (MuJoCo appends the copy's number) | `forget_auto_name`, as any automatic name | `automatic_names_in_a_replicate_end_in_an_underscore` |
+//! | composed output | [`policy::is_composed_output`] | the root class `/` (or `/1`) beside the attached models' root classes `robot/` | `hoist_root_class` tells it; the automatic names are kept as literal names | `a_composed_output_keeps_its_automatic_names` |
+//! | root class wrapper | [`policy::in_root_wrapper`] | one `<default>` around the root classes (`/`, then `robot/`, ...), closed before the next section | `hoist_root_class`: a wrapper holding only `<default class="/">` is the root class ([`policy::folds_into_root_class`]) | `root_classes_share_one_wrapper` |
+//! | root class as main (D9) | [`policy::root_class_is_wrapper`] | a root class named `main`, or beside a class named `/`: its content in the wrapper itself | the wrapper's content is the root class's | `a_root_class_named_main_is_the_wrapper` |
+//! | main wrapper | [`policy::wrapper_says_main`] | `<default class="main">` for such a root class named `main` or holding a lone class `/` | `hoist_root_class` folds no wrapper with an attribute ([`policy::folds_into_root_class`]) | `a_lone_slash_class_in_the_main_class_stays_a_class` |
+//! | numbered root class | `naming::RootClass::Numbered` | `/1` (the first free `/k`) for the root class when a class is named `/` and attached root classes follow | a class of that name | `a_root_class_beside_a_class_named_slash_is_numbered` |
+//! | implicit class | [`policy::implicit_class`] | `class="/"` (the root class's name) where an element can have a class and has none, nor a `childclass` above | `/` and `main` resolve to the root class | `elements_without_a_class_name_the_root_class` |
+//! | childclass scope | [`policy::childclass_above`], [`policy::childclass_below`] | no implicit class under a written `childclass` of the element's own model; an attached model starts outside it | MuJoCo's own `childclass` rule | `an_attached_model_is_outside_its_frames_childclass` |
+//! | references by name | [`policy::named_reference`] | `main` and `/` as the root class is named, `world` (D5) and names in another model bare, the rest prefixed | `/` and `main` resolve to the root class | `named_references_keep_their_meaning` |
+//! | removed references | [`policy::removed_reference`] | nothing for an optional reference to a removed element; `MissingRequired` for a required one | the element without it | `references_to_removed_elements_are_left_out_or_refused` |
+//! | silent elements | [`policy::is_silent`] | nothing for an empty singleton below the sections | `finish` makes every singleton not read, empty | `empty_singletons_are_left_out_and_made_again` |
+//! | sections on demand | [`policy::section_presence`] | a section once it holds something (a child, an attribute); no empty worldbody | every section not read, made empty | `empty_sections_are_left_out_and_made_again` |
+//! | merged settings | [`policy::writes_merged_settings`] | the settings merged over the composition, in place of the outermost model's | the model's own settings | `settings_are_written_merged` |
+//! | merged keys | [`policy::merges_keys`] | with `merge_keyframes`, one key per name laid out over the composed model | plain keys, which fit the model read back | `merged_keys_read_back_as_keys_that_fit` |
+//! | attachment frame tag | [`policy::written_tag`] | an attachment frame as `<body name="robot/">` with its site's pose | a body with a literal name (D13) | `an_attachment_frame_reads_back_as_a_body` |
+//! | frames keeping bodies top level (D10) | [`policy::frame_keeps_bodies_top_level`], [`policy::passes_world_on`] | `<frame>` for a frame in the world over bodies with freejoints | MuJoCo's `<frame>` (D12) | `a_frame_over_free_bodies_is_written_as_a_frame` |
+//! | file names | [`policy::file_name`] | `stem-<sha1>.ext` (or `stem.ext` without `filename_with_hash`) | `FileAsset::named_as` drops `-<sha1>` | `files_read_back_under_their_names` |
+//! | base paths | [`policy::writes_attr`] | no `meshdir`, `texturedir`, `assetdir` (files are named as written) | files read by their written names | `base_paths_are_not_written` |
+//! | unnamed model | [`policy::implicit_model_name`] | `model="unnamed_model"` for a model without a name | a model read without a name is named so | `an_unnamed_model_reads_back_unnamed` |
+//! | escaping | [`text::escape_into`] | `& < > "` as entities, tab, line ends and non-ASCII as character references (as lxml) | quick-xml unescapes | `names_with_markup_characters_read_back` |
+//!
 // Implementation notes:
 // - The walk is iterative (an explicit stack), so a 100,000-deep body chain writes
 //   without growing the call stack.
@@ -13,18 +47,29 @@
 //   class's, a reference's) comes from the walk's naming (`model::naming`): the walk
 //   keeps each instance's prefix and counts automatic names as it enters elements; a
 //   reference to an element ahead is named by the same rules (`Insts::name_of_id`).
+// - The rules decide, the writer spells: `policy` (what is written, and as what),
+//   `attrs` (an element's attributes), `text` (indentation and escaping), `written`
+//   (where each element was written).
+
+mod attrs;
+pub(crate) mod policy;
+pub(crate) mod text;
+mod written;
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 
 use crate::error::WriteError;
 use crate::id::IdHash;
-use crate::model::naming::{RootClass, Written as WrittenName};
 use crate::model::settings;
 use crate::model::tree::{ElementId, Node};
 use crate::model::{ElemMap, Entry, Insts, Item, Model, Step, Walk};
-use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget, Role};
-use crate::value::{FloatStyle, Reference, Value, is_clean};
+use crate::schema::Role;
+use crate::value::{FloatStyle, Value};
+
+use policy::Presence;
+use text::Text;
+use written::RawMark;
+pub use written::{Written, WrittenElement};
 
 /// The output reserved per element of the composed model, before writing: about what
 /// an element with a short name and a few attributes takes once indented (a robot
@@ -36,9 +81,6 @@ const BYTES_PER_ELEMENT: usize = 40;
 
 /// At most this much is reserved up front (256 MiB; a larger output grows from it).
 const MAX_RESERVE: usize = 1 << 28;
-
-/// The deepest indentation, in levels (deeper elements are indented as much).
-const MAX_INDENT: usize = 100;
 
 /// Options for [`Model::to_xml_string_with`].
 #[derive(Clone, Debug, PartialEq)]
@@ -133,75 +175,32 @@ impl Model {
         self.write(options, false).map(|(out, _)| out)
     }
 
-    /// Writes the model as [`Model::to_xml_string_with`] does, and tells where each
-    /// element was written: its locator, its tag, and its line and byte offset in the
-    /// text. This is the map from what a consumer of the text (MuJoCo's compiler)
-    /// reports back, by line, to the element of the model.
-    ///
-    /// Time: as [`Model::to_xml_string_with`], plus O(E) for the E elements written.
-    ///
-    /// # Errors
-    /// As [`Model::to_xml_string_with`].
-    ///
-    /// # Examples
-    /// ```
-    /// use mjcf::{Model, WriteOptions, element};
-    /// let mut m = Model::new("m");
-    /// let torso = m.add_mut(&m.worldbody(), element!("body", name = "torso"))?;
-    /// let written = m.to_xml_written(&WriteOptions::default())?;
-    /// let line = written.elements().iter().find(|e| e.loc == torso).unwrap().line;
-    /// assert_eq!(written.xml().lines().nth(line - 1), Some(r#"    <body name="torso"/>"#));
-    /// assert_eq!(written.element_at_line(line).map(|e| e.tag), Some("body"));
-    /// # Ok::<(), mjcf::Error>(())
-    /// ```
-    pub fn to_xml_written(&self, options: &WriteOptions) -> Result<Written, WriteError> {
-        let (xml, marks) = self.write(options, true)?;
-        let mut elements = Vec::with_capacity(marks.len());
-        let (mut line, mut scanned) = (1, 0);
-        for (offset, loc, tag) in marks {
-            line += xml.as_bytes()[scanned..offset].iter().filter(|b| **b == b'\n').count();
-            scanned = offset;
-            elements.push(WrittenElement { loc, tag, line, offset });
-        }
-        Ok(Written { xml, elements })
-    }
-
     /// The writer's entry: the text, and with `marks`, where each element starts.
     fn write(
         &self,
         options: &WriteOptions,
         marks: bool,
-    ) -> Result<(String, Vec<Mark>), WriteError> {
+    ) -> Result<(String, Vec<written::Mark>), WriteError> {
         // The merged global settings, folded before anything is written.
         let merged = settings::merged(self).map_err(|k| WriteError::Conflict(k.to_string()))?;
+        let style =
+            FloatStyle { precision: options.precision, zero_threshold: options.zero_threshold };
         let mut w = Writer {
-            marks: marks.then(Vec::new),
-            merged: &merged,
-            out: String::with_capacity(4096),
-            style: FloatStyle {
-                precision: options.precision,
-                zero_threshold: options.zero_threshold,
-            },
+            text: Text::new(style, options.pretty_print),
             options,
-            value: String::new(),
-            bad_char: None,
-            entries: HashMap::with_hasher(IdHash),
+            merged: &merged,
+            marks: marks.then(Vec::new),
             open: Vec::new(),
             pending: None,
-            in_default: false,
+            in_wrapper: false,
+            entries: HashMap::with_hasher(IdHash),
         };
-        w.run(Walk::new(self).pruned(silent), true)?;
-        if let Some((tag, attribute, character)) = w.bad_char {
+        w.run(Walk::new(self).pruned(policy::is_silent), true)?;
+        if let Some((tag, attribute, character)) = w.text.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
-        let marks = w.marks.take().unwrap_or_default();
-        let marks = marks
-            .into_iter()
-            .map(|(offset, frames, node, tag)| {
-                (offset, crate::Loc::scoped(frames, node.id(), self.name()), tag)
-            })
-            .collect();
-        let mut out = w.out;
+        let marks = written::located(self, w.marks.take().unwrap_or_default());
+        let mut out = w.text.out;
         if out.capacity() > 2 * out.len() && out.capacity() - out.len() > 1 << 20 {
             // The reservation was far too much (elements not written: the empty
             // singletons of many default classes).
@@ -211,206 +210,97 @@ impl Model {
     }
 }
 
-/// Where an element's start tag begins: byte offset, locator, tag.
-type Mark = (usize, crate::Loc, &'static str);
-
-/// A [`Mark`] as the writer takes it: the frames leading to the element's model and
-/// the node, made a locator at the end.
-type RawMark<'a> = (usize, std::sync::Arc<[ElementId]>, &'a Node, &'static str);
-
-/// MJCF text and where each element of the model was written in it, from
-/// [`Model::to_xml_written`].
-#[derive(Clone, Debug)]
-pub struct Written {
-    xml: String,
-    elements: Vec<WrittenElement>,
-}
-
-/// Where one element was written (see [`Written`]).
-#[derive(Clone, Debug)]
-#[non_exhaustive]
-pub struct WrittenElement {
-    /// The element's locator in the model written.
-    pub loc: crate::Loc,
-    /// The tag it was written with: its element's, or for an attachment frame `body`,
-    /// or `frame` where it is written as MuJoCo's `<frame>` (DESIGN D10), which
-    /// MuJoCo's compiled model keeps no record of.
-    pub tag: &'static str,
-    /// The line its start tag begins on (1 for the first).
-    pub line: usize,
-    /// The byte offset of its `<`.
-    pub offset: usize,
-}
-
-impl Written {
-    /// The text.
-    ///
-    /// Time: O(1).
-    pub fn xml(&self) -> &str {
-        &self.xml
-    }
-
-    /// The text, taken out.
-    ///
-    /// Time: O(1).
-    pub fn into_xml(self) -> String {
-        self.xml
-    }
-
-    /// Every element written, in document order.
-    ///
-    /// Time: O(1).
-    pub fn elements(&self) -> &[WrittenElement] {
-        &self.elements
-    }
-
-    /// The element whose start tag begins on `line`, when exactly one does (one per
-    /// line when pretty-printed).
-    ///
-    /// Time: O(log E).
-    pub fn element_at_line(&self, line: usize) -> Option<&WrittenElement> {
-        let from = self.elements.partition_point(|e| e.line < line);
-        let to = self.elements.partition_point(|e| e.line <= line);
-        (to == from + 1).then(|| &self.elements[from])
-    }
-}
-
 /// An element whose start tag is not finished yet.
 enum Pending {
     /// `<tag attrs` is written; `>` or `/>` follows, once it is known whether a child
     /// comes.
     Started,
-    /// A top-level section not written at all yet: it is written only if a child
-    /// comes or it has attributes of its own.
-    Unwritten(Inst0Section),
+    /// A top-level section not written at all yet ([`Presence::OnDemand`]), to be
+    /// written at `depth`: once a child comes, or at its end if it has attributes of
+    /// its own.
+    OnDemand { depth: usize },
 }
 
-/// A top-level section of the outermost model waiting to be written.
+/// The rules' decisions for one element, taken as the writer enters it.
 #[derive(Clone, Copy)]
-struct Inst0Section {
+struct Decisions {
+    /// How it appears ([`policy::presence`]).
+    presence: Presence,
+    /// The tag written ([`policy::written_tag`]).
+    tag: &'static str,
+    /// The depth written at ([`Writer::written_depth`]).
     depth: usize,
+    /// A `childclass` of its own model is above it ([`policy::childclass_above`]).
+    childclass_above: bool,
+    /// Its children are under one ([`policy::childclass_below`]).
+    childclass_below: bool,
+    /// Its children are in MuJoCo's world ([`policy::passes_world_on`]).
+    world_below: bool,
 }
 
-/// An open element: its instance, whether its children are under a `childclass`,
-/// and its written depth.
+/// An element entered and not yet left: its instance, and the decisions taken for
+/// it (its children's rules ask them; its end tag is written from them).
 struct Open {
     inst: usize,
-    child_cc: bool,
-    depth: usize,
-    /// The tag written (`body` or `frame` for an attachment frame).
-    tag: &'static str,
-    /// In the world: the worldbody, or a frame written as MuJoCo's `<frame>` there,
-    /// whose bodies are top-level bodies for MuJoCo.
-    world_level: bool,
-    /// Written without tags of its own: the outermost root default class written as
-    /// MuJoCo's main class, the `<default>` wrapper itself ([`RootClass::Main`]).
-    transparent: bool,
+    d: Decisions,
 }
 
+/// The writer: the text so far, and where it stands in the composed walk.
 struct Writer<'a> {
+    text: Text,
+    options: &'a WriteOptions,
+    /// The merged settings sections (`compiler`, `option`, ...), written in place of
+    /// the root model's own ([`policy::writes_merged_settings`]).
+    merged: &'a [Node],
     /// Where each element's start tag begins (offset, the frames leading to its
     /// model, node, tag written), when asked.
     marks: Option<Vec<RawMark<'a>>>,
-    /// The merged settings sections (`compiler`, `option`, ...), written in place of
-    /// the root model's own.
-    merged: &'a [Node],
-    out: String,
-    style: FloatStyle,
-    options: &'a WriteOptions,
-    value: String,
-    /// The first character XML cannot hold: (tag, attribute, character).
-    bad_char: Option<(&'static str, &'static str, char)>,
     /// The elements entered and not yet left.
     open: Vec<Open>,
     /// The element whose start tag is not finished.
     pending: Option<(Pending, Item<'a>)>,
-    /// Inside `<default>`, the wrapper of the root class and the attached models'
-    /// root classes (one level deeper than the walk says).
-    in_default: bool,
+    /// Inside the `<default>` wrapper of the root classes ([`policy::in_root_wrapper`]),
+    /// one level deeper than the walk says.
+    in_wrapper: bool,
     /// Index entries looked up by references, with the map they came from: an
     /// attached model's elements are looked up again for each attachment of it
     /// (the same shared map), and a class is looked up twice (is it there, its name).
     entries: HashMap<ElementId, (&'a ElemMap<Entry>, Option<&'a Entry>), IdHash>,
 }
 
-/// Whether a singleton writes anything: a written attribute, or a child that does.
-fn singleton_emits(node: &Node) -> bool {
-    let kind = node.kind();
-    if facts(kind).class.is_some() || kind.identifier().is_some() {
-        return true;
-    }
-    if node
-        .attrs()
-        .iter()
-        .any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
-    {
-        return true;
-    }
-    // (Most singletons are empty: no iterator for them.)
-    let children = node.children();
-    !children.is_empty()
-        && children
-            .iter()
-            .any(|c| c.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(c))
-}
-
-/// Whether all the class `node` writes inside it is one class, named `/` (the shape
-/// the reader folds into the root class).
-fn lone_slash_class(node: &Node) -> bool {
-    let (classes, own): (Vec<&Node>, Vec<&Node>) =
-        node.children().iter().partition(|c| c.kind().is(Role::DefaultClass));
-    matches!(classes[..], [c] if c.identifier() == Some("/")) && !own.into_iter().any(emits)
-}
-
-fn emits(node: &Node) -> bool {
-    node.kind().multiplicity() != Multiplicity::Singleton || singleton_emits(node)
-}
-
-/// An element that writes nothing and is not an attachment frame: below the
-/// sections, the writer skips it where it meets it (`enter`), so the walk need not
-/// give it (`Walk::pruned`).
-fn silent(node: &Node) -> bool {
-    node.attached().is_none() && !emits(node)
-}
-
 impl<'a> Writer<'a> {
-    /// Writes every step of `walk`; `substitute` writes the merged settings in place
-    /// of the root model's own settings sections.
-    fn run(&mut self, mut walk: Walk<'a>, substitute: bool) -> Result<(), WriteError> {
+    /// Writes every step of `walk`: the composed walk (`composed`), or the walk of a
+    /// merged settings section written in place of the outermost model's own.
+    fn run(&mut self, mut walk: Walk<'a>, composed: bool) -> Result<(), WriteError> {
         while let Some(step) = walk.next() {
-            if substitute && matches!(step, Step::Enter(Item { depth: 0, .. })) {
+            let item = match step {
+                Step::Enter(item) => item,
+                Step::Leave(item) => {
+                    self.leave(&walk.insts, item);
+                    continue;
+                }
+            };
+            if composed && item.depth == 0 {
                 self.reserve_output(&walk.insts);
             }
-            match step {
-                Step::Enter(item)
-                    if substitute
-                        && self.options.merge_keyframes
-                        && item.depth == 1
-                        && item.node.kind().is(Role::Keyframe) =>
-                {
-                    walk.skip_subtree();
-                    self.write_merged_keys(&walk.insts)?;
-                }
-                Step::Enter(item) => {
-                    if !self.enter(&walk.insts, item, substitute)? {
-                        walk.skip_subtree();
-                    }
-                    if substitute
-                        && item.depth == 1
-                        && item.inst == 0
-                        && settings::is_settings_section(item.node.kind())
-                    {
-                        // The merged section instead of the model's own.
-                        walk.skip_subtree();
-                        if let Some(m) = self.merged.iter().find(|m| m.kind() == item.node.kind()) {
-                            if emits(m) {
-                                let model = walk.insts.list[0].model;
-                                self.run(Walk::plain(model, m, 1).pruned(silent), false)?;
-                            }
-                        }
+            let section = policy::is_section(&item, composed);
+            let kind = item.node.kind();
+            if section && policy::merges_keys(self.options, kind) {
+                walk.skip_subtree();
+                self.write_merged_keys(&walk.insts)?;
+                continue;
+            }
+            if !self.enter(&walk.insts, item, composed)? {
+                walk.skip_subtree();
+            }
+            if section && policy::writes_merged_settings(kind) {
+                walk.skip_subtree();
+                if let Some(m) = self.merged.iter().find(|m| m.kind() == kind) {
+                    if policy::emits(m) {
+                        let model = walk.insts.list[0].model;
+                        self.run(Walk::plain(model, m, 1).pruned(policy::is_silent), false)?;
                     }
                 }
-                Step::Leave(item) => self.leave(&walk.insts, item),
             }
         }
         Ok(())
@@ -422,104 +312,7 @@ impl<'a> Writer<'a> {
     /// again at every step (77 MB allocated for 19 MB of text).
     fn reserve_output(&mut self, insts: &Insts<'a>) {
         let elements: usize = insts.list.iter().map(|i| i.model.index.elems.len()).sum();
-        self.out.reserve(elements.saturating_mul(BYTES_PER_ELEMENT).min(MAX_RESERVE));
-    }
-
-    /// Writes the composed keys in place of the keyframe section.
-    fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
-        let keys = crate::model::keys::merged_keys(insts.list[0].model);
-        if keys.is_empty() {
-            return Ok(());
-        }
-        self.finish_parent(insts)?;
-        if self.in_default {
-            self.indent(1);
-            self.out.push_str("</default>");
-            self.newline();
-            self.in_default = false;
-        }
-        self.indent(1);
-        self.out.push_str("<keyframe>");
-        self.newline();
-        for key in keys {
-            self.indent(2);
-            self.out.push_str("<key");
-            if let Some(name) = &key.name {
-                self.value.clear();
-                self.value.push_str(name);
-                self.emit_attr("key", "name");
-            }
-            if let Some(t) = key.time {
-                self.value.clear();
-                Value::Float(t).write_plain(&mut self.value, self.style);
-                self.emit_attr("key", "time");
-            }
-            for (field, values) in key.fields {
-                self.value.clear();
-                Value::Floats(values.into()).write_plain(&mut self.value, self.style);
-                self.emit_attr("key", field);
-            }
-            self.out.push_str("/>");
-            self.newline();
-        }
-        self.indent(1);
-        self.out.push_str("</keyframe>");
-        self.newline();
-        Ok(())
-    }
-
-    /// Finishes the start tag of the parent of a child about to be written.
-    fn finish_parent(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
-        match self.pending.take() {
-            Some((Pending::Started, _)) => {
-                self.out.push('>');
-                self.newline();
-            }
-            Some((Pending::Unwritten(sec), item)) => {
-                self.start_tag(insts, &item, sec.depth, false)?;
-                self.out.push('>');
-                self.newline();
-            }
-            None => {}
-        }
-        Ok(())
-    }
-
-    /// Writes `<tag attrs` (not closed) at `depth`.
-    fn start_tag(
-        &mut self,
-        insts: &Insts<'a>,
-        item: &Item<'a>,
-        depth: usize,
-        childclass: bool,
-    ) -> Result<(), WriteError> {
-        let node = item.node;
-        self.indent(depth);
-        if let Some(marks) = &mut self.marks {
-            let written = match node.attached() {
-                Some(_) => self.open.last().map_or("body", |o| o.tag),
-                None => node.kind().tag(),
-            };
-            marks.push((self.out.len(), insts.list[item.inst].frames.clone(), node, written));
-        }
-        self.out.push('<');
-        if node.attached().is_some() {
-            // `body`, or `frame` (DESIGN D10).
-            let tag = self.open.last().map_or("body", |o| o.tag);
-            self.out.push_str(tag);
-            return self.write_attrs(insts, item, true);
-        }
-        let kind = node.kind();
-        self.out.push_str(kind.tag());
-        if kind == ElementKind::ROOT {
-            // A model without a name is written with the one the reader gives it.
-            if ElementKind::ROOT.attr_index("model").is_some_and(|i| node.attr(i).is_none()) {
-                self.out.push_str(" model=\"");
-                self.out.push_str(crate::model::UNNAMED);
-                self.out.push('"');
-            }
-        }
-        self.write_attrs(insts, item, childclass)
+        self.text.out.reserve(elements.saturating_mul(BYTES_PER_ELEMENT).min(MAX_RESERVE));
     }
 
     /// Enters an element; `false` if it is not written (nor its subtree).
@@ -527,487 +320,215 @@ impl<'a> Writer<'a> {
         &mut self,
         insts: &Insts<'a>,
         item: Item<'a>,
-        substitute: bool,
+        composed: bool,
     ) -> Result<bool, WriteError> {
-        let Item { inst, node, depth, .. } = item;
-        let kind = node.kind();
-        let top = depth == 1 && inst == 0 && substitute;
-        let names = &insts.list[inst].names;
-        // The `<default>` wrapper of the root classes opens at the first one and
-        // closes before the next section.
-        if depth == 1 && substitute {
-            let is_default = kind.is(Role::DefaultClass);
-            if is_default && !self.in_default {
+        if composed && item.depth == 1 {
+            self.place_in_wrapper(insts, &item)?;
+        }
+        let section = policy::is_section(&item, composed);
+        let presence = policy::presence(&item, section, insts.list[item.inst].names.root_class);
+        if presence == Presence::Omitted {
+            return Ok(false);
+        }
+        let d = self.decide(insts, &item, section, presence);
+        self.open.push(Open { inst: item.inst, d });
+        match presence {
+            Presence::Omitted | Presence::Transparent => {}
+            Presence::OnDemand => {
                 self.finish_parent(insts)?;
-                self.indent(1);
-                // A root class written as MuJoCo's main class says so on the wrapper
-                // when it is named `main` (so that it reads back named so, and the
-                // text written again is the same), or when its one class is named
-                // `/`: `<default><default class="/">` alone reads back as
-                // dm_control's shape, `/` folded into the root class (`xml::read`),
-                // and the references to `main` would then take `/`'s defaults.
-                let named_main = node.identifier() == Some("main");
-                if inst == 0
-                    && names.root_class == RootClass::Main
-                    && (named_main || lone_slash_class(node))
-                {
-                    self.out.push_str("<default class=\"main\">");
-                } else {
-                    self.out.push_str("<default>");
+                self.pending = Some((Pending::OnDemand { depth: d.depth }, item));
+            }
+            Presence::Written => {
+                if d.depth > 0 {
+                    self.finish_parent(insts)?;
                 }
-                self.newline();
-                self.in_default = true;
-            } else if !is_default && self.in_default {
-                self.indent(1);
-                self.out.push_str("</default>");
-                self.newline();
-                self.in_default = false;
+                self.start_tag(insts, &item, d.tag, d.depth, d.childclass_above)?;
+                self.pending = Some((Pending::Started, item));
             }
         }
-        if top && settings::is_settings_section(kind) {
-            return Ok(false);
-        }
-        if top && kind.is(Role::Worldbody) && !emits(node) {
-            return Ok(false);
-        }
-        if !top && depth > 0 && !item.in_frame && node.attached().is_none() && !emits(node) {
-            return Ok(false);
-        }
-        // The written depth: sections and the root classes at the wrapper's level,
-        // everything else one below its parent.
-        let depth = match self.open.last() {
-            Some(o) if depth > 1 => o.depth + 1,
-            _ => depth + usize::from(self.in_default),
-        };
-        let transparent = inst == 0
-            && substitute
-            && item.depth == 1
-            && kind.is(Role::DefaultClass)
-            && names.root_class == RootClass::Main;
-        // Whether a `childclass` of the same model is above: attached models start
-        // without one.
-        let cc_here = self.open.last().is_some_and(|o| o.child_cc && o.inst == inst);
-        let child_cc =
-            cc_here || (node.attached().is_none() && self.sets_childclass(insts, inst, node));
-        let parent_world = self.open.last().is_some_and(|o| o.world_level);
-        let as_frame = parent_world && frame_keeps_bodies_top_level(node);
-        let tag = match node.attached() {
-            Some(_) if as_frame => "frame",
-            Some(_) => "body",
-            None => kind.tag(),
-        };
-        // MuJoCo's own `<frame>`s in the world pass the world on too.
-        let world_level = (kind.is(Role::Worldbody) && inst == 0 && substitute)
-            || as_frame
-            || (parent_world && kind.is(Role::Frame));
-        let depth = if transparent { depth - 1 } else { depth };
-        self.open.push(Open { inst, child_cc, depth, tag, world_level, transparent });
-        if transparent {
-            return Ok(true);
-        }
-        if top && !matches!(kind.role(), Some(Role::DefaultClass | Role::Worldbody)) {
-            self.finish_parent(insts)?;
-            self.pending = Some((Pending::Unwritten(Inst0Section { depth }), item));
-            return Ok(true);
-        }
-        if depth > 0 {
-            self.finish_parent(insts)?;
-        }
-        self.start_tag(insts, &item, depth, cc_here)?;
-        self.pending = Some((Pending::Started, item));
         Ok(true)
+    }
+
+    /// The rules' decisions for `item` (to be written: `presence`), under the element
+    /// entered last.
+    fn decide(
+        &mut self,
+        insts: &Insts<'a>,
+        item: &Item<'a>,
+        section: bool,
+        presence: Presence,
+    ) -> Decisions {
+        let (inst, node) = (item.inst, item.node);
+        let parent = self.open.last().map(|o| (o.inst, o.d));
+        let childclass_above =
+            policy::childclass_above(parent.map(|(i, d)| (i, d.childclass_below)), inst);
+        let childclass_below = policy::childclass_below(childclass_above, || {
+            node.attached().is_none() && self.sets_childclass(insts, inst, node)
+        });
+        let parent_in_world = parent.is_some_and(|(_, d)| d.world_below);
+        let tag = policy::written_tag(node, parent_in_world);
+        let worldbody = section && node.kind().is(Role::Worldbody);
+        Decisions {
+            presence,
+            tag,
+            depth: self.written_depth(item.depth, presence == Presence::Transparent),
+            childclass_above,
+            childclass_below,
+            world_below: policy::passes_world_on(worldbody, parent_in_world, tag),
+        }
+    }
+
+    /// The depth an element at `walk_depth` is written at, under the element entered
+    /// last: the sections and the root classes at the wrapper's level (one deeper
+    /// inside it), everything else one below its parent; an element written without
+    /// tags (`transparent`) one level up, so that its children are written where it
+    /// would be.
+    fn written_depth(&self, walk_depth: usize, transparent: bool) -> usize {
+        let depth = match self.open.last() {
+            Some(o) if walk_depth > 1 => o.d.depth + 1,
+            _ => walk_depth + usize::from(self.in_wrapper),
+        };
+        if transparent { depth.saturating_sub(1) } else { depth }
+    }
+
+    /// Opens the `<default>` wrapper of the root classes at the first of them (`item`
+    /// at depth 1), or closes it at the first section after them
+    /// ([`policy::in_root_wrapper`], [`policy::wrapper_says_main`]).
+    fn place_in_wrapper(&mut self, insts: &Insts<'a>, item: &Item<'a>) -> Result<(), WriteError> {
+        let inside = policy::in_root_wrapper(item.node.kind());
+        if inside && !self.in_wrapper {
+            self.finish_parent(insts)?;
+            // (Only the outermost model's root class, the first, can be its main class.)
+            let root_class = insts.list[item.inst].names.root_class;
+            let says_main = policy::wrapper_says_main(root_class, item.node);
+            self.text.line(1, if says_main { "<default class=\"main\">" } else { "<default>" });
+            self.in_wrapper = true;
+        } else if !inside {
+            self.close_wrapper();
+        }
+        Ok(())
+    }
+
+    /// Closes the `<default>` wrapper of the root classes, if it is open.
+    fn close_wrapper(&mut self) {
+        if self.in_wrapper {
+            self.text.line(1, "</default>");
+            self.in_wrapper = false;
+        }
     }
 
     fn leave(&mut self, insts: &Insts<'a>, item: Item<'a>) {
         let Some(open) = self.open.pop() else { return };
-        if open.transparent {
+        if open.d.presence == Presence::Transparent {
             return;
         }
-        if item.depth == 0 && self.in_default {
-            self.indent(1);
-            self.out.push_str("</default>");
-            self.newline();
-            self.in_default = false;
+        if item.depth == 0 {
+            self.close_wrapper();
         }
         match self.pending.take() {
             Some((Pending::Started, _)) => {
-                self.out.push_str("/>");
-                self.newline();
+                self.text.out.push_str("/>");
+                self.text.newline();
             }
-            Some((Pending::Unwritten(sec), item)) => {
-                if singleton_emits_attrs(item.node) {
+            Some((Pending::OnDemand { depth }, item)) => {
+                if policy::writes_own_attrs(item.node) {
                     // Attributes only: failures are reported by `bad_char` or not at all.
-                    let _ = self.start_tag(insts, &item, sec.depth, false);
-                    self.out.push_str("/>");
-                    self.newline();
+                    let tag = item.node.kind().tag();
+                    let _ = self.start_tag(insts, &item, tag, depth, false);
+                    self.text.out.push_str("/>");
+                    self.text.newline();
                 }
             }
             None => {
-                self.indent(open.depth);
-                self.out.push_str("</");
-                self.out.push_str(open.tag);
-                self.out.push('>');
-                self.newline();
+                self.text.indent(open.d.depth);
+                self.text.out.push_str("</");
+                self.text.out.push_str(open.d.tag);
+                self.text.out.push('>');
+                self.text.newline();
             }
         }
     }
 
-    fn indent(&mut self, depth: usize) {
-        if self.options.pretty_print {
-            // One copy from a line of spaces (two a level), not one per level.
-            const SPACES: &str = match std::str::from_utf8(&[b' '; 2 * MAX_INDENT]) {
-                Ok(s) => s,
-                Err(_) => "",
-            };
-            self.out.push_str(&SPACES[..2 * depth.min(MAX_INDENT)]);
+    /// Finishes the start tag of the parent of a child about to be written.
+    fn finish_parent(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
+        match self.pending.take() {
+            Some((Pending::Started, _)) => {
+                self.text.out.push('>');
+                self.text.newline();
+            }
+            Some((Pending::OnDemand { depth }, item)) => {
+                self.start_tag(insts, &item, item.node.kind().tag(), depth, false)?;
+                self.text.out.push('>');
+                self.text.newline();
+            }
+            None => {}
         }
+        Ok(())
     }
 
-    fn newline(&mut self) {
-        if self.options.pretty_print {
-            self.out.push('\n');
-        }
-    }
-
-    /// Writes ` name="value"` for every attribute, in schema order, including the
-    /// element's name (its own with its prefix, an attachment frame's, a frame
-    /// joint's, an automatic one: `model::naming`) and the implicit default class.
-    /// `childclass`: a `childclass` of the same model is above (no implicit class).
-    fn write_attrs(
+    /// Writes `<tag attrs` (not closed) at `depth`. `childclass_above`: as
+    /// [`Writer::write_attrs`] takes it.
+    fn start_tag(
         &mut self,
         insts: &Insts<'a>,
         item: &Item<'a>,
-        childclass: bool,
-    ) -> Result<(), WriteError> {
-        let (inst, node) = (item.inst, item.node);
-        let kind = node.kind();
-        // The identifier slot is always written from the naming rules.
-        let name = match kind.identifier() {
-            Some(i) => insts.name_of_item(item).map(|w| (i, w)),
-            None => None,
-        };
-        let implicit_class = match facts(kind).class {
-            Some(c) if !childclass && !self.has_live(insts, inst, node, c) => Some(c),
-            _ => None,
-        };
-        let mut set = node.attrs().iter().peekable();
-        let mut virtuals: [Option<usize>; 2] = [name.map(|a| a.0), implicit_class];
-        virtuals.sort_by_key(|v| v.unwrap_or(usize::MAX));
-        let mut virt = virtuals.iter().flatten().copied().peekable();
-        loop {
-            let next_set = set.peek().map(|(i, _)| *i as usize);
-            let next_virt = virt.peek().copied();
-            let take_virtual = match (next_set, next_virt) {
-                (None, None) => break,
-                (Some(_), None) => false,
-                (None, Some(_)) => true,
-                (Some(s), Some(v)) => v <= s,
-            };
-            self.value.clear();
-            if take_virtual {
-                let i = virt.next().unwrap_or_default();
-                // Skip the stored value at the same slot, if any.
-                if next_set == Some(i) {
-                    set.next();
-                }
-                let attr = kind.attr(i).name;
-                match name {
-                    Some((slot, written)) if slot == i => {
-                        self.emit_written(insts, inst, kind.tag(), attr, written);
-                    }
-                    _ => {
-                        // Implicit class: the model's root class.
-                        let root = insts.root_class_name(inst);
-                        self.emit_written(insts, inst, kind.tag(), attr, root);
-                    }
-                }
-            } else if let Some((i, v)) = set.next() {
-                let i = *i as usize;
-                let spec = kind.attr(i);
-                if matches!(
-                    v,
-                    Value::Float(_)
-                        | Value::Floats(_)
-                        | Value::Int(_)
-                        | Value::Ints(_)
-                        | Value::Keyword(_)
-                ) {
-                    // Numbers and schema keywords are plain ASCII with nothing to
-                    // escape: written straight into the output.
-                    self.out.push(' ');
-                    self.out.push_str(spec.name);
-                    self.out.push_str("=\"");
-                    v.write_plain(&mut self.out, self.style);
-                    self.out.push('"');
-                } else {
-                    self.emit_value(insts, inst, node, i, v)?;
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Appends ` attr="…"` for a name in instance `inst`: an element's own name as
-    /// prefix and name, each escaped with no copy between; any other spelt first.
-    fn emit_written(
-        &mut self,
-        insts: &Insts<'a>,
-        inst: usize,
         tag: &'static str,
-        attr: &'static str,
-        written: WrittenName<'_>,
-    ) {
-        let names = &insts.list[inst].names;
-        if let WrittenName::Own(n) = written {
-            let parts = [names.prefix.as_str(), n];
-            emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, names.prefix_clean);
-            return;
-        }
-        self.value.clear();
-        written.write(&names.prefix, &mut self.value);
-        self.emit_attr(tag, attr);
-    }
-
-    /// The index entry of `id` in the model of instance `inst`.
-    fn entry(&mut self, insts: &Insts<'a>, inst: usize, id: ElementId) -> Option<&'a Entry> {
-        let elems = &insts.list[inst].model.index.elems;
-        if let Some((m, e)) = self.entries.get(&id) {
-            if m.ptr_eq(elems) {
-                return *e;
-            }
-        }
-        let e = elems.get(&id);
-        self.entries.insert(id, (elems, e));
-        e
-    }
-
-    fn sets_childclass(&mut self, insts: &Insts<'a>, inst: usize, node: &Node) -> bool {
-        facts(node.kind()).childclass.is_some_and(|i| self.has_live(insts, inst, node, i))
-    }
-
-    /// Whether attribute `i` of `node` is set and will be written: a reference to an
-    /// element that was removed is not (an optional reference; a required one fails).
-    fn has_live(&mut self, insts: &Insts<'a>, inst: usize, node: &Node, i: usize) -> bool {
-        match node.attr(i) {
-            None => false,
-            Some(Value::Reference(Reference::Element(id))) => {
-                self.entry(insts, inst, *id).is_some()
-            }
-            Some(_) => true,
-        }
-    }
-
-    /// Appends ` name="value"` for attribute `i` (holding `v`), if it is written.
-    fn emit_value(
-        &mut self,
-        insts: &Insts<'a>,
-        inst: usize,
-        node: &Node,
-        i: usize,
-        v: &Value,
+        depth: usize,
+        childclass_above: bool,
     ) -> Result<(), WriteError> {
-        let kind = node.kind();
-        let (tag, attr) = (kind.tag(), kind.attr(i).name);
-        // Names are written as prefix and name, each escaped, with no copy between.
-        let names = &insts.list[inst].names;
-        let prefix = names.prefix.as_str();
-        let parts = match v {
-            Value::Basepath(_) => return Ok(()),
-            Value::Reference(Reference::Element(target)) => {
-                return self.emit_reference(insts, inst, node, i, *target);
-            }
-            // (The identifier slot is written by `write_attrs`.)
-            Value::Identifier(n) => [prefix, n.as_str()],
-            Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
-            Value::Reference(Reference::Name(n)) => {
-                let ty = kind.attr(i).ty;
-                // `main` and `/` name the root class unless a class has that name
-                // (as the reader resolves them): written as the root class is, so
-                // that the text reads back to the same class, in any scope.
-                let model = insts.list[inst].model;
-                if ty == AttrType::Reference(RefTarget::Fixed(Namespace::Default))
-                    && matches!(n.as_str(), "main" | "/")
-                    && !model.index.names.contains_key(&(Namespace::Default, n.clone()))
-                {
-                    let root = insts.root_class_name(inst);
-                    self.emit_written(insts, inst, tag, attr, root);
-                    return Ok(());
-                }
-                // The one world body is `world` in every scope; a name in another
-                // model (`RefTarget::Unless`) is not this model's.
-                let to_body = matches!(ty, AttrType::Reference(RefTarget::Fixed(Namespace::Body)));
-                let elsewhere = matches!(ty, AttrType::Reference(RefTarget::Unless(_, k)) if node.attr(k).is_some());
-                if elsewhere || to_body && n == "world" {
-                    ["", n.as_str()]
-                } else {
-                    [prefix, n.as_str()]
-                }
-            }
-            Value::File(f) => {
-                self.value.push_str(&f.vfs_name(self.options.filename_with_hash));
-                self.emit_attr(tag, attr);
-                return Ok(());
-            }
-            _ => {
-                v.write_plain(&mut self.value, self.style);
-                self.emit_attr(tag, attr);
-                return Ok(());
-            }
-        };
-        let clean = names.prefix_clean;
-        emit_parts(&mut self.out, &mut self.bad_char, tag, attr, parts, clean);
-        Ok(())
+        let node = item.node;
+        self.text.indent(depth);
+        if let Some(marks) = &mut self.marks {
+            let frames = insts.list[item.inst].frames.clone();
+            marks.push((self.text.out.len(), frames, node, tag));
+        }
+        self.text.out.push('<');
+        self.text.out.push_str(tag);
+        if node.attached().is_some() {
+            // An attachment frame is a body of its parent's model, which has no class.
+            return self.write_attrs(insts, item, true);
+        }
+        if let Some(name) = policy::implicit_model_name(node) {
+            self.text.out.push_str(" model=\"");
+            self.text.out.push_str(name);
+            self.text.out.push('"');
+        }
+        self.write_attrs(insts, item, childclass_above)
     }
 
-    /// Appends ` name="…"` for attribute `i`, a reference to element `target`, if it
-    /// is written (an optional reference to a removed element is not).
-    fn emit_reference(
-        &mut self,
-        insts: &Insts<'a>,
-        inst: usize,
-        node: &Node,
-        i: usize,
-        target: ElementId,
-    ) -> Result<(), WriteError> {
-        let kind = node.kind();
-        let (tag, attr) = (kind.tag(), kind.attr(i).name);
-        let Some(entry) = self.entry(insts, inst, target) else {
-            let spec = kind.attr(i);
-            if spec.required {
-                let model = insts.list[inst].model;
-                return Err(WriteError::MissingRequired {
-                    tag: kind.tag(),
-                    attribute: spec.name,
-                    path: model.path_of(node.id()).map(|p| model.describe(&p)).unwrap_or_default(),
-                });
-            }
+    /// Writes the composed keys in place of the keyframe section
+    /// ([`policy::merges_keys`]).
+    fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
+        let keys = crate::model::keys::merged_keys(insts.list[0].model);
+        if keys.is_empty() {
             return Ok(());
-        };
-        if let Some(written) = insts.name_of_entry(inst, target, entry) {
-            self.emit_written(insts, inst, tag, attr, written);
         }
+        self.finish_parent(insts)?;
+        self.close_wrapper();
+        self.text.line(1, "<keyframe>");
+        for key in keys {
+            let text = &mut self.text;
+            text.indent(2);
+            text.out.push_str("<key");
+            if let Some(name) = &key.name {
+                text.value.clear();
+                text.value.push_str(name);
+                text.value_attr("key", "name");
+            }
+            if let Some(t) = key.time {
+                text.value.clear();
+                Value::Float(t).write_plain(&mut text.value, text.style);
+                text.value_attr("key", "time");
+            }
+            for (field, values) in key.fields {
+                text.value.clear();
+                Value::Floats(values.into()).write_plain(&mut text.value, text.style);
+                text.value_attr("key", field);
+            }
+            text.out.push_str("/>");
+            text.newline();
+        }
+        self.text.line(1, "</keyframe>");
         Ok(())
     }
-
-    /// Appends ` name="<escaped self.value>"`.
-    fn emit_attr(&mut self, tag: &'static str, name: &'static str) {
-        emit_parts(&mut self.out, &mut self.bad_char, tag, name, [&self.value, ""], false);
-    }
-}
-
-/// Appends ` name="<escaped parts[0] + parts[1]>"` (a prefix and a name, escaped
-/// one after the other: escaping goes character by character) and records the first
-/// character XML cannot hold in `bad`. `first_clean`: `parts[0]` is known to need no
-/// escaping (a scope prefix, checked once per instance).
-fn emit_parts(
-    out: &mut String,
-    bad: &mut Option<(&'static str, &'static str, char)>,
-    tag: &'static str,
-    name: &'static str,
-    parts: [&str; 2],
-    first_clean: bool,
-) {
-    out.reserve(name.len() + parts[0].len() + parts[1].len() + 4);
-    out.push(' ');
-    out.push_str(name);
-    out.push_str("=\"");
-    for (k, p) in parts.into_iter().enumerate() {
-        if k == 0 && first_clean {
-            out.push_str(p);
-        } else if let Some(c) = escape_into(out, p) {
-            bad.get_or_insert((tag, name, c));
-        }
-    }
-    out.push('"');
-}
-
-/// Whether an attachment frame in the world is written as MuJoCo's `<frame>` rather
-/// than a `<body>` (DESIGN D10): when the attached model's top-level bodies carry
-/// freejoints, which MuJoCo accepts only on top-level bodies, and the frame itself
-/// neither moves nor has mass (no joints, no inertial) nor carries body-only
-/// attributes (`user`, `mocap`). Any other frame stays a body, as in the reference.
-pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
-    let Some(a) = frame.attached() else { return false };
-    if !frame.children().is_empty() {
-        return false;
-    }
-    let kind = frame.kind();
-    let body_only = ["user", "mocap"]
-        .iter()
-        .any(|n| kind.attr_index(n).is_some_and(|i| frame.attr(i).is_some()));
-    if body_only {
-        return false;
-    }
-    let Some(wb) = section_of(&a.model, "worldbody") else { return false };
-    wb.children().iter().any(|b| {
-        b.kind().is(Role::Body)
-            && b.attached().is_none()
-            && b.children().iter().any(|j| match j.kind().role() {
-                Some(Role::Freejoint) => true,
-                Some(Role::Joint) => j
-                    .kind()
-                    .attr_index("type")
-                    .and_then(|i| j.attr(i))
-                    .is_some_and(|t| t.as_str() == Some("free")),
-                _ => false,
-            })
-    })
-}
-
-/// Whether a container section writes attributes of its own.
-fn singleton_emits_attrs(node: &Node) -> bool {
-    let kind = node.kind();
-    node.attrs()
-        .iter()
-        .any(|(i, _)| !matches!(kind.attr(*i as usize).ty, AttrType::Basepath { .. }))
-}
-
-fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
-    model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
-}
-
-/// What the writer asks of every element's kind, looked up by name once per kind.
-struct KindFacts {
-    /// `kind.class_attr()`.
-    class: Option<usize>,
-    /// The index of `childclass`.
-    childclass: Option<usize>,
-}
-
-fn facts(kind: ElementKind) -> &'static KindFacts {
-    static FACTS: std::sync::OnceLock<Vec<KindFacts>> = std::sync::OnceLock::new();
-    const NONE: KindFacts = KindFacts { class: None, childclass: None };
-    let table = FACTS.get_or_init(|| {
-        ElementKind::all()
-            .map(|k| KindFacts { class: k.class_attr(), childclass: k.attr_index("childclass") })
-            .collect()
-    });
-    table.get(kind.0 as usize).unwrap_or(&NONE)
-}
-
-/// Escapes an attribute value as lxml does: `& < > "` as entities, tab, newline and
-/// carriage return as character references, and every non-ASCII character as a
-/// numeric character reference.
-///
-/// Returns the first character that XML 1.0 cannot hold at all (most control
-/// characters, U+FFFE, U+FFFF), if any; it is written as a reference all the same.
-pub(crate) fn escape_into(out: &mut String, s: &str) -> Option<char> {
-    if is_clean(s.as_bytes()) {
-        out.push_str(s);
-        return None;
-    }
-    let bad = s.chars().find(|c| !crate::value::is_xml_char(*c));
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            ' '..='~' => out.push(c),
-            _ => {
-                let _ = write!(out, "&#{};", c as u32);
-            }
-        }
-    }
-    bad
 }

@@ -12,6 +12,7 @@ use crate::model::tree::{Attr, ElementId, Node, no_attrs};
 use crate::model::{Model, ReadIndex, empty_node, empty_node_with_id};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{Reference, Value};
+use crate::xml::write::policy;
 
 /// Turns the arena into nodes, indexes them and resolves references.
 pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
@@ -183,7 +184,7 @@ fn index_names(
         .map(|d| d.id);
     let lookup = |ns: crate::Namespace, n: &str| {
         names.get(&(ns, SmolStr::from(n))).copied().or_else(|| {
-            (ns == crate::Namespace::Default && matches!(n, "/" | "main"))
+            (ns == crate::Namespace::Default && crate::model::naming::is_builtin_name(ns, n))
                 .then_some(root_class)
                 .flatten()
         })
@@ -205,7 +206,8 @@ pub(super) fn empty_size(k: ElementKind) -> usize {
 
 /// `<default><default class="/">…</default></default>`, the shape this crate and
 /// dm_control write a model's root default class in, reads as that root class: the
-/// content of the one class `/` becomes the root class's own. Where the root
+/// content of the one class `/` becomes the root class's own (the writer's rules
+/// "root class wrapper" and "main wrapper", `policy::folds_into_root_class`). Where the root
 /// `<default>` holds other classes beside `/` (a composed model written out: the
 /// attached models' root classes `robot/` are siblings of `/`, not inside it), `/` is
 /// kept as a class of that name, so that the siblings keep inheriting nothing from it.
@@ -220,23 +222,27 @@ pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
     let Some(d) = unique_child(arena, 0, root_default) else {
         return (false, None);
     };
-    let is_slash = |p: &Pending| {
-        p.kind.is(Role::DefaultClass)
-            && p.kind.identifier().is_some_and(|i| {
-                p.attrs.iter().any(|(k, v)| *k as usize == i && v.as_str() == Some("/"))
-            })
+    // The writer's rules, asked of what was read (`policy`'s "composed output" and
+    // "root class hoisting").
+    let as_default_child = |c: usize| {
+        let p = &arena[c];
+        if !p.kind.is(Role::DefaultClass) {
+            return policy::DefaultChild::Setting;
+        }
+        let ident = p.kind.identifier();
+        let name = p.attrs.iter().find(|(k, _)| Some(*k as usize) == ident);
+        policy::DefaultChild::Class(name.and_then(|(_, v)| v.as_str()))
     };
     // A class `/` beside other classes, at any level (under a named root class too).
     let composed = arena.iter().enumerate().any(|(i, p)| {
         p.kind.is(Role::DefaultClass)
-            && children_of(arena, i).any(|c| is_slash(&arena[c]))
-            && children_of(arena, i).filter(|&c| arena[c].kind.is(Role::DefaultClass)).count() > 1
+            && policy::is_composed_output(children_of(arena, i).map(as_default_child))
     });
-    let kids: Vec<usize> = children_of(arena, d).collect();
-    let [only] = kids[..] else { return (composed, None) };
-    if !arena[d].attrs.is_empty() || !is_slash(&arena[only]) {
+    let wrapper_attrs = !arena[d].attrs.is_empty();
+    if !policy::folds_into_root_class(wrapper_attrs, children_of(arena, d).map(as_default_child)) {
         return (composed, None);
     }
+    let Some(only) = children_of(arena, d).next() else { return (composed, None) };
     let ident = arena[only].kind.identifier();
     let mut attrs = std::mem::take(&mut arena[only].attrs).to_vec();
     attrs.retain(|(k, _)| Some(*k as usize) != ident);
@@ -268,14 +274,13 @@ pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
 }
 
 /// Automatic names (`//unnamed_geom_0`, written by this crate and by dm_control) mean
-/// "unnamed": they are derived again when the model is written. (In a composed model
+/// "unnamed": they are derived again when the model is written (the writer's rule
+/// "automatic names", `policy::is_auto_name`). (In a composed model
 /// written out they are kept: there they were counted over the outer model's own
 /// elements, which the flat model read back no longer tells apart.)
 pub(super) fn forget_auto_name(p: &mut Pending) {
     let Some(ident) = p.kind.identifier() else { return };
-    let auto = |(k, v): &Attr| {
-        *k as usize == ident && v.as_str().is_some_and(|n| n.starts_with("//unnamed_"))
-    };
+    let auto = |(k, v): &Attr| *k as usize == ident && v.as_str().is_some_and(policy::is_auto_name);
     if p.attrs.iter().any(auto) {
         let mut attrs = p.attrs.to_vec();
         attrs.retain(|a| !auto(a));

@@ -123,7 +123,7 @@ impl<'t> Tag<'t> {
 pub(crate) fn escape(v: &str, quote: u8) -> String {
     let mut out = String::with_capacity(v.len());
     // Characters XML cannot hold were refused when the values were set.
-    let _ = crate::xml::write::escape_into(&mut out, v);
+    let _ = crate::xml::write::text::escape_into(&mut out, v);
     if quote == b'\'' && out.contains('\'') {
         out = out.replace('\'', "&apos;");
     }
