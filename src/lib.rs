@@ -83,7 +83,6 @@ mod suggest;
 mod value;
 mod xml;
 
-pub use crate::compose::{SavedScene, Scene, ScenePart};
 pub use crate::error::{
     EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
 };
@@ -99,7 +98,10 @@ pub use crate::schema::{
     PathNamespace, RefTarget,
 };
 pub use crate::value::{AttrInput, FileAsset, Reference, Value};
-pub use crate::xml::{ReadOptions, SaveError, SourceText, WriteOptions, Written, WrittenElement};
+pub use crate::xml::{
+    ReadOptions, SaveError, SavedScene, Scene, ScenePart, SourceText, WriteOptions, Written,
+    WrittenElement,
+};
 
 /// An [`Element`] with attributes, as `Element::new(tag).attr(name, value)...`:
 /// `element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1)`.

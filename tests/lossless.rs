@@ -229,8 +229,14 @@ fn what_cannot_be_saved_is_a_typed_error() {
     assert_eq!(m.save_as(std::env::temp_dir()), Err(SaveError::NoPath));
     let mut robot = Model::new("robot");
     robot.add_mut(&robot.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+    // With an attachment: the scene's file and the part's (built in code: written
+    // with the plain writer beside it); still no path to save to.
     let with = m.attach(&m.worldbody(), &robot).unwrap().0;
-    assert!(matches!(with.to_source_files(), Err(SaveError::Attachments { .. })));
+    let files = with.to_source_files().unwrap();
+    let paths: Vec<_> = files.iter().map(|f| f.path.clone()).collect();
+    assert_eq!(paths, [None, Some(PathBuf::from("robot.xml"))]);
+    assert!(files[0].text.contains("<attach model=\"robot\" prefix=\"robot/\"/>"));
+    assert_eq!(with.save(), Err(SaveError::NoPath));
 }
 
 #[test]

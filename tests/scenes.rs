@@ -1,7 +1,7 @@
 //! Composed scenes saved as MuJoCo reads them (`Model::save_scene`) and reopened
 //! composed (`Model::from_path`): the rules of what reopens and what stays an element,
 //! flat files that stay literal, and the round trip over every conformance output
-//! with attachments. (Generated scenes with edits: `src/compose/scene_tests.rs`.)
+//! with attachments. (Generated scenes with edits: `src/xml/scene/tests.rs`.)
 
 #[path = "support/case.rs"]
 mod case;
@@ -108,6 +108,7 @@ fn named_root_class(m: &Model) -> bool {
 fn round_trip(m: &Model, tag: &str) -> Result<bool, String> {
     let (back, dir) = save_and_reopen(m, tag);
     std::fs::remove_dir_all(&dir).unwrap();
+    lossless_fixed_point(&back, tag)?;
     let (w1, w2) = (m.to_xml_string().unwrap(), back.to_xml_string().unwrap());
     if m.scope_paths() == back.scope_paths() && w1 == w2 {
         return Ok(true);
@@ -126,6 +127,32 @@ fn round_trip(m: &Model, tag: &str) -> Result<bool, String> {
         return Ok(false);
     }
     Err(format!("scopes {:?} vs {:?}\n{w1}\n---\n{w2}", m.scope_paths(), back.scope_paths()))
+}
+
+/// The lossless save of a reopened scene: every file as read (`changed` false), and
+/// saved elsewhere (`save_as`) it reopens with the same scope paths and composed
+/// MJCF, and saves the same texts again.
+fn lossless_fixed_point(back: &Model, tag: &str) -> Result<(), String> {
+    let texts = back.to_source_files().map_err(|e| format!("lossless save: {e}"))?;
+    if let Some(f) = texts.iter().find(|f| f.changed) {
+        return Err(format!("{:?} changed on a save without edits:\n{}", f.path, f.text));
+    }
+    let dir = temp_dir(&format!("{tag}-lossless"));
+    back.save_as(&dir).map_err(|e| format!("save_as: {e}"))?;
+    let again = Model::from_path(dir.join("scene.xml")).map_err(|e| format!("reopen: {e}"))?;
+    let again_texts = again.to_source_files().map_err(|e| format!("save again: {e}"));
+    std::fs::remove_dir_all(&dir).unwrap();
+    let (w1, w2) = (back.to_xml_string().unwrap(), again.to_xml_string().unwrap());
+    if again.scope_paths() != back.scope_paths() || w1 != w2 {
+        return Err(format!("saved losslessly and reopened:\n{w1}\n---\n{w2}"));
+    }
+    let same = |a: &[mjcf::SourceText], b: &[mjcf::SourceText]| {
+        a.iter().map(|f| (&f.path, &f.text)).eq(b.iter().map(|f| (&f.path, &f.text)))
+    };
+    if !same(&texts, &again_texts?) {
+        return Err("saved again, the texts differ".to_string());
+    }
+    Ok(())
 }
 
 #[test]
@@ -395,7 +422,7 @@ fn a_part_whose_settings_the_parent_does_not_hold_stays_an_element() {
 }
 
 /// A composed model written as one flat file reads back as one model with literal
-/// names: never as attachments (the module documentation of `compose::reopen` says
+/// names: never as attachments (the module documentation of `xml::scene::reopen` says
 /// why), so no edit can take the parent's own `robot/...` names for an attachment's.
 #[test]
 fn a_flat_file_never_reopens_composed() {

@@ -2,7 +2,7 @@
 //! attachment a MuJoCo `<attach>` of an asset `<model>`) to the model it compiles from
 //! the composed text (`Model::to_xml_string`): the same sizes, names of every kind in
 //! order, numbers, and options (both simulate the same steps), but for the
-//! differences `compose::scene` documents: the keys of attached models (MuJoCo lays
+//! differences `xml::scene` documents: the keys of attached models (MuJoCo lays
 //! them out at their joints; names and number are the same), each file's own compiler
 //! settings, attached sections in document order (models attached out of document
 //! order are counted apart), and automatic names (an unnamed element of a part is

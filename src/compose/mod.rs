@@ -3,12 +3,3 @@
 
 mod attach;
 mod include;
-mod reopen;
-mod scene;
-
-pub(crate) use reopen::reopen;
-
-pub use scene::{SavedScene, Scene, ScenePart};
-
-#[cfg(test)]
-mod scene_tests;

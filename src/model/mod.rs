@@ -22,6 +22,7 @@ pub(crate) mod pose;
 mod reach;
 mod scope;
 pub(crate) mod settings;
+pub(crate) mod source;
 mod top;
 pub(crate) mod tree;
 
@@ -77,7 +78,7 @@ pub struct Model {
     pub(crate) index: Index,
     pub(crate) files: Arc<FileContext>,
     /// The text read (`xml::source`); `None` for a model built through the API.
-    pub(crate) source: Option<Arc<crate::xml::Source>>,
+    pub(crate) source: Option<Arc<source::Source>>,
 }
 
 /// Points at one element of a model, across versions.
@@ -230,7 +231,7 @@ impl Model {
     }
 
     /// The same model with the source `source` (the reader's).
-    pub(crate) fn with_source(&self, source: Option<Arc<crate::xml::Source>>) -> Model {
+    pub(crate) fn with_source(&self, source: Option<Arc<source::Source>>) -> Model {
         Model { source, ..self.clone() }
     }
 

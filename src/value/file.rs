@@ -24,7 +24,7 @@ struct FileData {
     /// relative to it.
     companions: Arc<[(SmolStr, FileAsset)]>,
     /// Written as `stem.ext` whatever the writer's hash option: a file whose name was
-    /// chosen (a part of a saved scene, `compose::scene`), never one read.
+    /// chosen (a part of a saved scene, `xml::scene`), never one read.
     fixed_name: bool,
 }
 

@@ -3,12 +3,12 @@
 mod export;
 mod read;
 mod save;
+mod scene;
 mod source;
 mod write;
 
-pub(crate) use source::Source;
-
 pub use read::ReadOptions;
 pub use save::{SaveError, SourceText};
+pub use scene::{SavedScene, Scene, ScenePart};
 pub(crate) use write::policy::frame_keeps_bodies_top_level;
 pub use write::{WriteOptions, Written, WrittenElement};

@@ -773,8 +773,9 @@ fn read_element(
 }
 
 /// Reads one document; the main one (not an include) with the `<attach>`es that have
-/// a saved scene's shape reopened as attachments (`compose::reopen`), each part read
-/// from its file with its own source kept (so that it saves losslessly in turn).
+/// a saved scene's shape reopened as attachments (`xml::scene::reopen`), each part read
+/// from its file with its own source kept (so that it saves losslessly in turn), and
+/// the model as the text spells it kept in the source beside the reopened one.
 fn read_document(
     text: &str,
     file: Option<PathBuf>,
@@ -790,14 +791,21 @@ fn read_document(
     if !main {
         return Ok(model);
     }
-    Ok(crate::compose::reopen(model, text, &mut |text, path, ctx| {
-        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        let mut tree = Includes::new(canonical(path), Some(dir), keep_source);
-        let src = tree.record_file(Some(path), true, text, true, None);
-        let file = Some(path.to_path_buf());
-        let m = read_document(text, file, ctx, max_depth, &mut tree, model_files, src)?;
-        Ok(tree.attach_source(m))
-    }))
+    let reopened =
+        crate::xml::scene::reopen::reopen(model.clone(), text, &mut |text, path, ctx| {
+            let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            let mut tree = Includes::new(canonical(path), Some(dir), keep_source);
+            let src = tree.record_file(Some(path), true, text, true, None);
+            let file = Some(path.to_path_buf());
+            let m = read_document(text, file, ctx, max_depth, &mut tree, model_files, src)?;
+            Ok(tree.attach_source(m))
+        });
+    // The text spells the model before reopening: the lossless writer writes the
+    // scene's own file against it (`xml::save`).
+    if let Some(src) = tree.src.as_mut().filter(|_| !reopened.ptr_eq(&model)) {
+        src.literal = Some(model);
+    }
+    Ok(reopened)
 }
 
 fn read_literal(

@@ -19,16 +19,17 @@
 //! - nothing is renamed, compiler folders and file attributes stay as written, and
 //!   whatever lies outside the root (declaration, comments, DOCTYPE) stays.
 //!
-//! A model with attachments is refused ([`SaveError::Attachments`]): its attached
-//! models have files of their own, which this writer does not write yet (the plain
-//! writer writes the composed model).
+//! A model with attachments saves as a scene (`scene`): its own files written
+//! against the text they were read from, each attached model in files of its own.
 
+mod scene;
 mod tag;
 
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::{Component, Path, PathBuf};
 
+use crate::error::WriteError;
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
 use crate::schema::{AttrType, ElementKind, Multiplicity};
@@ -44,12 +45,21 @@ pub enum SaveError {
     /// [`ReadOptions::keep_source`](crate::ReadOptions::keep_source) off.
     #[error("the model keeps no source text to save into (write it with to_xml_string)")]
     NoSource,
-    /// The model has attachments, whose files a lossless save does not write.
-    #[error("the model has attachments ({scope} first), which a lossless save does not write")]
-    Attachments {
-        /// The scope of the first attachment.
-        scope: String,
+    /// Saving the model's attachments as MuJoCo `<attach>`es needs a name the model
+    /// already uses (a frame body `scope/`, or a joint of one written `scope/j/`).
+    #[error("the scene's name '{name}' is taken by an element of the model")]
+    NameTaken {
+        /// The name.
+        name: String,
     },
+    /// Two files of the scene would be written under one path (a part written with
+    /// the plain writer names a file another part is saved into).
+    #[error("two files of the scene would be written as '{}'", .0.display())]
+    FileNameTaken(PathBuf),
+    /// A part of the scene cannot be written with the plain writer (an attached model
+    /// built in code: [`Model::save_scene`]'s errors).
+    #[error("a part of the scene cannot be written: {0}")]
+    Write(WriteError),
     /// A file of the model has no path to be written to: the main text read from a
     /// string (for [`Model::save`] and [`Model::save_as`]), or an in-memory include.
     #[error("the model's text read from a string or memory has no path to save to")]
@@ -109,7 +119,8 @@ impl Model {
     /// # Errors
     /// - [`SaveError::NoSource`]: the model was not read from MJCF (or was read with
     ///   the source off);
-    /// - [`SaveError::Attachments`]: the model has attachments;
+    /// - [`SaveError::NameTaken`], [`SaveError::FileNameTaken`], [`SaveError::Write`]:
+    ///   attachments that cannot be written as a scene (see [`Model::save`]);
     /// - [`SaveError::MissingRequired`], [`SaveError::UnnamedTarget`]: a reference
     ///   that cannot be written.
     ///
@@ -126,19 +137,7 @@ impl Model {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn to_source_files(&self) -> Result<Vec<SourceText>, SaveError> {
-        let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
-        if let Some((scope, _)) = self.index.attachments().next() {
-            return Err(SaveError::Attachments { scope: scope.to_string() });
-        }
-        let saver = Saver { model: self, src, dirty: dirty(self, &src.read) };
-        (0..src.files.len())
-            .map(|f| {
-                let text = saver.file(f)?;
-                let file = &src.files[f];
-                let changed = *text != *file.text;
-                Ok(SourceText { path: file.rel.clone(), text, changed })
-            })
-            .collect()
+        Ok(outputs(self, false)?.texts.into_iter().map(|o| o.text).collect())
     }
 
     /// Saves the model into the files it was read from, losslessly: each file whose
@@ -167,22 +166,36 @@ impl Model {
     /// written before an error stay written.
     pub fn save(&self) -> Result<Vec<PathBuf>, SaveError> {
         let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
-        let texts = self.to_source_files()?;
+        let out = outputs(self, false)?;
+        let folder = src.files.first().and_then(|f| f.disk.as_deref()).and_then(Path::parent);
         let mut written = Vec::new();
-        for (file, out) in src.files.iter().zip(texts) {
-            let on_disk = file.disk.as_ref().and_then(|d| std::fs::read(d).ok());
-            if on_disk.as_deref() == Some(out.text.as_bytes()) {
+        for o in &out.texts {
+            let disk = o.disk.clone().or_else(|| Some(folder?.join(o.text.path.as_ref()?)));
+            let on_disk = disk.as_ref().and_then(|d| std::fs::read(d).ok());
+            if on_disk.as_deref() == Some(o.text.text.as_bytes()) {
                 continue;
             }
-            let (Some(path), Some(rel)) = (&file.disk, &file.rel) else {
+            let (Some(path), Some(rel)) = (disk, &o.text.path) else {
                 return Err(SaveError::NoPath);
             };
             if self.files.confine {
                 let rel = rel.to_string_lossy();
                 self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.clone()))?;
             }
-            write_atomically(path, out.text.as_bytes())?;
-            written.push(path.clone());
+            write_atomically(&path, o.text.text.as_bytes())?;
+            written.push(path);
+        }
+        for (rel, bytes) in &out.files {
+            let Some(path) = folder.map(|f| f.join(rel)) else { return Err(SaveError::NoPath) };
+            if std::fs::read(&path).ok().as_deref() == Some(&bytes[..]) {
+                continue;
+            }
+            if self.files.confine {
+                let rel = rel.to_string_lossy();
+                self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.clone()))?;
+            }
+            write_atomically(&path, bytes)?;
+            written.push(path);
         }
         Ok(written)
     }
@@ -201,20 +214,20 @@ impl Model {
     /// `..`); [`SaveError::Io`] when a file cannot be written.
     pub fn save_as(&self, dir: impl AsRef<Path>) -> Result<Vec<PathBuf>, SaveError> {
         let dir = dir.as_ref();
-        let texts = self.to_source_files()?;
+        let out = outputs(self, true)?;
         let mut written = Vec::new();
-        for out in &texts {
-            let rel = out.path.as_ref().ok_or(SaveError::NoPath)?;
+        for o in &out.texts {
+            let rel = o.text.path.as_ref().ok_or(SaveError::NoPath)?;
             let path = inside(dir, rel)?;
-            write_atomically(&path, out.text.as_bytes())?;
+            write_atomically(&path, o.text.text.as_bytes())?;
             written.push(path);
         }
-        for (rel, contents) in self.asset_files() {
-            let path = inside(dir, &rel)?;
+        for (rel, contents) in &out.files {
+            let path = inside(dir, rel)?;
             if written.contains(&path) {
                 continue;
             }
-            write_atomically(&path, &contents)?;
+            write_atomically(&path, contents)?;
             written.push(path);
         }
         Ok(written)
@@ -266,6 +279,75 @@ impl Model {
         }
         out
     }
+}
+
+/// Every file a save writes, by path from the model's folder.
+#[derive(Default)]
+struct Outputs {
+    /// MJCF texts: the model's own files (main first), then its parts'.
+    texts: Vec<Output>,
+    /// Other files: those of parts written with the plain writer (meshes, their own
+    /// parts) and, when asked for, the asset files the lossless files name.
+    files: Vec<(PathBuf, std::sync::Arc<[u8]>)>,
+}
+
+/// One MJCF text to write.
+struct Output {
+    text: SourceText,
+    /// Where it was read from (`None`: not read; written beside the model's file).
+    disk: Option<PathBuf>,
+}
+
+impl Outputs {
+    /// The same outputs with their paths under the folder `at`.
+    fn under(mut self, at: &Path) -> Outputs {
+        for o in &mut self.texts {
+            o.text.path = o.text.path.take().map(|p| at.join(p));
+        }
+        for (p, _) in &mut self.files {
+            *p = at.join(&*p);
+        }
+        self
+    }
+
+    fn append(&mut self, other: Outputs) {
+        self.texts.extend(other.texts);
+        self.files.extend(other.files);
+    }
+}
+
+/// What saving `model` writes (see [`Model::save`]); with the asset files its files
+/// name when `with_assets`.
+///
+/// Time: as [`Model::to_source_files`].
+fn outputs(model: &Model, with_assets: bool) -> Result<Outputs, SaveError> {
+    let src = model.source.as_deref().ok_or(SaveError::NoSource)?;
+    let composed = model.index.attachments().next().is_some() || src.literal.is_some();
+    let (spelled, mut out) = if composed {
+        let s = scene::spell(model, src, with_assets)?;
+        (s.model, s.parts)
+    } else {
+        (model.clone(), Outputs::default())
+    };
+    let read = src.spelled();
+    let saver = Saver { model: &spelled, read, src, dirty: dirty(&spelled, read) };
+    let mut own = Vec::with_capacity(src.files.len());
+    for (f, file) in src.files.iter().enumerate() {
+        let text = saver.file(f)?;
+        let changed = *text != *file.text;
+        own.push(Output {
+            text: SourceText { path: file.rel.clone(), text, changed },
+            disk: file.disk.clone(),
+        });
+    }
+    own.append(&mut out.texts);
+    out.texts = own;
+    if with_assets {
+        let mut files = model.asset_files();
+        files.append(&mut out.files);
+        out.files = files;
+    }
+    Ok(out)
 }
 
 /// `rel` under `dir`, refused if it leads out of it.
@@ -403,7 +485,10 @@ enum Item {
 }
 
 struct Saver<'a> {
+    /// The model to write (a model with attachments spelled as its scene file).
     model: &'a Model,
+    /// The model its text spells ([`Source::spelled`]).
+    read: &'a Model,
     src: &'a Source,
     /// See [`dirty`].
     dirty: HashSet<ElementId>,
@@ -440,7 +525,7 @@ impl Saver<'_> {
 
     /// Whether the element `id` is written as read.
     fn clean(&self, id: ElementId) -> bool {
-        match (self.model.node_by_id(id), self.src.read.node_by_id(id)) {
+        match (self.model.node_by_id(id), self.read.node_by_id(id)) {
             (Some(n), Some(r)) => n.ptr_eq(r) && !self.dirty.contains(&id),
             _ => false,
         }
@@ -527,9 +612,6 @@ impl Saver<'_> {
                 if self.at_home(c.id(), id) || blank(c) {
                     continue;
                 }
-                if c.attached().is_some() {
-                    return Err(SaveError::Attachments { scope: String::new() });
-                }
                 let mut own = self.src.records_of(c.id());
                 let item = match (own.next(), own.next()) {
                     // Moved here with its one tag: its text, as read (or rewritten).
@@ -576,7 +658,7 @@ impl Saver<'_> {
         let rec = &self.src.records[r as usize];
         let text = &self.src.text_of(r)[rec.start as usize..rec.start_end as usize];
         let tag = Tag::parse(text);
-        let read = self.src.read.node_by_id(rec.id);
+        let read = self.read.node_by_id(rec.id);
         let unchanged = read.is_some_and(|n| std::ptr::eq(n.attrs(), node.attrs()))
             && !self.dirty.contains(&rec.id);
         if rec.kind == RecordKind::FileRoot || unchanged {
@@ -592,7 +674,7 @@ impl Saver<'_> {
         let (mut set, mut remove, mut append) = (Vec::new(), Vec::new(), Vec::new());
         let primary = self.src.primary(rec.id) == Some(r);
         for i in indices {
-            let before = read.and_then(|n| value_text(&self.src.read, n, i).ok().flatten());
+            let before = read.and_then(|n| value_text(self.read, n, i).ok().flatten());
             let now = value_text(self.model, node, i)?;
             if before == now {
                 continue;
@@ -643,9 +725,6 @@ impl Saver<'_> {
             if closing {
                 let _ = write!(out, "</{tag}>");
                 continue;
-            }
-            if n.attached().is_some() {
-                return Err(SaveError::Attachments { scope: String::new() });
             }
             out.push('<');
             out.push_str(tag);

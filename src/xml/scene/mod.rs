@@ -67,6 +67,10 @@ use crate::schema::{ElementKind, Namespace, Role};
 use crate::value::{FileAsset, Reference, Value};
 use crate::xml::{WriteOptions, frame_keeps_bodies_top_level};
 
+pub(crate) mod reopen;
+#[cfg(test)]
+mod tests;
+
 /// A composed model as a scene: a root model whose attachments are MuJoCo
 /// `<attach>`es of asset `<model>`s, and the parts those name (see the module's
 /// documentation: `Model::to_scene`).
@@ -145,7 +149,7 @@ impl SavedScene {
 
 /// The options every part is written with: the default ones (file names with their
 /// hash, so that the files of all parts share one folder without clashes).
-fn part_options() -> WriteOptions {
+pub(crate) fn part_options() -> WriteOptions {
     WriteOptions::default()
 }
 
@@ -153,7 +157,7 @@ fn part_options() -> WriteOptions {
 /// place that decides how parts are written.
 ///
 /// Time: as [`Model::to_xml_string_with`].
-fn write_part(part: &Model) -> Result<String, WriteError> {
+pub(crate) fn write_part(part: &Model) -> Result<String, WriteError> {
     part.to_xml_string_with(&part_options())
 }
 
@@ -274,7 +278,7 @@ impl Model {
     /// written before every part was written to text and every name checked.
     ///
     /// What compiles differently from the composed text ([`Model::to_xml_string`]) is
-    /// listed in the `compose::scene` module documentation and the README (each file's
+    /// listed in the `xml::scene` module documentation and the README (each file's
     /// own compiler settings; the layout of attached models' keys; attached sections
     /// in document order).
     ///
@@ -373,7 +377,7 @@ impl<'a> Values<'a> {
 /// A file stem for a model's name: its characters that are safe in a file name on
 /// every common file system (ASCII letters, digits, `_`, `-`, `.` not leading),
 /// others as `_`, at most 200 bytes; `model` if nothing is left.
-fn file_stem(name: &str) -> String {
+pub(crate) fn file_stem(name: &str) -> String {
     let mut s: String = name
         .chars()
         .map(|c| if c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.') { c } else { '_' })
@@ -388,7 +392,7 @@ fn file_stem(name: &str) -> String {
 /// What a frame of `model` becomes in the scene: its joints' names as the composed
 /// writer writes them (frame joints by id; automatic names left out: the part's writer
 /// gives an unnamed joint the same one).
-fn frame_joint_names(model: &Model) -> HashMap<ElementId, String> {
+pub(crate) fn frame_joint_names(model: &Model) -> HashMap<ElementId, String> {
     let walk = Walk::new(model);
     let mut out = HashMap::new();
     for frame in model.root.descendants().filter(|n| n.attached().is_some()) {
@@ -435,18 +439,7 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
             asset_of.push((child, id));
         }
     }
-    // The world-level containers: the worldbody and MuJoCo `<frame>`s in it (whose
-    // bodies are top-level bodies for MuJoCo).
-    let mut world_level: Vec<ElementId> = Vec::new();
-    if let Some(wb) = section_kind("worldbody").and_then(|k| model.root.child_of_kind(k)) {
-        let mut stack = vec![wb];
-        while let Some(n) = stack.pop() {
-            world_level.push(n.id());
-            stack.extend(
-                n.children().iter().filter(|c| c.kind().is(Role::Frame) && c.attached().is_none()),
-            );
-        }
-    }
+    let world_level = world_level(model);
     // Set if a frame's model has no asset (every attached value has one).
     let mut missing = false;
     let root = model.root.rebuild(|n, children| {
@@ -508,11 +501,27 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
     Ok(Model::from_parts(root, index, crate::files::FileContext::clone(&model.files)))
 }
 
+/// The world-level containers of `model`: the worldbody and the MuJoCo `<frame>`s in
+/// it (whose bodies are top-level bodies for MuJoCo).
+pub(crate) fn world_level(model: &Model) -> Vec<ElementId> {
+    let mut out: Vec<ElementId> = Vec::new();
+    if let Some(wb) = section_kind("worldbody").and_then(|k| model.root.child_of_kind(k)) {
+        let mut stack = vec![wb];
+        while let Some(n) = stack.pop() {
+            out.push(n.id());
+            stack.extend(
+                n.children().iter().filter(|c| c.kind().is(Role::Frame) && c.attached().is_none()),
+            );
+        }
+    }
+    out
+}
+
 /// The attachment frame `frame` (a child of an element of kind `parent`) as a scene
 /// body named `scope/`, with its pose, its joints named as written and an `<attach>`
 /// of its model's asset; a MuJoCo `<frame>` where the composed writer writes one.
 /// `None` if its model has no asset in `asset_of`.
-fn frame_as_body(
+pub(crate) fn frame_as_body(
     frame: &Node,
     parent: ElementKind,
     parent_world: bool,
@@ -572,11 +581,11 @@ fn kind_is_frame(frame: &Node, parent: ElementKind, parent_world: bool) -> bool 
 }
 
 /// The attributes `values` of an element of `kind` (those it has).
-fn attrs_of<const N: usize>(kind: ElementKind, values: [(&str, Value); N]) -> Vec<Attr> {
+pub(crate) fn attrs_of<const N: usize>(kind: ElementKind, values: [(&str, Value); N]) -> Vec<Attr> {
     values.into_iter().filter_map(|(n, v)| Some((kind.attr_index(n)? as u16, v))).collect()
 }
 
 /// The kind of the root's section `tag`.
-fn section_kind(tag: &str) -> Option<ElementKind> {
+pub(crate) fn section_kind(tag: &str) -> Option<ElementKind> {
     ElementKind::ROOT.child(tag)
 }

@@ -36,6 +36,7 @@ pub(crate) fn round_trip(m: &Model, label: &str) -> Result<bool, String> {
     let saved = m.save_scene(&dir, "scene.xml").map_err(|e| format!("save: {e}"))?;
     let back = Model::from_path(saved.path()).map_err(|e| format!("reopen: {e}"))?;
     let _ = std::fs::remove_dir_all(&dir);
+    lossless_fixed_point(&back, label)?;
     let (want, got) = (m.scope_paths(), back.scope_paths());
     let (w1, w2) = (
         m.to_xml_string().map_err(|e| e.to_string())?,
@@ -51,6 +52,36 @@ pub(crate) fn round_trip(m: &Model, label: &str) -> Result<bool, String> {
         return Ok(false);
     }
     Err(format!("scopes {want:?} vs {got:?}\n--- composed\n{w1}\n--- reopened\n{w2}"))
+}
+
+/// The lossless save of the reopened scene `back` (`Model::save_as`): no file
+/// changed; reopened from there, the same scope paths and composed MJCF, and the same
+/// texts saved again.
+fn lossless_fixed_point(back: &Model, label: &str) -> Result<(), String> {
+    let texts = back.to_source_files().map_err(|e| format!("lossless save: {e}"))?;
+    if let Some(f) = texts.iter().find(|f| f.changed) {
+        return Err(format!("{:?} changed on a save without edits:\n{}", f.path, f.text));
+    }
+    let dir = folder(&format!("{label}-lossless"));
+    back.save_as(&dir).map_err(|e| format!("save_as: {e}"))?;
+    let again = Model::from_path(dir.join("scene.xml")).map_err(|e| format!("reopen: {e}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let again = again?;
+    let (w1, w2) = (
+        back.to_xml_string().map_err(|e| e.to_string())?,
+        again.to_xml_string().map_err(|e| e.to_string())?,
+    );
+    if again.scope_paths() != back.scope_paths() || w1 != w2 {
+        return Err(format!("saved losslessly and reopened:\n{w1}\n---\n{w2}"));
+    }
+    let again_texts = again.to_source_files().map_err(|e| format!("save again: {e}"))?;
+    let key = |t: &[crate::SourceText]| -> Vec<(Option<std::path::PathBuf>, String)> {
+        t.iter().map(|f| (f.path.clone(), f.text.clone())).collect()
+    };
+    if key(&texts) != key(&again_texts) {
+        return Err("saved again, the texts differ".to_string());
+    }
+    Ok(())
 }
 
 /// Whether every model of the composition has its attachments in document order.

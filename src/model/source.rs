@@ -1,0 +1,192 @@
+//! The source a model was read from: the text of every file read (the main file and
+//! its `<include>`s) and, for each element read, where its tags are in that text.
+//!
+//! Kept by the reader in the model ([`Model`]'s `source`; the reader, `xml::read`,
+//! builds it with `xml::source::SourceBuilder`), used by the lossless writer
+//! (`xml::save`). The data lives here so that the model holds it without naming `xml`. Formatting is not content: a model's equality, hash and diff
+//! never look at it.
+//!
+//! What is recorded, per tag read (a [`Record`]): the file, the byte spans of its
+//! start tag and end tag (the end tag's span is empty for `<x/>`), its parent tag in
+//! that file and the model element it became. The text between recorded spans
+//! (whitespace, comments, processing instructions, a DOCTYPE) is not stored apart:
+//! it is what lies between them. Attributes are tokenized again from the start tag
+//! when needed. One model element can have several records: a singleton given twice
+//! (`<asset>` in the main file and in an include), or the root class of a file written
+//! as `<default><default class="/">` (both tags are the root class).
+//!
+//! The model as read is kept too ([`Source::read`]): a node of a later version still
+//! pointer-equal to the node read is, with its whole subtree, unchanged.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::model::Model;
+use crate::model::tree::ElementId;
+
+/// No record (the end of a list, or no parent).
+pub(crate) const NO_RECORD: u32 = u32::MAX;
+
+/// What a recorded tag is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RecordKind {
+    /// An element: its attributes are the model element's.
+    Element,
+    /// The root of an included file: it stands for the element it is included in (the
+    /// model's root, or the element holding an `<include>`), and supplies no attribute.
+    FileRoot,
+    /// An `<include>` tag (its content, if any, is ignored): kept as it is.
+    Include,
+}
+
+/// One tag read, and where it is.
+#[derive(Clone, Debug)]
+pub(crate) struct Record {
+    /// The model element it became (for an `Include`, the element holding it).
+    pub(crate) id: ElementId,
+    pub(crate) kind: RecordKind,
+    /// Index into [`Source::files`].
+    pub(crate) file: u32,
+    /// The parent tag in the same file, or [`NO_RECORD`] for a file's root.
+    pub(crate) parent: u32,
+    /// The first child tag and the next sibling, in document order.
+    pub(crate) first_child: u32,
+    pub(crate) next_sibling: u32,
+    /// Byte offsets: the start tag is `start..start_end`, the end tag `end..end_end`
+    /// (`start_end == end == end_end` for `<x/>`).
+    pub(crate) start: u32,
+    pub(crate) start_end: u32,
+    pub(crate) end: u32,
+    pub(crate) end_end: u32,
+}
+
+impl Record {
+    /// Whether the tag is written `<x/>` (no end tag).
+    pub(crate) fn self_closing(&self) -> bool {
+        self.end == self.end_end
+    }
+}
+
+/// One file read.
+#[derive(Clone, Debug)]
+pub(crate) struct SourceFile {
+    /// The path relative to the model's folder (`None`: the main text, read from a
+    /// string).
+    pub(crate) rel: Option<PathBuf>,
+    /// The path as read (joined with the folder of the file that includes it), to
+    /// write it back in place; `None` for text not read from disk.
+    pub(crate) disk: Option<PathBuf>,
+    pub(crate) text: Arc<str>,
+    /// The file's root tag.
+    pub(crate) root: u32,
+}
+
+/// The source of a model read: see the module documentation.
+#[derive(Clone)]
+pub(crate) struct Source {
+    pub(crate) files: Vec<SourceFile>,
+    /// In document order (an include's tags where the include is).
+    pub(crate) records: Vec<Record>,
+    /// `(element, record)` sorted by element then document order: the records of an
+    /// element are one run.
+    by_id: Vec<(ElementId, u32)>,
+    /// The model as read (without a source of its own).
+    pub(crate) read: Model,
+    /// The model as the text spells it, before the reader reopened its `<attach>`es
+    /// as attachments (`xml::scene::reopen`); `None` when nothing reopened (then it is
+    /// `read`). Shares every subtree but the paths to the reopened frames with `read`.
+    pub(crate) literal: Option<Model>,
+}
+
+impl Source {
+    /// The source of the model `read`, from its files and its records in document
+    /// order; `literal`: the model before reopening, if it differs.
+    ///
+    /// Time: O(r log r) for `r` records.
+    pub(crate) fn new(
+        files: Vec<SourceFile>,
+        records: Vec<Record>,
+        read: Model,
+        literal: Option<Model>,
+    ) -> Source {
+        let mut by_id: Vec<(ElementId, u32)> =
+            records.iter().enumerate().map(|(i, r)| (r.id, i as u32)).collect();
+        // Records are mostly in id order already (ids are handed out as tags are read).
+        by_id.sort_unstable();
+        Source { files, records, by_id, read, literal }
+    }
+
+    /// The model as its text spells it: [`Source::literal`] if the reader reopened
+    /// attachments, else the model as read.
+    ///
+    /// Time: O(1).
+    pub(crate) fn spelled(&self) -> &Model {
+        self.literal.as_ref().unwrap_or(&self.read)
+    }
+
+    /// The records of the model element `id`, in document order.
+    ///
+    /// Time: O(log n).
+    pub(crate) fn records_of(&self, id: ElementId) -> impl Iterator<Item = u32> + '_ {
+        let from = self.by_id.partition_point(|(k, _)| *k < id);
+        self.by_id[from..].iter().take_while(move |(k, _)| *k == id).map(|(_, r)| *r)
+    }
+
+    /// The record new children of `id` are written under: its first element record
+    /// in document order that no other record of `id` is inside (for the root class
+    /// written `<default><default class="/">`, the inner tag).
+    pub(crate) fn primary(&self, id: ElementId) -> Option<u32> {
+        let mut found = None;
+        for r in self.records_of(id) {
+            let rec = &self.records[r as usize];
+            if rec.kind == RecordKind::Include {
+                continue;
+            }
+            let wraps = self.children(r).any(|c| {
+                let c = &self.records[c as usize];
+                c.id == id && c.kind == RecordKind::Element
+            });
+            if !wraps && (found.is_none() || rec.kind == RecordKind::Element) {
+                if rec.kind == RecordKind::Element {
+                    return Some(r);
+                }
+                found.get_or_insert(r);
+            }
+        }
+        found
+    }
+
+    /// The child records of `r`, in document order.
+    pub(crate) fn children(&self, r: u32) -> impl Iterator<Item = u32> + '_ {
+        let first = self.records[r as usize].first_child;
+        std::iter::successors(Some(first).filter(|&c| c != NO_RECORD), move |&c| {
+            Some(self.records[c as usize].next_sibling).filter(|&n| n != NO_RECORD)
+        })
+    }
+
+    /// The text of the file of `r`.
+    pub(crate) fn text_of(&self, r: u32) -> &str {
+        &self.files[self.records[r as usize].file as usize].text
+    }
+
+    /// Heap bytes held besides the model as read: the texts and the records.
+    ///
+    /// Time: O(files).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.files.iter().map(|f| f.text.len()).sum::<usize>()
+            + self.records.capacity() * std::mem::size_of::<Record>()
+            + self.by_id.capacity() * std::mem::size_of::<(ElementId, u32)>()
+    }
+}
+
+#[cfg(test)]
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The README states the cost per tag: a record and a by-element entry.
+    #[test]
+    fn a_tag_costs_64_bytes() {
+        assert_eq!(std::mem::size_of::<Record>() + std::mem::size_of::<(ElementId, u32)>(), 64);
+    }
+}

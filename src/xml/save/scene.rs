@@ -1,0 +1,452 @@
+//! The lossless save of a model with attachments: its own files written against the
+//! text they were read from, each attached model in a file of its own (MuJoCo's
+//! `<attach>` of an asset `<model>`, as `xml::scene` shapes a scene).
+//!
+//! The model is first *spelled*: brought back to the elements its text spells
+//! ([`Source::spelled`]: the model before the reader reopened its `<attach>`es), and
+//! the lossless writer then writes the spelled model against that.
+//! - an attachment frame the reader reopened, still as read (its attributes,
+//!   children and scope; its model saved into the same file), is the body read, so
+//!   its text is kept byte for byte, `<attach>` included;
+//! - any other attachment frame is a body named `<scope>/` holding
+//!   `<attach model="M" prefix="<scope>/"/>`, as `xml::scene` writes it (a MuJoCo
+//!   `<frame>` where the composed writer writes one); one the reader reopened keeps
+//!   its tags (its pose, name and prefix changed in place);
+//! - the asset `<model>`s: those read, for the files still attached, where they were;
+//!   a new one (after the other assets) per file newly attached; one no attachment
+//!   uses any more goes;
+//! - the global settings sections hold the merged ones (MuJoCo keeps the parent's
+//!   settings; a reopened scene already holds them, so only a model attached in code
+//!   with settings of its own changes them).
+//!
+//! Each distinct attached model value is a part, saved as follows:
+//! - read from a file in the scene's folder (or below it), and the first value in
+//!   document order to claim that file: losslessly into its own files (its includes
+//!   and its own attachments too, recursively), at their paths;
+//! - otherwise (built in code, read from a string or from outside the folder, or a
+//!   second version of a file another value claimed, such as a copy edited with
+//!   `edit_attached` where another attachment shares the original): with the plain
+//!   writer, as [`Model::save_scene`] writes a part (`xml::scene`), into a new file
+//!   named after the model (`robot.xml`, `robot_1.xml` if taken) beside the scene's
+//!   file, with the files it names (meshes with their hash, its own parts).
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use smol_str::SmolStr;
+
+use super::tag::Tag;
+use super::{Output, Outputs, SaveError, SourceText, unescape};
+use crate::error::WriteError;
+use crate::model::settings;
+use crate::model::source::Source;
+use crate::model::tree::{ElementId, Node};
+use crate::model::{Index, Model};
+use crate::schema::{ElementKind, Namespace, Role};
+use crate::seq::Seq;
+use crate::value::{FileAsset, Reference, Value};
+use crate::xml::scene::{
+    attrs_of, file_stem, frame_as_body, frame_joint_names, part_options, section_kind, world_level,
+    write_part,
+};
+
+/// A model with attachments, spelled as its scene file is (see the module
+/// documentation), and the outputs of its parts.
+pub(super) struct Spelled {
+    /// The model the scene's own files are written from.
+    pub(super) model: Model,
+    /// The parts' files, by path relative to the scene's folder.
+    pub(super) parts: Outputs,
+}
+
+/// How one attached model value is saved.
+enum Part {
+    /// Into its own files, losslessly; its main file is `rel` from the scene's folder.
+    Lossless { rel: PathBuf, outputs: Outputs },
+    /// With the plain writer, as the file `name` beside the scene's, with the files
+    /// it names.
+    Plain { name: String, text: String, files: Vec<(String, Arc<[u8]>)> },
+}
+
+/// `model` (read from `src`, with attachments or with reopened ones detached)
+/// spelled as its scene file, and its parts saved.
+///
+/// Time: O(n log n) for the `n` elements of the model (rebuilt and indexed once),
+/// plus saving each distinct part (each once, however often it is attached).
+pub(super) fn spell(model: &Model, src: &Source, with_assets: bool) -> Result<Spelled, SaveError> {
+    let lit = src.spelled();
+    let folder = src.files.first().and_then(|f| f.disk.as_deref()).and_then(Path::parent);
+    let folder = folder.map(canonical);
+    let values = distinct_values(model);
+    let parts = save_parts(&values, src, folder.as_deref(), with_assets)?;
+    // The asset `<model>` of each value: the one read for its file, or a new one.
+    let read_assets = read_asset_models(lit, src);
+    let mut used: HashSet<SmolStr> = HashSet::new();
+    let mut reused: HashSet<ElementId> = HashSet::new();
+    let mut new_assets: Vec<Node> = Vec::new();
+    let mut asset_of: Vec<(&Model, ElementId)> = Vec::with_capacity(values.len());
+    let model_kind = section_kind("asset").and_then(|k| k.child("model"));
+    // The names of the asset models kept are taken for the new ones.
+    for part in &parts {
+        if let Part::Lossless { rel, .. } = part {
+            if let Some(name) = read_assets.get(rel).and_then(Node::identifier) {
+                used.insert(SmolStr::from(name));
+            }
+        }
+    }
+    for (v, part) in values.iter().zip(&parts) {
+        let rel = match part {
+            Part::Lossless { rel, .. } => rel.clone(),
+            Part::Plain { name, .. } => PathBuf::from(name),
+        };
+        if let Some(node) = read_assets.get(&rel).filter(|_| matches!(part, Part::Lossless { .. }))
+        {
+            reused.insert(node.id());
+            asset_of.push((v, node.id()));
+            continue;
+        }
+        let kind = model_kind.ok_or_else(|| conflict("the schema has no asset <model>"))?;
+        let (stem, ext) = split_name(&rel);
+        let contents: Arc<[u8]> = match part {
+            Part::Lossless { outputs, .. } => {
+                outputs.texts.first().map_or(Arc::from([]), |o| o.text.text.as_bytes().into())
+            }
+            Part::Plain { text, .. } => text.as_bytes().into(),
+        };
+        let file = FileAsset::with_fixed_name(&stem, &ext, contents);
+        let base = file_stem(rel.file_stem().and_then(|s| s.to_str()).unwrap_or("model"));
+        let mut name = SmolStr::from(base.as_str());
+        let mut k = 0;
+        while used.contains(&name)
+            || model.index.names.contains_key(&(Namespace::Model, name.clone()))
+        {
+            k += 1;
+            name = smol_str::format_smolstr!("{base}_{k}");
+        }
+        used.insert(name.clone());
+        let attrs =
+            attrs_of(kind, [("name", Value::Identifier(name)), ("file", Value::File(file))]);
+        let node = Node::new(ElementId::fresh(), kind, attrs, Seq::default());
+        asset_of.push((v, node.id()));
+        new_assets.push(node);
+    }
+    let root = spell_tree(model, src, &asset_of, &reused, &new_assets)?;
+    let model = if root.ptr_eq(&lit.root) {
+        lit.clone()
+    } else {
+        let mut index = Index::default();
+        index
+            .insert_subtree(None, &root, 0)
+            .map_err(|d| SaveError::NameTaken { name: d.name.to_string() })?;
+        Model::from_parts(root, index, crate::files::FileContext::clone(&model.files))
+    };
+    Ok(Spelled { model, parts: gather(parts) })
+}
+
+/// The error for a scene that cannot be made.
+fn conflict(what: &str) -> SaveError {
+    SaveError::Write(WriteError::Conflict(what.to_string()))
+}
+
+/// `path` with its links and `..` resolved, as far as the file system knows it.
+fn canonical(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path)
+        .unwrap_or_else(|_| PathBuf::from(crate::files::normalize(&path.to_string_lossy())))
+}
+
+/// A file path's name without its extension (folders kept, `/`-separated) and its
+/// extension with the dot.
+fn split_name(rel: &Path) -> (String, String) {
+    let s = rel.to_string_lossy().replace('\\', "/");
+    let file_at = s.rfind('/').map_or(0, |i| i + 1);
+    match s[file_at..].rfind('.') {
+        Some(i) if i > 0 => (s[..file_at + i].to_string(), s[file_at + i..].to_string()),
+        _ => (s, String::new()),
+    }
+}
+
+/// The distinct model values attached to `model` itself, in document order.
+fn distinct_values(model: &Model) -> Vec<&Model> {
+    let mut by_root: HashMap<ElementId, Vec<usize>> = HashMap::new();
+    let mut out: Vec<&Model> = Vec::new();
+    for node in model.root.descendants() {
+        let Some(a) = node.attached() else { continue };
+        let same = by_root.entry(a.model.root.id()).or_default();
+        if !same.iter().any(|&i| out[i].ptr_eq(&a.model)) {
+            same.push(out.len());
+            out.push(&a.model);
+        }
+    }
+    out
+}
+
+/// How each value is saved (see the module documentation).
+fn save_parts(
+    values: &[&Model],
+    src: &Source,
+    folder: Option<&Path>,
+    with_assets: bool,
+) -> Result<Vec<Part>, SaveError> {
+    // Every path of the scene's own files, and each claimed file, lower case (file
+    // systems that ignore case would take two of them for one).
+    let key = |p: &Path| p.to_string_lossy().to_lowercase();
+    let mut taken: HashSet<String> =
+        src.files.iter().filter_map(|f| f.rel.as_deref()).map(key).collect();
+    let mut parts: Vec<Option<Part>> = Vec::with_capacity(values.len());
+    for v in values {
+        let rel = own_file(v, folder).filter(|rel| !taken.contains(&key(rel)));
+        match rel {
+            Some(rel) => {
+                let outputs = super::outputs(v, with_assets)?;
+                let at = rel.parent().map(Path::to_path_buf).unwrap_or_default();
+                for o in &outputs.texts {
+                    if let Some(p) = &o.text.path {
+                        taken.insert(key(&at.join(p)));
+                    }
+                }
+                taken.insert(key(&rel));
+                parts.push(Some(Part::Lossless { rel, outputs: outputs.under(&at) }));
+            }
+            None => parts.push(None),
+        }
+    }
+    // The others, named after their models in the names left.
+    for (v, part) in values.iter().zip(parts.iter_mut()) {
+        if part.is_some() {
+            continue;
+        }
+        let stem = file_stem(v.name());
+        let mut k = 0;
+        let (name, text, files) = loop {
+            let name = if k == 0 { format!("{stem}.xml") } else { format!("{stem}_{k}.xml") };
+            k += 1;
+            if taken.contains(&name.to_lowercase()) {
+                continue;
+            }
+            let scene = v.to_scene(&name).map_err(SaveError::Write)?;
+            let text = write_part(scene.root()).map_err(SaveError::Write)?;
+            // A file on disk that this save did not write before is not replaced.
+            let there = folder.map(|f| f.join(&name)).and_then(|p| std::fs::read(p).ok());
+            if there.is_some_and(|b| b != text.as_bytes()) {
+                continue;
+            }
+            let files: Vec<(String, Arc<[u8]>)> = scene
+                .root()
+                .assets(&part_options())
+                .map_err(SaveError::Write)?
+                .into_iter()
+                .map(|(n, f)| (n, Arc::from(f.contents())))
+                .collect();
+            break (name, text, files);
+        };
+        taken.insert(name.to_lowercase());
+        for (n, _) in &files {
+            if !taken.insert(n.to_lowercase()) {
+                return Err(SaveError::FileNameTaken(PathBuf::from(n)));
+            }
+        }
+        *part = Some(Part::Plain { name, text, files });
+    }
+    Ok(parts.into_iter().flatten().collect())
+}
+
+/// The path of `v`'s main file from the scene's folder, if it was read from a file
+/// in that folder (or below it).
+fn own_file(v: &Model, folder: Option<&Path>) -> Option<PathBuf> {
+    let src = v.source.as_deref()?;
+    let disk = src.files.first()?.disk.as_deref()?;
+    canonical(disk).strip_prefix(folder?).ok().map(Path::to_path_buf)
+}
+
+/// The outputs of every part, in order.
+fn gather(parts: Vec<Part>) -> Outputs {
+    let mut out = Outputs::default();
+    for part in parts {
+        match part {
+            Part::Lossless { outputs, .. } => out.append(outputs),
+            Part::Plain { name, text, files } => {
+                let path = PathBuf::from(&name);
+                out.texts.push(Output {
+                    text: SourceText { path: Some(path), text, changed: true },
+                    disk: None,
+                });
+                out.files.extend(files.into_iter().map(|(n, b)| (PathBuf::from(n), b)));
+            }
+        }
+    }
+    out
+}
+
+/// The asset `<model>`s of the model as its text spells it, by the path of their file
+/// from the scene's folder (as the text writes it; the reader resolves it there).
+fn read_asset_models(lit: &Model, src: &Source) -> HashMap<PathBuf, Node> {
+    let mut out = HashMap::new();
+    let Some(asset) = section_kind("asset").and_then(|k| lit.root.child_of_kind(k)) else {
+        return out;
+    };
+    for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
+        let written = src.records_of(node.id()).find_map(|r| {
+            let rec = &src.records[r as usize];
+            if src.files[rec.file as usize].rel.as_deref() != src.files[0].rel.as_deref() {
+                return None;
+            }
+            let text = &src.text_of(r)[rec.start as usize..rec.start_end as usize];
+            let t = Tag::parse(text);
+            let tok = t.tokens.iter().rev().find(|k| t.name_of(k) == "file")?;
+            Some(unescape(&text[tok.value.0..tok.value.1]))
+        });
+        if let Some(path) = written {
+            out.entry(PathBuf::from(crate::files::normalize(&path))).or_insert(node.clone());
+        }
+    }
+    out
+}
+
+/// The asset `<model>` the `<attach>` of the body `body` (as read) names.
+fn attach_of(body: &Node) -> Option<(&Node, ElementId)> {
+    let attach = body.children().iter().next_back().filter(|c| c.kind().is(Role::Attach))?;
+    attach.attrs().iter().find_map(|(_, v)| match v {
+        Value::Reference(Reference::Element(id)) => Some((attach, *id)),
+        _ => None,
+    })
+}
+
+/// The spelled tree (see the module documentation).
+fn spell_tree(
+    model: &Model,
+    src: &Source,
+    asset_of: &[(&Model, ElementId)],
+    reused: &HashSet<ElementId>,
+    new_assets: &[Node],
+) -> Result<Node, SaveError> {
+    let (read, lit) = (&src.read, src.spelled());
+    let merged = settings::merged(model).map_err(|k| conflict(&k.to_string()))?;
+    let joint_names = frame_joint_names(model);
+    let world: HashSet<ElementId> = world_level(model).into_iter().collect();
+    let asset_kind = section_kind("asset");
+    let mut missing = false;
+    let root = model.root.rebuild(|n, children| {
+        let parent_world = world.contains(&n.id());
+        let mut kids: Vec<Node> = Vec::with_capacity(children.len());
+        for new in children.iter() {
+            if new.attached().is_none() {
+                kids.push(new.clone());
+                continue;
+            }
+            let frame = spell_frame(new, read, lit, asset_of, |f| {
+                frame_as_body(f, n.kind(), parent_world, &joint_names, asset_of)
+            });
+            kids.push(frame.unwrap_or_else(|| {
+                missing = true;
+                new.clone()
+            }));
+        }
+        if n.kind() == ElementKind::ROOT {
+            for c in kids.iter_mut() {
+                if settings::is_settings_section(c.kind()) {
+                    if let Some(m) = merged.iter().find(|m| m.kind() == c.kind()) {
+                        *c = m.clone();
+                    }
+                } else if Some(c.kind()) == asset_kind {
+                    *c = spell_assets(c, lit, reused, new_assets);
+                }
+            }
+        }
+        if kids.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b)) {
+            return n.clone();
+        }
+        literal_if_same(n, kids, lit)
+    });
+    if missing {
+        return Err(conflict("an attached model has no part"));
+    }
+    Ok(root)
+}
+
+/// `n` with the children `kids`: the node of the model as read (`lit`) where that is
+/// the same (so that its text is kept).
+fn literal_if_same(n: &Node, kids: Vec<Node>, lit: &Model) -> Node {
+    if let Some(l) = lit.node_by_id(n.id()) {
+        let same = std::ptr::eq(l.attrs(), n.attrs())
+            && l.children().len() == kids.len()
+            && l.children().iter().zip(&kids).all(|(a, b)| a.ptr_eq(b));
+        if same {
+            return l.clone();
+        }
+    }
+    n.with_children(kids.into_iter().collect())
+}
+
+/// The attachment frame `frame` spelled: the body read where nothing of it changed,
+/// else `body(frame)` (a new body holding an `<attach>`), keeping the tags read.
+fn spell_frame(
+    frame: &Node,
+    read: &Model,
+    lit: &Model,
+    asset_of: &[(&Model, ElementId)],
+    body: impl FnOnce(&Node) -> Option<Node>,
+) -> Option<Node> {
+    let a = frame.attached()?;
+    let asset = asset_of.iter().find(|(m, _)| m.ptr_eq(&a.model))?.1;
+    let new = body(frame)?;
+    let was = lit.node_by_id(frame.id());
+    if let (Some(r), Some(l)) = (read.node_by_id(frame.id()), was) {
+        let same = l.kind() == new.kind()
+            && r.attached().is_some_and(|ra| ra.scope == a.scope)
+            && std::ptr::eq(r.attrs(), frame.attrs())
+            && r.children().len() == frame.children().len()
+            && r.children().iter().zip(frame.children().iter()).all(|(x, y)| x.ptr_eq(y))
+            && attach_of(l).is_some_and(|(_, id)| id == asset);
+        if same {
+            return Some(l.clone());
+        }
+    }
+    let Some(l) = was.filter(|l| l.kind() == new.kind()) else {
+        // Not read, or read as the other tag: written as new.
+        return Some(if was.is_some() {
+            Node::new(ElementId::fresh(), new.kind(), new.attrs().to_vec(), new.children().clone())
+        } else {
+            new
+        });
+    };
+    // The `<attach>` read keeps its tag (its prefix rewritten in place).
+    let last = new.children().len().checked_sub(1)?;
+    let Some((read_attach, _)) = attach_of(l) else { return Some(new) };
+    let attach = new.children().get(last)?;
+    let attach = Node::new(
+        read_attach.id(),
+        attach.kind(),
+        attach.attrs().to_vec(),
+        attach.children().clone(),
+    );
+    Some(new.with_child_at(last, attach))
+}
+
+/// The asset section `section` with the asset `<model>`s of the scene: those read
+/// (`reused`) where they were read, then the new ones; the section read where that is
+/// the same.
+fn spell_assets(section: &Node, lit: &Model, reused: &HashSet<ElementId>, new: &[Node]) -> Node {
+    let mut out: Vec<Node> = section.children().iter().cloned().collect();
+    if let Some(read) = lit.node_by_id(section.id()) {
+        // Each one read goes after the sibling read before it that is still there.
+        let mut after: Option<ElementId> = None;
+        for c in read.children().iter() {
+            if reused.contains(&c.id()) {
+                let at =
+                    after.and_then(|id| out.iter().position(|o| o.id() == id)).map_or(0, |p| p + 1);
+                out.insert(at, c.clone());
+                after = Some(c.id());
+            } else if out.iter().any(|o| o.id() == c.id()) {
+                after = Some(c.id());
+            }
+        }
+    }
+    out.extend(new.iter().cloned());
+    if out.len() == section.children().len()
+        && out.iter().zip(section.children().iter()).all(|(a, b)| a.ptr_eq(b))
+    {
+        return section.clone();
+    }
+    literal_if_same(section, out, lit)
+}
