@@ -224,3 +224,62 @@ fn a_renamed_scope_and_a_moved_frame_change_their_tags_in_place() {
     assert_eq!(back.to_xml_string().unwrap(), renamed.to_xml_string().unwrap());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn parts_built_in_code_share_the_files_they_both_name() {
+    let dir = folder("shared-mesh", FILES);
+    let m = Model::from_path(dir.join("scene.xml")).unwrap();
+    let part = |name: &str| {
+        let text = format!(
+            "<mujoco model=\"{name}\"><asset><mesh name=\"cube\" file=\"cube.stl\"/></asset><worldbody><geom type=\"mesh\" mesh=\"cube\"/></worldbody></mujoco>"
+        );
+        mjcf::ReadOptions::new().asset("cube.stl", b"solid cube".to_vec()).read_str(&text).unwrap()
+    };
+    let (m, _) = m.attach(&m.worldbody(), &part("a")).unwrap();
+    let (m, _) = m.attach(&m.worldbody(), &part("b")).unwrap();
+    let written = m.save().unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.strip_prefix(&dir).unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 4, "{names:?}");
+    assert_eq!(names[..3], ["scene.xml", "a.xml", "b.xml"]);
+    assert!(names[3].starts_with("cube-") && names[3].ends_with(".stl"), "{names:?}");
+    let back = Model::from_path(dir.join("scene.xml")).unwrap();
+    assert_eq!(back.scopes().collect::<Vec<_>>(), ["left", "right", "a", "b"]);
+    assert_eq!(back.to_xml_string().unwrap(), m.to_xml_string().unwrap());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_file_already_there_is_never_replaced_by_a_new_part() {
+    let dir = folder("there", FILES);
+    std::fs::write(dir.join("cube.xml"), "not ours").unwrap();
+    let m = Model::from_path(dir.join("scene.xml")).unwrap();
+    let mut cube = Model::new("cube");
+    cube.add_mut(&cube.worldbody(), element!("body", name = "box")).unwrap();
+    let (m, _) = m.attach(&m.worldbody(), &cube).unwrap();
+    let written = m.save().unwrap();
+    assert_eq!(written, [dir.join("scene.xml"), dir.join("cube_1.xml")]);
+    assert_eq!(std::fs::read_to_string(dir.join("cube.xml")).unwrap(), "not ours");
+    let back = Model::from_path(dir.join("scene.xml")).unwrap();
+    assert_eq!(back.to_xml_string().unwrap(), m.to_xml_string().unwrap());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_literal_name_shaped_like_a_frame_body_does_not_clash_with_a_new_one() {
+    let scene = SCENE
+        .replace("    <geom name='floor'", "    <site name=\"cube/\"/>\n    <geom name='floor'");
+    let dir = folder("taken", &[("scene.xml", &scene), FILES[1], FILES[2]]);
+    let m = Model::from_path(dir.join("scene.xml")).unwrap();
+    let mut cube = Model::new("cube");
+    cube.add_mut(&cube.worldbody(), element!("body", name = "box")).unwrap();
+    let (m, a) = m.attach(&m.worldbody(), &cube).unwrap();
+    assert_ne!(a.scope(), "cube", "the scope steers clear of the literal name");
+    m.save().unwrap();
+    let back = Model::from_path(dir.join("scene.xml")).unwrap();
+    assert_eq!(back.scopes().collect::<Vec<_>>(), ["left", "right", a.scope()]);
+    assert_eq!(back.to_xml_string().unwrap(), m.to_xml_string().unwrap());
+    std::fs::remove_dir_all(dir).unwrap();
+}

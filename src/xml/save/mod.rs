@@ -109,12 +109,16 @@ pub struct SourceText {
 impl Model {
     /// The model written back into the files it was read from (the main file and its
     /// includes, in the order they were read), losslessly: see
-    /// [`Model::save`] for what is kept. Nothing is written to disk.
+    /// [`Model::save`] for what is kept. Nothing is written to disk. For a model with
+    /// attachments, the files of its parts follow (by their paths from the model's
+    /// folder; a part written anew is `changed`); the other files of a part written
+    /// with the plain writer (its meshes, its own parts) are not texts returned here.
     ///
     /// Time: O(L) for `L` bytes of source text when nothing changed (each file is
     /// copied); with edits, O(L + E · (depth · log n + width)) for `E` edited elements
     /// and their ancestors, plus O(n) once when an edit renamed or removed a named
-    /// element (to find the references to it).
+    /// element (to find the references to it). With attachments, O(n log n) more to
+    /// spell the model as its scene file, plus saving each distinct attached model.
     ///
     /// # Errors
     /// - [`SaveError::NoSource`]: the model was not read from MJCF (or was read with
@@ -156,12 +160,25 @@ impl Model {
     /// The model keeps the source it was read from: saving a later version writes
     /// what changed since the read (so saving twice writes once).
     ///
+    /// A model with attachments saves as a scene (MuJoCo's `<attach>` of an asset
+    /// `<model>`, as [`Model::save_scene`] writes one): its own files as above, an
+    /// attachment the reader reopened and no edit touched as it was read, one added in
+    /// code as a new `<body name="s/">` holding an `<attach>`, with a new asset
+    /// `<model>`; a detached one goes with its asset `<model>` when nothing else uses
+    /// it. Each attached model read from a file in the model's folder (or below it) is
+    /// saved losslessly into its own files (an edit through
+    /// [`Model::edit_attached`] goes there); one built in code, read from elsewhere,
+    /// or a second version of a file another attachment uses is written with the plain
+    /// writer as [`Model::save_scene`] writes a part, into a new file beside the
+    /// model's (named after the model; a file already there with other bytes is never
+    /// replaced). The rules are in the `xml::save::scene` module documentation.
+    ///
     /// Time: as [`Model::to_source_files`], plus reading each file on disk (to
     /// compare) and writing the changed ones.
     ///
     /// # Errors
     /// As [`Model::to_source_files`], and [`SaveError::NoPath`] when a file to write
-    /// was not read from disk, [`SaveError::OutsideRoot`] when (confined) it leads
+    /// was not read from disk (or, for a part written anew, when the model's was not), [`SaveError::OutsideRoot`] when (confined) it leads
     /// out of the model's folder, [`SaveError::Io`] when it cannot be written. Files
     /// written before an error stay written.
     pub fn save(&self) -> Result<Vec<PathBuf>, SaveError> {

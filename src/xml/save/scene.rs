@@ -212,6 +212,7 @@ fn save_parts(
         }
     }
     // The others, named after their models in the names left.
+    let mut plain_files: HashMap<String, Arc<[u8]>> = HashMap::new();
     for (v, part) in values.iter().zip(parts.iter_mut()) {
         if part.is_some() {
             continue;
@@ -241,10 +242,13 @@ fn save_parts(
             break (name, text, files);
         };
         taken.insert(name.to_lowercase());
-        for (n, _) in &files {
-            if !taken.insert(n.to_lowercase()) {
+        for (n, bytes) in &files {
+            // Parts written alike may name one file (a mesh both use): the same bytes.
+            let same = plain_files.get(&n.to_lowercase()).is_some_and(|b| b[..] == bytes[..]);
+            if !same && !taken.insert(n.to_lowercase()) {
                 return Err(SaveError::FileNameTaken(PathBuf::from(n)));
             }
+            plain_files.insert(n.to_lowercase(), bytes.clone());
         }
         *part = Some(Part::Plain { name, text, files });
     }

@@ -24,7 +24,9 @@
 //! Every part is written by one function, [`write_part`]; the files a part names
 //! (meshes, textures, the part files of its own attachments) are its model file's
 //! companions, so the scene's root model names every file of the scene and
-//! [`Model::save_scene`] is [`Model::export`] of it.
+//! [`Model::save_scene`] is [`Model::export`] of it. The lossless save of a model
+//! read from a file ([`Model::save`], `xml::save::scene`) writes its parts built in
+//! code with the same [`Model::to_scene`] and [`write_part`].
 //!
 //! # What compiles differently from `to_xml_string()`
 //! MuJoCo compiles the saved scene to the model MuJoCo compiles from the composed text,
@@ -272,6 +274,13 @@ impl Model {
     /// named with its hash). MuJoCo loads the scene from `dir/file_name`
     /// (`MjModel.from_xml_path`), and [`Model::from_path`] reads it back composed:
     /// the attachments are attachments again.
+    ///
+    /// This is the way to write a composed model that was not read from a file: every
+    /// part is written with the plain writer. A model read from a file (a reopened
+    /// scene, or a file with attachments added in code) saves with [`Model::save`] or
+    /// [`Model::save_as`] instead, which keep its text and its parts' files as they
+    /// were read and write the parts built in code as this function does (the same
+    /// [`Model::to_scene`] and part writer).
     ///
     /// Writes are atomic, as [`Model::export`]'s: every file is written under a
     /// temporary name and renamed into place, the scene's own file last; nothing is

@@ -51,7 +51,8 @@
 //! sharing (one value) could only be guessed from equal content. A guess that is
 //! wrong once changes the model silently (a detach that removes the parent's own
 //! `robot/`-named geom, a rename that renames a literal name), so none is made: save
-//! with [`Model::save_scene`] to reopen composed.
+//! with [`Model::save_scene`] (or, for a model read from a file, [`Model::save`]) to
+//! reopen composed.
 
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
