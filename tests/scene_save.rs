@@ -283,3 +283,59 @@ fn a_literal_name_shaped_like_a_frame_body_does_not_clash_with_a_new_one() {
     assert_eq!(back.to_xml_string().unwrap(), m.to_xml_string().unwrap());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn a_file_without_assets_gets_an_asset_section_for_its_first_attachment() {
+    let plain = "<mujoco model=\"arena\">\n  <worldbody>\n    <geom name=\"floor\" type=\"plane\" size=\"5 5 .1\"/>\n  </worldbody>\n</mujoco>\n";
+    let dir = folder("no-assets", &[("scene.xml", plain)]);
+    let m = Model::from_path(dir.join("scene.xml")).unwrap();
+    let mut cube = Model::new("cube");
+    cube.add_mut(&cube.worldbody(), element!("body", name = "box")).unwrap();
+    let (m, _) = m.attach(&m.worldbody(), &cube).unwrap();
+    m.save().unwrap();
+    let saved = std::fs::read_to_string(dir.join("scene.xml")).unwrap();
+    assert_eq!(
+        saved,
+        // A new section goes after those read (MuJoCo reads sections in any order).
+        "<mujoco model=\"arena\">\n  <worldbody>\n    <geom name=\"floor\" type=\"plane\" size=\"5 5 .1\"/>\n    <body name=\"cube/\">\n      <attach model=\"cube\" prefix=\"cube/\"/>\n    </body>\n  </worldbody>\n  <asset>\n    <model name=\"cube\" file=\"cube.xml\"/>\n  </asset>\n</mujoco>\n"
+    );
+    let back = Model::from_path(dir.join("scene.xml")).unwrap();
+    assert_eq!(back.to_xml_string().unwrap(), m.to_xml_string().unwrap());
+    // Detached again: the body and the asset model go; the section read stays, as
+    // any section read whose children were all removed does.
+    let bare = back.detach("cube").unwrap();
+    let want = plain.replace("</worldbody>\n", "</worldbody>\n  <asset>\n  </asset>\n");
+    assert_eq!(bare.to_source_files().unwrap()[0].text, want);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn an_edit_inside_a_nested_attachment_is_saved_into_the_innermost_file_only() {
+    let mut hand = Model::new("hand");
+    hand.add_mut(&hand.worldbody(), element!("body", name = "palm")).unwrap();
+    let mut arm = Model::new("arm");
+    let ee = arm.add_mut(&arm.worldbody(), element!("site", name = "ee")).unwrap();
+    arm.attach_mut(&ee, &hand).unwrap();
+    let mut scene = Model::new("arena");
+    scene.attach_mut(&scene.worldbody(), &arm).unwrap();
+    let dir = temp_dir("nested");
+    let saved = scene.save_scene(&dir, "scene.xml").unwrap();
+    let before = texts(&dir);
+    let m = Model::from_path(saved.path()).unwrap();
+    assert_eq!(m.scope_paths(), ["arm", "arm/hand"]);
+    assert_eq!(m.save().unwrap(), Vec::<PathBuf>::new());
+    let edited = m
+        .edit_attached("arm/hand", |h| {
+            let p = h.find(Namespace::Body, "palm").unwrap();
+            h.set(&p, attrs!(pos = [0, 0, 0.25]))
+        })
+        .unwrap();
+    assert_eq!(edited.save().unwrap(), [dir.join("hand.xml")]);
+    let after = texts(&dir);
+    for ((name, a), (_, b)) in before.iter().zip(&after) {
+        assert_eq!(a != b, name == "hand.xml", "{name}");
+    }
+    let back = Model::from_path(saved.path()).unwrap();
+    assert_eq!(back.to_xml_string().unwrap(), edited.to_xml_string().unwrap());
+    std::fs::remove_dir_all(dir).unwrap();
+}
