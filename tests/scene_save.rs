@@ -339,3 +339,31 @@ fn an_edit_inside_a_nested_attachment_is_saved_into_the_innermost_file_only() {
     assert_eq!(back.to_xml_string().unwrap(), edited.to_xml_string().unwrap());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn an_asset_model_also_used_by_an_attach_that_stays_an_element_is_written_once() {
+    let scene = SCENE.replace(
+        "    <geom name='floor'",
+        "    <body name=\"kept\">\n      <attach model=\"robot\" body=\"torso\" prefix=\"k/\"/>\n    </body>\n    <geom name='floor'",
+    );
+    let dir = folder("kept", &[("scene.xml", &scene), FILES[1], FILES[2]]);
+    let m = Model::from_path(dir.join("scene.xml")).unwrap();
+    assert_eq!(m.scopes().collect::<Vec<_>>(), ["left", "right"]);
+    assert_eq!(m.to_source_files().unwrap()[0].text, scene);
+    let edited = m
+        .edit_attached("left", |r| {
+            let t = r.find(Namespace::Body, "torso").unwrap();
+            r.set(&t, attrs!(pos = [0, 0, 2]))
+        })
+        .unwrap();
+    let files = edited.to_source_files().unwrap();
+    assert_eq!(files[0].text.matches("<model ").count(), 2, "{}", files[0].text);
+    assert_eq!(
+        edited.detach("left").unwrap().to_source_files().unwrap()[0]
+            .text
+            .matches("<model ")
+            .count(),
+        1
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

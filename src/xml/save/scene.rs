@@ -436,12 +436,14 @@ fn spell_assets(section: &Node, lit: &Model, reused: &HashSet<ElementId>, new: &
         // Each one read goes after the sibling read before it that is still there.
         let mut after: Option<ElementId> = None;
         for c in read.children().iter() {
-            if reused.contains(&c.id()) {
+            // (One an `<attach>` that stayed an element uses is there already.)
+            let there = out.iter().any(|o| o.id() == c.id());
+            if reused.contains(&c.id()) && !there {
                 let at =
                     after.and_then(|id| out.iter().position(|o| o.id() == id)).map_or(0, |p| p + 1);
                 out.insert(at, c.clone());
                 after = Some(c.id());
-            } else if out.iter().any(|o| o.id() == c.id()) {
+            } else if there {
                 after = Some(c.id());
             }
         }
