@@ -287,12 +287,13 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
 ];
 
 /// Circles between top-level modules today, each with the issue item whose work
-/// breaks it. `model` names `xml::WriteOptions` (`Model::check_with` checks a model
-/// as it is to be written); the options live in `xml/write.rs`, which issue 20 item 4
-/// (h-20w) reshapes: moving them to a leaf module breaks the circle at that merge.
-/// The scenes of issue 23 (`compose::scene`, `compose::reopen`) added `xml` ->
-/// `compose` (the reader reopens scenes) beside `compose` -> `xml` (scenes are written
-/// and read as files): moving them into `xml` breaks that part (issue 20 item 5).
+/// breaks it. `model` names `xml::Source` (a model read keeps the text it was read
+/// from), which the lossless save of issue 23 moves out of `xml` (h-23b); the
+/// options `Model::check_with` reads live in the leaf `write_options`
+/// (`model_names_the_writer_for_no_options`). The scenes of issue 23
+/// (`compose::scene`, `compose::reopen`) added `xml` -> `compose` (the reader reopens
+/// scenes) beside `compose` -> `xml` (scenes are written and read as files): moving
+/// them into `xml` breaks that part (issue 20 item 5).
 const MODULE_CIRCLES: &[&[&str]] = &[&["compose", "generate", "model", "xml"]];
 
 #[test]
@@ -552,6 +553,33 @@ fn no_import_circle_between_files() {
     assert!(graph.get("model::check").is_some_and(|t| t.contains("model::cursor")), "{graph:?}");
     let found = circles(&graph);
     assert!(found.is_empty(), "import circles between files: {found:?}");
+}
+
+/// `model` reads the write options (`Model::check_with`, the composed keyframes)
+/// from the leaf module `write_options`, which names nothing of the crate: no file of
+/// `model` names anything of `xml` but `xml::Source`, the lossless save's (issue 23),
+/// which goes with it.
+#[test]
+fn model_names_the_writer_for_no_options() {
+    let graph = import_graph();
+    assert_eq!(graph.get("write_options"), Some(&BTreeSet::new()), "{graph:?}");
+    assert!(graph["model::check"].contains("write_options"), "{graph:?}");
+    let mut to_xml = Vec::new();
+    for (path, text) in sources() {
+        let path = path.display().to_string();
+        let module = module_of(&path);
+        if module.split("::").next() != Some("model") || path.ends_with("/tests.rs") {
+            continue;
+        }
+        for segs in crate_paths(&module, path.ends_with("mod.rs"), &code_only(&text)) {
+            if segs.first().is_some_and(|s| s == "xml")
+                && segs.last().is_some_and(|s| s != "Source")
+            {
+                to_xml.push(format!("{path}: {}", segs.join("::")));
+            }
+        }
+    }
+    assert!(to_xml.is_empty(), "model names xml: {to_xml:?}");
 }
 
 #[test]

@@ -9,7 +9,7 @@ use smol_str::SmolStr;
 use crate::schema::{AttrType, Namespace, Role};
 use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
-use crate::xml::WriteOptions;
+use crate::write_options::WriteOptions;
 
 use super::cursor::{Insts, Item, Step, Walk};
 use super::layout::joint_type;
