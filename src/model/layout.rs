@@ -282,7 +282,12 @@ pub(crate) fn from_classes<'m>(
 
 /// The joint type of a joint element, as written or as its classes set it: `free`,
 /// `ball`, `slide` or `hinge` (the default).
-pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
+pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> JointType {
+    JointType::of(joint_keyword(model, node, class))
+}
+
+/// The keyword of [`joint_type`].
+fn joint_keyword(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
     if node.kind().is(Role::Freejoint) {
         return "free";
     }
@@ -424,7 +429,7 @@ impl Model {
             match role {
                 // Joints of a body, directly or inside its `<frame>`s.
                 Some(Role::Joint | Role::Freejoint) if in_body => {
-                    let joint_type = JointType::of(joint_type(m, node, class));
+                    let joint_type = joint_type(m, node, class);
                     let qpos0 = match joint_type {
                         JointType::Free => [parent_pose.pos.as_slice(), &parent_pose.quat].concat(),
                         JointType::Ball => vec![1.0, 0.0, 0.0, 0.0],
