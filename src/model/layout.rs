@@ -444,7 +444,8 @@ fn gather(model: &Model) -> Gathered<'_> {
         match role {
             // Joints of a body, directly or inside its `<frame>`s.
             Some(Role::Joint | Role::Freejoint) if in_body => {
-                let joint = layout_joint(m, node, class, parent_pose, loc(), item.inst);
+                let at = (loc(), item.inst);
+                let joint = layout_joint(m, node, class, parent_pose, at, &angles);
                 out.recs[rec].joints.push((joint, parent_pose));
             }
             Some(Role::Attach | Role::MakesBodies) => out.unexpanded.push(loc()),
@@ -491,21 +492,23 @@ fn gather(model: &Model) -> Gathered<'_> {
 
 /// A joint element of walk instance `inst` as the layout holds it (addresses not yet
 /// given), its body at `body` in the world: its type, and MuJoCo's default positions
-/// (`qpos0`): a free joint's body pose, a ball's unit quaternion, a hinge's or
-/// slide's `ref`.
+/// (`qpos0`): a free joint's body pose, a ball's unit quaternion, a slide's `ref`, a
+/// hinge's `ref` in radians (the compiler's `angle` says what it is written in).
 fn layout_joint(
     m: &Model,
     node: &Node,
     class: Option<ElementId>,
     body: Pose,
-    loc: Loc,
-    inst: usize,
+    (loc, inst): (Loc, usize),
+    angles: &Angles,
 ) -> LayoutJoint {
     let joint_type = joint_type(m, node, class);
+    let reference = || effective(m, node, class, "ref").and_then(Value::as_float).unwrap_or(0.0);
     let qpos0 = match joint_type {
         JointType::Free => [body.pos.as_slice(), &body.quat].concat(),
         JointType::Ball => vec![1.0, 0.0, 0.0, 0.0],
-        _ => vec![effective(m, node, class, "ref").and_then(Value::as_float).unwrap_or(0.0)],
+        JointType::Hinge => vec![angles.radians(reference())],
+        JointType::Slide => vec![reference()],
     };
     LayoutJoint { loc, joint_type, qpos: 0, dof: 0, inst, own_qpos: 0, own_dof: 0, qpos0 }
 }
@@ -653,6 +656,26 @@ mod tests {
         assert_eq!(qpos0("ball"), [1.0, 0.0, 0.0, 0.0]);
         assert_eq!(qpos0("own"), [0.5]);
         assert_eq!(qpos0("classed"), [0.25]);
+    }
+
+    /// MuJoCo 4.0.0 compiles a hinge's `ref` (its own or its class's) to radians
+    /// under the default `angle="degree"`, and a key without `qpos` takes `qpos0`:
+    /// `[1.5708, 0.5, 0.5236]` here, `[90, 0.5, 30]` with `angle="radian"`.
+    #[test]
+    fn a_hinge_s_ref_is_in_radians_as_mujoco_compiles_it() {
+        let qpos0 = |compiler: &str| {
+            let m = read(&format!(
+                r#"<mujoco>{compiler}<default><default class="c"><joint ref="30"/></default></default>
+                   <worldbody><body name="b"><joint name="h" ref="90"/>
+                     <joint name="s" type="slide" ref="0.5"/><joint name="hc" class="c"/>
+                     <geom size="1"/></body></worldbody></mujoco>"#
+            ));
+            m.layout().joints.iter().flat_map(|j| j.qpos0.clone()).collect::<Vec<f64>>()
+        };
+        let degrees = [90f64.to_radians(), 0.5, 30f64.to_radians()];
+        assert_eq!(qpos0(""), degrees);
+        assert_eq!(qpos0(r#"<compiler angle="degree"/>"#), degrees);
+        assert_eq!(qpos0(r#"<compiler angle="radian"/>"#), [90.0, 0.5, 30.0]);
     }
 
     #[test]
