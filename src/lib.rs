@@ -81,6 +81,7 @@ mod schema;
 mod seq;
 mod suggest;
 mod value;
+mod write_options;
 mod xml;
 
 pub use crate::error::{

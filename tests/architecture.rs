@@ -272,27 +272,17 @@ fn functions(code: &str) -> Vec<(String, usize, usize)> {
 }
 
 /// Files over 1,000 lines today, each with the issue item whose work brings it under.
-const LONG_FILES: &[(&str, &str)] = &[
-    ("src/generate/mod.rs", "issue 20 item 5: generate/ by concept (h-20r: not done yet)"),
-    ("src/model/diff.rs", "issue 20 item 5: diff by concept (h-20r: not done yet)"),
-];
+const LONG_FILES: &[(&str, &str)] = &[];
 
 /// Functions over 120 lines today, by file and name, each with the issue item whose
 /// work splits it.
-const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
-    ("src/generate/mod.rs", "step", "issue 20 item 5 (h-20r: not done yet)"),
-    ("src/generate/strategy.rs", "step", "issue 20 item 5 (h-20r: not done yet)"),
-    ("src/model/check.rs", "check_with", "issue 20 item 5 (h-20r: not done yet)"),
-    ("src/model/layout.rs", "layout", "issue 20 item 5 (h-20r: not done yet)"),
-];
+const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[];
 
 /// Circles between top-level modules today, each with the issue item whose work
-/// breaks it. `model` names `xml::WriteOptions` (`Model::check_with` checks a model
-/// as it is to be written); the options live in `xml/write.rs`, which issue 20 item 4
-/// (h-20w) reshapes: moving them to a leaf module breaks the circle at that merge.
-/// (The scenes moved into `xml::scene` and the source's data into `model::source`,
-/// so `compose` and `generate` are out of it.)
-const MODULE_CIRCLES: &[&[&str]] = &[&["model", "xml"]];
+/// breaks it. None is left: the options `Model::check_with` reads live in the leaf
+/// `write_options` (`model_names_the_writer_for_no_options`), the source a model
+/// keeps in `model::source`, the scenes in `xml::scene`.
+const MODULE_CIRCLES: &[&[&str]] = &[];
 
 #[test]
 fn no_file_is_over_1000_lines() {
@@ -551,6 +541,31 @@ fn no_import_circle_between_files() {
     assert!(graph.get("model::check").is_some_and(|t| t.contains("model::cursor")), "{graph:?}");
     let found = circles(&graph);
     assert!(found.is_empty(), "import circles between files: {found:?}");
+}
+
+/// `model` reads the write options (`Model::check_with`, the composed keyframes)
+/// from the leaf module `write_options`, which names nothing of the crate: no file of
+/// `model` names anything of `xml` but `xml::Source`, the lossless save's (issue 23),
+/// which goes with it.
+#[test]
+fn model_names_the_writer_for_no_options() {
+    let graph = import_graph();
+    assert_eq!(graph.get("write_options"), Some(&BTreeSet::new()), "{graph:?}");
+    assert!(graph["model::check"].contains("write_options"), "{graph:?}");
+    let mut to_xml = Vec::new();
+    for (path, text) in sources() {
+        let path = path.display().to_string();
+        let module = module_of(&path);
+        if module.split("::").next() != Some("model") || path.ends_with("/tests.rs") {
+            continue;
+        }
+        for segs in crate_paths(&module, path.ends_with("mod.rs"), &code_only(&text)) {
+            if segs.first().is_some_and(|s| s == "xml") {
+                to_xml.push(format!("{path}: {}", segs.join("::")));
+            }
+        }
+    }
+    assert!(to_xml.is_empty(), "model names xml: {to_xml:?}");
 }
 
 #[test]

@@ -143,163 +143,21 @@ fn settings() -> impl Strategy<Value = Settings> + Clone {
 /// Time: O(1) to make; O(size) per value.
 pub fn step(depth: u32) -> BoxedStrategy<Step> {
     let mut arms: Vec<(u32, BoxedStrategy<Step>)> = vec![
-        (
-            6,
-            (
-                pick(),
-                name(),
-                units::<3>(),
-                geom(),
-                prop::bool::weighted(0.3),
-                prop::option::weighted(0.3, pick()),
-                extras(),
-            )
-                .prop_map(|(parent, name, pos, geom, free, childclass, extras)| Step::Body {
-                    parent,
-                    name,
-                    pos,
-                    geom,
-                    free,
-                    childclass,
-                    extras,
-                })
-                .boxed(),
-        ),
-        (3, (pick(), geom()).prop_map(|(parent, geom)| Step::Geom { parent, geom }).boxed()),
-        (
-            3,
-            (pick(), name(), units::<3>(), extras())
-                .prop_map(|(parent, name, pos, extras)| Step::Site { parent, name, pos, extras })
-                .boxed(),
-        ),
-        (
-            4,
-            (
-                pick(),
-                name(),
-                joint_kind(),
-                units::<3>(),
-                prop::option::weighted(0.5, units::<2>()),
-                prop::option::weighted(0.3, pick()),
-                extras(),
-            )
-                .prop_map(|(body, name, kind, axis, range, class, extras)| Step::Joint {
-                    body,
-                    name,
-                    kind,
-                    axis,
-                    range,
-                    class,
-                    extras,
-                })
-                .boxed(),
-        ),
-        (
-            1,
-            (pick(), name(), extras())
-                .prop_map(|(parent, name, extras)| Step::Camera { parent, name, extras })
-                .boxed(),
-        ),
-        (
-            1,
-            (pick(), name(), extras())
-                .prop_map(|(parent, name, extras)| Step::Light { parent, name, extras })
-                .boxed(),
-        ),
-        (
-            2,
-            (
-                pick(),
-                word(),
-                vec(
-                    (
-                        prop_oneof![
-                            Just(DefaultTag::Geom),
-                            Just(DefaultTag::Joint),
-                            Just(DefaultTag::Site)
-                        ],
-                        attr_draw(),
-                    ),
-                    0..4,
-                ),
-            )
-                .prop_map(|(parent, name, defaults)| Step::Class { parent, name, defaults })
-                .boxed(),
-        ),
-        (1, (word(), extras()).prop_map(|(name, extras)| Step::Material { name, extras }).boxed()),
-        (1, (word(), units::<3>()).prop_map(|(name, scale)| Step::Mesh { name, scale }).boxed()),
-        (
-            3,
-            (
-                prop_oneof![
-                    Just(ActuatorKind::Motor),
-                    Just(ActuatorKind::Position),
-                    Just(ActuatorKind::Velocity)
-                ],
-                name(),
-                pick(),
-                extras(),
-            )
-                .prop_map(|(kind, name, joint, extras)| Step::Actuator {
-                    kind,
-                    name,
-                    joint,
-                    extras,
-                })
-                .boxed(),
-        ),
-        (
-            2,
-            (
-                prop_oneof![
-                    Just(SensorKind::JointPos),
-                    Just(SensorKind::JointVel),
-                    Just(SensorKind::Touch),
-                    Just(SensorKind::Accelerometer),
-                    Just(SensorKind::Gyro),
-                    prop_oneof![Just(ObjKind::Body), Just(ObjKind::Geom), Just(ObjKind::Site)]
-                        .prop_map(SensorKind::FramePos),
-                ],
-                name(),
-                pick(),
-                extras(),
-            )
-                .prop_map(|(kind, name, target, extras)| Step::Sensor {
-                    kind,
-                    name,
-                    target,
-                    extras,
-                })
-                .boxed(),
-        ),
-        (
-            1,
-            (name(), vec((pick(), unit()), 1..4))
-                .prop_map(|(name, joints)| Step::Tendon { name, joints })
-                .boxed(),
-        ),
-        (
-            1,
-            (
-                prop_oneof![
-                    Just(EqualityKind::Connect),
-                    Just(EqualityKind::Weld),
-                    Just(EqualityKind::Joint)
-                ],
-                name(),
-                pick(),
-                pick(),
-            )
-                .prop_map(|(kind, name, first, second)| Step::Equality {
-                    kind,
-                    name,
-                    first,
-                    second,
-                })
-                .boxed(),
-        ),
-        (1, (pick(), pick()).prop_map(|(first, second)| Step::Exclude { first, second }).boxed()),
-        (1, (pick(), pick()).prop_map(|(first, second)| Step::Pair { first, second }).boxed()),
+        (6, body()),
+        (3, geom_step()),
+        (3, site()),
+        (4, joint()),
+        (1, camera()),
+        (1, light()),
+        (2, class()),
+        (1, material()),
+        (1, mesh()),
+        (3, actuator()),
+        (2, sensor()),
+        (1, tendon()),
+        (1, equality()),
+        (1, exclude()),
+        (1, pair()),
     ];
     if depth > 0 {
         arms.push((
@@ -316,6 +174,178 @@ pub fn step(depth: u32) -> BoxedStrategy<Step> {
         ));
     }
     Union::new_weighted(arms).boxed()
+}
+
+/// `Step::Body`: a body with a geom (some free, some with a child class).
+fn body() -> BoxedStrategy<Step> {
+    (
+        pick(),
+        name(),
+        units::<3>(),
+        geom(),
+        prop::bool::weighted(0.3),
+        prop::option::weighted(0.3, pick()),
+        extras(),
+    )
+        .prop_map(|(parent, name, pos, geom, free, childclass, extras)| Step::Body {
+            parent,
+            name,
+            pos,
+            geom,
+            free,
+            childclass,
+            extras,
+        })
+        .boxed()
+}
+
+/// `Step::Geom`: a geom.
+fn geom_step() -> BoxedStrategy<Step> {
+    (pick(), geom()).prop_map(|(parent, geom)| Step::Geom { parent, geom }).boxed()
+}
+
+/// `Step::Site`: a site.
+fn site() -> BoxedStrategy<Step> {
+    (pick(), name(), units::<3>(), extras())
+        .prop_map(|(parent, name, pos, extras)| Step::Site { parent, name, pos, extras })
+        .boxed()
+}
+
+/// `Step::Joint`: a joint (some with a range, some with a class).
+fn joint() -> BoxedStrategy<Step> {
+    (
+        pick(),
+        name(),
+        joint_kind(),
+        units::<3>(),
+        prop::option::weighted(0.5, units::<2>()),
+        prop::option::weighted(0.3, pick()),
+        extras(),
+    )
+        .prop_map(|(body, name, kind, axis, range, class, extras)| Step::Joint {
+            body,
+            name,
+            kind,
+            axis,
+            range,
+            class,
+            extras,
+        })
+        .boxed()
+}
+
+/// `Step::Camera`: a camera.
+fn camera() -> BoxedStrategy<Step> {
+    (pick(), name(), extras())
+        .prop_map(|(parent, name, extras)| Step::Camera { parent, name, extras })
+        .boxed()
+}
+
+/// `Step::Light`: a light.
+fn light() -> BoxedStrategy<Step> {
+    (pick(), name(), extras())
+        .prop_map(|(parent, name, extras)| Step::Light { parent, name, extras })
+        .boxed()
+}
+
+/// `Step::Class`: a default class with up to three geom, joint and site defaults.
+fn class() -> BoxedStrategy<Step> {
+    (
+        pick(),
+        word(),
+        vec(
+            (
+                prop_oneof![
+                    Just(DefaultTag::Geom),
+                    Just(DefaultTag::Joint),
+                    Just(DefaultTag::Site)
+                ],
+                attr_draw(),
+            ),
+            0..4,
+        ),
+    )
+        .prop_map(|(parent, name, defaults)| Step::Class { parent, name, defaults })
+        .boxed()
+}
+
+/// `Step::Material`: a material.
+fn material() -> BoxedStrategy<Step> {
+    (word(), extras()).prop_map(|(name, extras)| Step::Material { name, extras }).boxed()
+}
+
+/// `Step::Mesh`: a mesh.
+fn mesh() -> BoxedStrategy<Step> {
+    (word(), units::<3>()).prop_map(|(name, scale)| Step::Mesh { name, scale }).boxed()
+}
+
+/// `Step::Actuator`: a motor, position or velocity actuator.
+fn actuator() -> BoxedStrategy<Step> {
+    (
+        prop_oneof![
+            Just(ActuatorKind::Motor),
+            Just(ActuatorKind::Position),
+            Just(ActuatorKind::Velocity)
+        ],
+        name(),
+        pick(),
+        extras(),
+    )
+        .prop_map(|(kind, name, joint, extras)| Step::Actuator { kind, name, joint, extras })
+        .boxed()
+}
+
+/// `Step::Sensor`: a joint, site or frame sensor.
+fn sensor() -> BoxedStrategy<Step> {
+    (
+        prop_oneof![
+            Just(SensorKind::JointPos),
+            Just(SensorKind::JointVel),
+            Just(SensorKind::Touch),
+            Just(SensorKind::Accelerometer),
+            Just(SensorKind::Gyro),
+            prop_oneof![Just(ObjKind::Body), Just(ObjKind::Geom), Just(ObjKind::Site)]
+                .prop_map(SensorKind::FramePos),
+        ],
+        name(),
+        pick(),
+        extras(),
+    )
+        .prop_map(|(kind, name, target, extras)| Step::Sensor { kind, name, target, extras })
+        .boxed()
+}
+
+/// `Step::Tendon`: a fixed tendon over one to three joints.
+fn tendon() -> BoxedStrategy<Step> {
+    (name(), vec((pick(), unit()), 1..4))
+        .prop_map(|(name, joints)| Step::Tendon { name, joints })
+        .boxed()
+}
+
+/// `Step::Equality`: a connect, weld or joint equality.
+fn equality() -> BoxedStrategy<Step> {
+    (
+        prop_oneof![
+            Just(EqualityKind::Connect),
+            Just(EqualityKind::Weld),
+            Just(EqualityKind::Joint)
+        ],
+        name(),
+        pick(),
+        pick(),
+    )
+        .prop_map(|(kind, name, first, second)| Step::Equality { kind, name, first, second })
+        .boxed()
+}
+
+/// `Step::Exclude`: a contact exclude.
+fn exclude() -> BoxedStrategy<Step> {
+    (pick(), pick()).prop_map(|(first, second)| Step::Exclude { first, second }).boxed()
+}
+
+/// `Step::Pair`: a contact pair.
+fn pair() -> BoxedStrategy<Step> {
+    (pick(), pick()).prop_map(|(first, second)| Step::Pair { first, second }).boxed()
 }
 
 /// A recipe of up to `max_steps` steps whose attachments nest up to `depth` levels.

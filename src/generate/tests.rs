@@ -16,9 +16,11 @@ use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunne
 #[path = "../../tests/support/names.rs"]
 mod names;
 
+use super::pick::elements;
 use super::strategy::{model_recipe, models, scene_and_edits, scene_recipe};
 use super::*;
-use crate::schema::{Multiplicity, Role};
+use crate::model::{Element, Event, Model};
+use crate::schema::{ElementKind, Multiplicity, Namespace, Role};
 
 fn config() -> Config {
     let mut c = Config::default();

@@ -9,10 +9,10 @@ use smol_str::SmolStr;
 use crate::schema::{AttrType, Namespace, Role};
 use crate::suggest::Suggester;
 use crate::value::{Reference, Value};
-use crate::xml::WriteOptions;
+use crate::write_options::WriteOptions;
 
 use super::cursor::{Insts, Item, Step, Walk};
-use super::layout::joint_type;
+use super::layout::{JointType, joint_type};
 use super::tree::Node;
 use super::{Loc, Model};
 
@@ -185,30 +185,123 @@ fn ref_namespace(node: &Node, i: usize) -> Option<Namespace> {
 struct Open<'a> {
     inst: usize,
     node: &'a Node,
-    /// It has joints (or a freejoint).
-    moves: bool,
+    /// Its own joints (for a body or an attachment frame).
+    joints: BodyJoints,
     /// It, or something welded below it, has mass.
     massive: bool,
-    /// The degrees of freedom of its own joints.
+}
+
+/// The joints of one body (or attachment frame), as [`Model::check`]'s rules on
+/// joints see them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct BodyJoints {
+    /// It has joints (or a freejoint).
+    moves: bool,
+    /// The degrees of freedom of its joints.
     dofs: usize,
     /// One of its joints is a ball joint.
     ball: bool,
-    /// A hinge or ball joint of its own follows a ball joint.
+    /// A hinge or ball joint follows a ball joint.
     rotation_after_ball: bool,
 }
 
-impl<'a> Open<'a> {
-    fn new(inst: usize, node: &'a Node) -> Open<'a> {
-        Open {
-            inst,
-            node,
-            moves: false,
-            massive: false,
-            dofs: 0,
-            ball: false,
-            rotation_after_ball: false,
+impl BodyJoints {
+    /// A joint of type `ty` is added after those seen so far.
+    fn add(&mut self, ty: JointType) {
+        self.moves = true;
+        self.dofs += ty.nv();
+        self.rotation_after_ball |= self.ball && matches!(ty, JointType::Ball | JointType::Hinge);
+        self.ball |= ty == JointType::Ball;
+    }
+
+    /// Rules *at most 6 degrees of freedom per body* ([`ProblemKind::TooManyDofs`])
+    /// and *no rotation after a ball joint* ([`ProblemKind::RotationAfterBall`]).
+    fn problems(&self) -> Vec<ProblemKind> {
+        let mut out = Vec::new();
+        if self.dofs > 6 {
+            out.push(ProblemKind::TooManyDofs { dofs: self.dofs });
+        }
+        if self.rotation_after_ball {
+            out.push(ProblemKind::RotationAfterBall);
+        }
+        out
+    }
+}
+
+/// Rule *a moving body has mass* ([`ProblemKind::MasslessMovingBody`]): a body with
+/// joints, with no mass of its own nor of bodies welded below it.
+fn massless_moving_body(is_body: bool, joints: &BodyJoints, massive: bool) -> Option<ProblemKind> {
+    (is_body && joints.moves && !massive).then_some(ProblemKind::MasslessMovingBody)
+}
+
+/// Whether `node` gives the body it is in mass: an inertial with a mass above 0, or
+/// a geom (MuJoCo gives geoms a density) that does not set its mass to 0.
+fn gives_mass(node: &Node) -> bool {
+    let kind = node.kind();
+    let mass = || node.attr(kind.attr_index("mass").unwrap_or(0)).and_then(Value::as_float);
+    match kind.role() {
+        Some(Role::Inertial) => mass().is_some_and(|x| x > 0.0),
+        Some(Role::Geom) => mass() != Some(0.0),
+        _ => false,
+    }
+}
+
+/// Names ranked for suggestions, per model (walk instance) and namespace, each made
+/// once.
+type Suggesters<'m> = HashMap<(usize, Namespace), Suggester<'m>>;
+
+/// Rule *references resolve*: each reference by name of `node` (of the model `m`,
+/// walk instance `inst`) names an element of its own model or a builtin name
+/// ([`ProblemKind::DanglingReference`], with the nearest names), and each resolved
+/// reference an element still there ([`ProblemKind::MissingRequired`] for a required
+/// attribute, [`ProblemKind::RemovedReference`] for an optional one).
+fn unresolved_references<'m>(
+    m: &'m Model,
+    inst: usize,
+    node: &Node,
+    suggesters: &mut Suggesters<'m>,
+) -> Vec<ProblemKind> {
+    let kind = node.kind();
+    let mut out = Vec::new();
+    for (i, v) in node.attrs() {
+        let i = *i as usize;
+        let spec = kind.attr(i);
+        match v {
+            Value::Reference(Reference::Name(n)) => {
+                let Some(ns) = ref_namespace(node, i) else { continue };
+                if super::naming::is_builtin_name(ns, n)
+                    || m.index.names.contains_key(&(ns, n.clone()))
+                {
+                    continue;
+                }
+                if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
+                    continue;
+                }
+                let ranked = suggesters.entry((inst, ns)).or_insert_with(|| {
+                    Suggester::new(
+                        m.index.names.keys().filter(|(k, _)| *k == ns).map(|(_, n)| n.as_str()),
+                    )
+                });
+                let suggestions = ranked.nearest(n, 3).into_iter().map(SmolStr::from).collect();
+                out.push(ProblemKind::DanglingReference {
+                    attribute: spec.name,
+                    name: n.clone(),
+                    namespace: ns,
+                    suggestions,
+                });
+            }
+            Value::Reference(Reference::Element(id)) if !m.index.contains(*id) => {
+                let attribute = spec.name;
+                out.push(if spec.required {
+                    ProblemKind::MissingRequired { attribute }
+                } else {
+                    ProblemKind::RemovedReference { attribute }
+                });
+            }
+            _ => {}
         }
     }
+    out
 }
 
 /// How a problem names the element the walk entered as `item`: the name the writer
@@ -269,127 +362,65 @@ impl Model {
         let mut walk = Walk::new(self);
         let mut open: Vec<Open<'_>> = Vec::new();
         let mut classes = super::layout::ClassesInForce::default();
-        // Names ranked for suggestions, per model (instance) and namespace, once.
-        let mut suggesters: HashMap<(usize, Namespace), Suggester<'_>> = HashMap::new();
+        let mut suggesters = Suggesters::new();
         while let Some(step) = walk.next() {
             match step {
                 Step::Enter(item) => {
                     let inst = &walk.insts.list[item.inst];
                     let m = inst.model;
                     let node = item.node;
-                    let kind = node.kind();
                     let class = classes.enter(m, item.inst, node);
-                    let loc = || Loc::scoped(inst.frames.clone(), node.id(), name);
-                    let path = || problem_path(&walk.insts, &item);
-                    // References.
-                    for (i, v) in node.attrs() {
-                        let i = *i as usize;
-                        let spec = kind.attr(i);
-                        match v {
-                            Value::Reference(Reference::Name(n)) => {
-                                let Some(ns) = ref_namespace(node, i) else { continue };
-                                if super::naming::is_builtin_name(ns, n)
-                                    || m.index.names.contains_key(&(ns, n.clone()))
-                                {
-                                    continue;
-                                }
-                                if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
-                                    continue;
-                                }
-                                let ranked =
-                                    suggesters.entry((item.inst, ns)).or_insert_with(|| {
-                                        Suggester::new(
-                                            m.index
-                                                .names
-                                                .keys()
-                                                .filter(|(k, _)| *k == ns)
-                                                .map(|(_, n)| n.as_str()),
-                                        )
-                                    });
-                                let suggestions =
-                                    ranked.nearest(n, 3).into_iter().map(SmolStr::from).collect();
-                                problems.push(Problem {
-                                    loc: loc(),
-                                    path: path(),
-                                    kind: ProblemKind::DanglingReference {
-                                        attribute: spec.name,
-                                        name: n.clone(),
-                                        namespace: ns,
-                                        suggestions,
-                                    },
-                                });
-                            }
-                            Value::Reference(Reference::Element(id)) if !m.index.contains(*id) => {
-                                let attribute = spec.name;
-                                let kind = if spec.required {
-                                    ProblemKind::MissingRequired { attribute }
-                                } else {
-                                    ProblemKind::RemovedReference { attribute }
-                                };
-                                problems.push(Problem { loc: loc(), path: path(), kind });
-                            }
-                            _ => {}
-                        }
+                    let found = unresolved_references(m, item.inst, node, &mut suggesters);
+                    if !found.is_empty() {
+                        let loc = Loc::scoped(inst.frames.clone(), node.id(), name);
+                        let path = problem_path(&walk.insts, &item);
+                        problems.extend(found.into_iter().map(|kind| Problem {
+                            loc: loc.clone(),
+                            path: path.clone(),
+                            kind,
+                        }));
                     }
                     // Degrees of freedom (the layout's own count is in Model::layout).
                     let in_body = open.last().is_some_and(|o| o.node.kind().is(Role::Body));
-                    if matches!(kind.role(), Some(Role::Joint | Role::Freejoint)) && in_body {
-                        let ty = joint_type(m, node, class);
-                        let v = match ty {
-                            "free" => 6,
-                            "ball" => 3,
-                            _ => 1,
-                        };
+                    let role = node.kind().role();
+                    if matches!(role, Some(Role::Joint | Role::Freejoint)) && in_body {
                         if let Some(top) = open.last_mut() {
-                            top.moves = true;
-                            top.dofs += v;
-                            top.rotation_after_ball |= top.ball && matches!(ty, "ball" | "hinge");
-                            top.ball |= ty == "ball";
+                            top.joints.add(joint_type(m, node, class));
                         }
                     }
-                    // Mass: an inertial with mass, or a geom (MuJoCo gives geoms a
-                    // density) that does not set its mass to 0.
-                    let massive = match kind.role() {
-                        Some(Role::Inertial) => node
-                            .attr(kind.attr_index("mass").unwrap_or(0))
-                            .and_then(Value::as_float)
-                            .is_some_and(|x| x > 0.0),
-                        Some(Role::Geom) => {
-                            node.attr(kind.attr_index("mass").unwrap_or(0))
-                                .and_then(Value::as_float)
-                                != Some(0.0)
-                        }
-                        _ => false,
-                    };
-                    if massive {
+                    if gives_mass(node) {
                         if let Some(top) = open.last_mut() {
                             top.massive = true;
                         }
                     }
-                    open.push(Open::new(item.inst, node));
+                    open.push(Open {
+                        inst: item.inst,
+                        node,
+                        joints: BodyJoints::default(),
+                        massive: false,
+                    });
                 }
                 Step::Leave(item) => {
                     classes.leave();
                     let Some(o) = open.pop() else { continue };
                     let is_body = o.node.kind().is(Role::Body);
-                    let problem = |kind| {
+                    let massless = massless_moving_body(is_body, &o.joints, o.massive);
+                    let found: Vec<ProblemKind> =
+                        massless.into_iter().chain(o.joints.problems()).collect();
+                    if !found.is_empty() {
                         let i = &walk.insts.list[o.inst];
                         let loc = Loc::scoped(i.frames.clone(), o.node.id(), name);
-                        Problem { loc, path: problem_path(&walk.insts, &item), kind }
-                    };
-                    if is_body && o.moves && !o.massive {
-                        problems.push(problem(ProblemKind::MasslessMovingBody));
-                    }
-                    if o.dofs > 6 {
-                        problems.push(problem(ProblemKind::TooManyDofs { dofs: o.dofs }));
-                    }
-                    if o.rotation_after_ball {
-                        problems.push(problem(ProblemKind::RotationAfterBall));
+                        let path = problem_path(&walk.insts, &item);
+                        problems.extend(found.into_iter().map(|kind| Problem {
+                            loc: loc.clone(),
+                            path: path.clone(),
+                            kind,
+                        }));
                     }
                     // Mass below counts for the parent only through a body that does
                     // not move on its own (welded to it): MuJoCo wants a moving body's
                     // own mass, or that of bodies welded to it, above zero.
-                    if o.massive && !(is_body && o.moves) {
+                    if o.massive && !(is_body && o.joints.moves) {
                         if let Some(top) = open.last_mut() {
                             top.massive = true;
                         }
@@ -500,5 +531,137 @@ impl Model {
             }
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Element;
+
+    /// The node of the element `name` of namespace `ns` in `m`.
+    fn node<'m>(m: &'m Model, ns: Namespace, name: &str) -> &'m Node {
+        let loc = m.find(ns, name).expect("the element exists");
+        m.node_by_id(loc.id()).expect("its node")
+    }
+
+    #[test]
+    fn body_joints_count_degrees_of_freedom_by_joint_type() {
+        let mut joints = BodyJoints::default();
+        assert!(!joints.moves);
+        joints.add(JointType::Free);
+        assert_eq!((joints.moves, joints.dofs), (true, 6));
+        assert_eq!(joints.problems(), []);
+        joints.add(JointType::Slide);
+        assert_eq!(joints.dofs, 7);
+        assert_eq!(joints.problems(), [ProblemKind::TooManyDofs { dofs: 7 }]);
+        let mut three = BodyJoints::default();
+        for ty in [JointType::Ball, JointType::Slide, JointType::Slide, JointType::Slide] {
+            three.add(ty);
+        }
+        assert_eq!((three.dofs, three.problems()), (6, vec![]));
+    }
+
+    #[test]
+    fn only_a_hinge_or_ball_after_a_ball_is_a_rotation_after_ball() {
+        let after_ball = |second: JointType| {
+            let mut joints = BodyJoints::default();
+            joints.add(JointType::Ball);
+            joints.add(second);
+            joints.problems()
+        };
+        assert_eq!(after_ball(JointType::Hinge), [ProblemKind::RotationAfterBall]);
+        assert_eq!(after_ball(JointType::Ball), [ProblemKind::RotationAfterBall]);
+        assert_eq!(after_ball(JointType::Slide), []);
+        let mut before = BodyJoints::default();
+        before.add(JointType::Hinge);
+        before.add(JointType::Ball);
+        assert_eq!(before.problems(), []);
+    }
+
+    #[test]
+    fn only_a_moving_body_without_mass_is_massless() {
+        let mut moving = BodyJoints::default();
+        moving.add(JointType::Hinge);
+        let still = BodyJoints::default();
+        assert_eq!(
+            massless_moving_body(true, &moving, false),
+            Some(ProblemKind::MasslessMovingBody)
+        );
+        assert_eq!(massless_moving_body(true, &moving, true), None);
+        assert_eq!(massless_moving_body(true, &still, false), None);
+        // Only what the caller says is a body is held to the rule.
+        assert_eq!(massless_moving_body(false, &moving, false), None);
+    }
+
+    #[test]
+    fn an_inertial_with_mass_and_a_geom_not_of_mass_0_give_mass() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <body name="a"><inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/></body>
+                 <body name="b"><inertial pos="0 0 0" mass="0" diaginertia="1 1 1"/></body>
+                 <geom name="dense" size="1"/><geom name="weightless" size="1" mass="0"/>
+                 <site name="s"/>
+               </worldbody></mujoco>"#,
+        )
+        .unwrap();
+        let inertial =
+            |body: &str| node(&m, Namespace::Body, body).children().iter().next().unwrap();
+        assert!(gives_mass(inertial("a")));
+        assert!(!gives_mass(inertial("b")));
+        assert!(gives_mass(node(&m, Namespace::Geom, "dense")));
+        assert!(!gives_mass(node(&m, Namespace::Geom, "weightless")));
+        assert!(!gives_mass(node(&m, Namespace::Site, "s")));
+    }
+
+    #[test]
+    fn references_by_name_resolve_in_their_model_or_are_dangling_with_suggestions() {
+        let mut m = Model::new("m");
+        let b = m.add_mut(&m.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+        m.add_mut(&b, Element::new("joint").attr("name", "hinge")).unwrap();
+        m.add_mut(&m.actuator(), Element::new("motor").attr("name", "ok").attr("joint", "hinge"))
+            .unwrap();
+        m.add_mut(&m.actuator(), Element::new("motor").attr("name", "typo").attr("joint", "hinj"))
+            .unwrap();
+        let mut suggesters = Suggesters::new();
+        let ok = node(&m, Namespace::Actuator, "ok");
+        assert_eq!(unresolved_references(&m, 0, ok, &mut suggesters), []);
+        let typo = node(&m, Namespace::Actuator, "typo");
+        assert_eq!(
+            unresolved_references(&m, 0, typo, &mut suggesters),
+            [ProblemKind::DanglingReference {
+                attribute: "joint",
+                name: "hinj".into(),
+                namespace: Namespace::Joint,
+                suggestions: vec!["hinge".into()],
+            }]
+        );
+    }
+
+    #[test]
+    fn a_resolved_reference_to_a_removed_element_is_missing_or_removed_as_it_is_required() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <body name="a"><joint name="j"/><geom size="1"/></body>
+                 <body name="b"><geom size="1"/></body>
+               </worldbody>
+               <contact><exclude body1="a" body2="b"/></contact>
+               <actuator><motor name="mo" joint="j"/></actuator></mujoco>"#,
+        )
+        .unwrap();
+        let a = m.find(Namespace::Body, "a").unwrap();
+        let removed = m.remove(&a).unwrap();
+        let mut suggesters = Suggesters::new();
+        let motor = node(&removed, Namespace::Actuator, "mo");
+        assert_eq!(
+            unresolved_references(&removed, 0, motor, &mut suggesters),
+            [ProblemKind::RemovedReference { attribute: "joint" }]
+        );
+        let contact = removed.section("contact").unwrap();
+        let exclude = removed.node_by_id(contact.id()).unwrap().children().iter().next().unwrap();
+        assert_eq!(
+            unresolved_references(&removed, 0, exclude, &mut suggesters),
+            [ProblemKind::MissingRequired { attribute: "body1" }]
+        );
     }
 }

@@ -161,7 +161,11 @@ impl Model {
     /// Keys with more values than MuJoCo takes (it refuses them: "invalid qpos size";
     /// fewer it pads). Written with `merge_keyframes`, each model's key is held to its
     /// own joints and actuators; without, every key to the composed model's.
-    pub(crate) fn key_lengths(&self, options: &crate::WriteOptions, problems: &mut Vec<Problem>) {
+    pub(crate) fn key_lengths(
+        &self,
+        options: &crate::write_options::WriteOptions,
+        problems: &mut Vec<Problem>,
+    ) {
         let layout = self.layout();
         // Per instance (or for the composed model, under usize::MAX): qpos, qvel, act,
         // ctrl, mocap bodies.

@@ -282,7 +282,12 @@ pub(crate) fn from_classes<'m>(
 
 /// The joint type of a joint element, as written or as its classes set it: `free`,
 /// `ball`, `slide` or `hinge` (the default).
-pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
+pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> JointType {
+    JointType::of(joint_keyword(model, node, class))
+}
+
+/// The keyword of [`joint_type`].
+fn joint_keyword(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
     if node.kind().is(Role::Freejoint) {
         return "free";
     }
@@ -367,190 +372,328 @@ impl Model {
     /// # Ok::<(), mjcf::Error>(())
     /// ```
     pub fn layout(&self) -> Layout<'_> {
-        let merged = settings::merged(self).ok();
-        let compiler_kind = ElementKind::ROOT.child("compiler");
-        let compiler =
-            merged.as_deref().and_then(|m| m.iter().find(|n| Some(n.kind()) == compiler_kind));
-        let angles = Angles::of(compiler);
-        let name = self.name();
-        let mut out = Layout {
-            joints: Vec::new(),
-            actuators: Vec::new(),
-            mocap: Vec::new(),
-            nq: 0,
-            nv: 0,
-            nu: 0,
-            na: 0,
-            unexpanded: Vec::new(),
-            keys: Vec::new(),
-            origins: HashMap::new(),
+        let gathered = gather(self);
+        let (joints, mocap) = in_mujoco_order(&gathered.recs);
+        numbered(gathered, joints, mocap)
+    }
+}
+
+/// What the walk of the composed model gathers, before MuJoCo's order is applied.
+struct Gathered<'a> {
+    /// The body records; record 0 is the world.
+    recs: Vec<BodyRec>,
+    /// The actuators, in document order (MuJoCo's).
+    actuators: Vec<LayoutActuator>,
+    /// The keys, with their instance.
+    keys: Vec<(usize, &'a Node, Loc)>,
+    /// Per instance, the pose of its model's world.
+    origins: HashMap<usize, Pose>,
+    /// The elements whose generated content is not counted.
+    unexpanded: Vec<Loc>,
+}
+
+/// Walks the composed model once: each body's joints (with their default positions)
+/// and mocap flag, its child bodies and replicates, the actuators, the keys and each
+/// instance's origin.
+fn gather(model: &Model) -> Gathered<'_> {
+    let merged = settings::merged(model).ok();
+    let compiler_kind = ElementKind::ROOT.child("compiler");
+    let compiler =
+        merged.as_deref().and_then(|m| m.iter().find(|n| Some(n.kind()) == compiler_kind));
+    let angles = Angles::of(compiler);
+    let name = model.name();
+    let mut out = Gathered {
+        recs: vec![BodyRec::default()],
+        actuators: Vec::new(),
+        keys: Vec::new(),
+        origins: HashMap::new(),
+        unexpanded: Vec::new(),
+    };
+    let mut open: Vec<Open<'_>> = Vec::new();
+    let mut classes = ClassesInForce::default();
+    let mut walk = Walk::new(model);
+    while let Some(step) = walk.next() {
+        let item = match step {
+            Step::Enter(item) => item,
+            Step::Leave(_) => {
+                open.pop();
+                classes.leave();
+                continue;
+            }
         };
-        // Record 0 is the world.
-        let mut recs: Vec<BodyRec> = vec![BodyRec::default()];
-        let mut actuators = Vec::new();
-        let mut open: Vec<Open<'_>> = Vec::new();
-        let mut classes = ClassesInForce::default();
-        let mut walk = Walk::new(self);
-        while let Some(step) = walk.next() {
-            let item = match step {
-                Step::Enter(item) => item,
-                Step::Leave(_) => {
-                    open.pop();
-                    classes.leave();
-                    continue;
-                }
-            };
-            let frames = walk.insts.list[item.inst].frames.clone();
-            let m = walk.insts.list[item.inst].model;
-            let node = item.node;
-            let kind = node.kind();
-            let loc = || Loc::scoped(frames.clone(), node.id(), name);
-            let parent = open.last();
-            let parent_pose = parent.map_or(IDENTITY, |p| p.pose);
-            let mut rec = parent.map_or(0, |p| p.rec);
-            if parent.is_some_and(|p| p.node.attached().is_some() && p.inst != item.inst) {
-                out.origins.entry(item.inst).or_insert(parent_pose);
-            }
-            let class = classes.enter(m, item.inst, node);
-            let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().is(Role::Replicate));
-            let role = kind.role();
-            let is_body = role == Some(Role::Body);
-            let frame_like = node.attached().is_some() || role == Some(Role::Frame);
-            let pose = if is_body || frame_like {
-                pose::compose(parent_pose, pose::local_pose(node, &angles))
-            } else {
-                parent_pose
-            };
-            match role {
-                // Joints of a body, directly or inside its `<frame>`s.
-                Some(Role::Joint | Role::Freejoint) if in_body => {
-                    let joint_type = JointType::of(joint_type(m, node, class));
-                    let qpos0 = match joint_type {
-                        JointType::Free => [parent_pose.pos.as_slice(), &parent_pose.quat].concat(),
-                        JointType::Ball => vec![1.0, 0.0, 0.0, 0.0],
-                        _ => vec![
-                            effective(m, node, class, "ref")
-                                .and_then(Value::as_float)
-                                .unwrap_or(0.0),
-                        ],
-                    };
-                    let joint = LayoutJoint {
-                        loc: loc(),
-                        joint_type,
-                        qpos: 0,
-                        dof: 0,
-                        inst: item.inst,
-                        own_qpos: 0,
-                        own_dof: 0,
-                        qpos0,
-                    };
-                    recs[rec].joints.push((joint, parent_pose));
-                }
-                Some(Role::Attach | Role::MakesBodies) => out.unexpanded.push(loc()),
-                _ => {}
-            }
-            if is_body || node.attached().is_some() {
-                let new = recs.len();
-                recs.push(BodyRec::default());
-                recs[rec].children.push(Child::Body(new));
-                rec = new;
-                let mocap = effective(m, node, class, "mocap").and_then(Value::as_str);
-                if is_body && mocap == Some("true") {
-                    recs[rec].mocap =
-                        Some(LayoutMocap { loc: loc(), index: 0, inst: item.inst, own: 0, pose });
-                }
-            }
-            if role == Some(Role::Replicate) {
-                let count = node
-                    .attr(kind.attr_index("count").unwrap_or(usize::MAX))
-                    .and_then(Value::as_int)
-                    .and_then(|c| usize::try_from(c).ok())
-                    .unwrap_or(1);
-                let new = recs.len();
-                recs.push(BodyRec::default());
-                let step = pose::replicate_step(node, &angles);
-                recs[rec].children.push(Child::Repeat { rec: new, count, at: pose, step });
-                rec = new;
-            }
-            if role.is_some_and(Role::is_actuator) {
-                let (nctrl, nact) = actuator_size(m, node, class);
-                actuators.push(LayoutActuator {
-                    loc: loc(),
-                    ctrl: 0,
-                    nctrl,
-                    act: 0,
-                    nact,
-                    inst: item.inst,
-                    own_ctrl: 0,
-                    own_act: 0,
-                });
-            }
-            if role == Some(Role::Key) {
-                out.keys.push((item.inst, node, loc()));
-            }
-            open.push(Open { inst: item.inst, node, pose, rec });
+        let frames = walk.insts.list[item.inst].frames.clone();
+        let m = walk.insts.list[item.inst].model;
+        let node = item.node;
+        let loc = || Loc::scoped(frames.clone(), node.id(), name);
+        let parent = open.last();
+        let parent_pose = parent.map_or(IDENTITY, |p| p.pose);
+        let mut rec = parent.map_or(0, |p| p.rec);
+        if parent.is_some_and(|p| p.node.attached().is_some() && p.inst != item.inst) {
+            out.origins.entry(item.inst).or_insert(parent_pose);
         }
-        // MuJoCo's order: bodies depth first, each body's joints before its children's;
-        // a replicate's content once per copy, moved.
-        let (mut joints, mut mocap) = (Vec::new(), Vec::new());
-        let mut todo = vec![(0, IDENTITY)];
-        while let Some((r, moved)) = todo.pop() {
-            for (j, body) in &recs[r].joints {
-                let mut j = j.clone();
-                if j.joint_type == JointType::Free && moved != IDENTITY {
-                    let p = pose::compose(moved, *body);
-                    j.qpos0 = [p.pos.as_slice(), &p.quat].concat();
-                }
-                joints.push(j);
+        let class = classes.enter(m, item.inst, node);
+        let in_body = rec != 0 || parent.is_some_and(|p| p.node.kind().is(Role::Replicate));
+        let role = node.kind().role();
+        let is_body = role == Some(Role::Body);
+        let frame_like = node.attached().is_some() || role == Some(Role::Frame);
+        let pose = if is_body || frame_like {
+            pose::compose(parent_pose, pose::local_pose(node, &angles))
+        } else {
+            parent_pose
+        };
+        match role {
+            // Joints of a body, directly or inside its `<frame>`s.
+            Some(Role::Joint | Role::Freejoint) if in_body => {
+                let at = (loc(), item.inst);
+                let joint = layout_joint(m, node, class, parent_pose, at, &angles);
+                out.recs[rec].joints.push((joint, parent_pose));
             }
-            if let Some(b) = &recs[r].mocap {
-                mocap.push(LayoutMocap { pose: pose::compose(moved, b.pose), ..b.clone() });
+            Some(Role::Attach | Role::MakesBodies) => out.unexpanded.push(loc()),
+            _ => {}
+        }
+        if is_body || node.attached().is_some() {
+            let new = out.recs.len();
+            out.recs.push(BodyRec::default());
+            out.recs[rec].children.push(Child::Body(new));
+            rec = new;
+            let mocap = effective(m, node, class, "mocap").and_then(Value::as_str);
+            if is_body && mocap == Some("true") {
+                out.recs[rec].mocap =
+                    Some(LayoutMocap { loc: loc(), index: 0, inst: item.inst, own: 0, pose });
             }
-            // Children in reverse onto the stack, so the first comes out first.
-            for child in recs[r].children.iter().rev() {
-                match *child {
-                    Child::Body(c) => todo.push((c, moved)),
-                    Child::Repeat { rec, count, at, step } => {
-                        let back = pose::inverse(at);
-                        let mut shifts = Vec::with_capacity(count);
-                        let mut shift = IDENTITY;
-                        for _ in 0..count {
-                            // The copy's transform in the world: at · shift · at⁻¹.
-                            let copy = pose::compose(pose::compose(at, shift), back);
-                            shifts.push(pose::compose(moved, copy));
-                            shift = pose::compose(shift, step);
-                        }
-                        todo.extend(shifts.into_iter().rev().map(|s| (rec, s)));
+        }
+        if role == Some(Role::Replicate) {
+            let new = out.recs.len();
+            out.recs.push(BodyRec::default());
+            let (count, step) = (replicate_count(node), pose::replicate_step(node, &angles));
+            out.recs[rec].children.push(Child::Repeat { rec: new, count, at: pose, step });
+            rec = new;
+        }
+        if role.is_some_and(Role::is_actuator) {
+            let (nctrl, nact) = actuator_size(m, node, class);
+            out.actuators.push(LayoutActuator {
+                loc: loc(),
+                ctrl: 0,
+                nctrl,
+                act: 0,
+                nact,
+                inst: item.inst,
+                own_ctrl: 0,
+                own_act: 0,
+            });
+        }
+        if role == Some(Role::Key) {
+            out.keys.push((item.inst, node, loc()));
+        }
+        open.push(Open { inst: item.inst, node, pose, rec });
+    }
+    out
+}
+
+/// A joint element of walk instance `inst` as the layout holds it (addresses not yet
+/// given), its body at `body` in the world: its type, and MuJoCo's default positions
+/// (`qpos0`): a free joint's body pose, a ball's unit quaternion, a slide's `ref`, a
+/// hinge's `ref` in radians (the compiler's `angle` says what it is written in).
+fn layout_joint(
+    m: &Model,
+    node: &Node,
+    class: Option<ElementId>,
+    body: Pose,
+    (loc, inst): (Loc, usize),
+    angles: &Angles,
+) -> LayoutJoint {
+    let joint_type = joint_type(m, node, class);
+    let reference = || effective(m, node, class, "ref").and_then(Value::as_float).unwrap_or(0.0);
+    let qpos0 = match joint_type {
+        JointType::Free => [body.pos.as_slice(), &body.quat].concat(),
+        JointType::Ball => vec![1.0, 0.0, 0.0, 0.0],
+        JointType::Hinge => vec![angles.radians(reference())],
+        JointType::Slide => vec![reference()],
+    };
+    LayoutJoint { loc, joint_type, qpos: 0, dof: 0, inst, own_qpos: 0, own_dof: 0, qpos0 }
+}
+
+/// The copies a `<replicate>` makes: its `count`, 1 if it has none.
+fn replicate_count(node: &Node) -> usize {
+    node.attr(node.kind().attr_index("count").unwrap_or(usize::MAX))
+        .and_then(Value::as_int)
+        .and_then(|c| usize::try_from(c).ok())
+        .unwrap_or(1)
+}
+
+/// The joints and mocap bodies in MuJoCo's order: bodies depth first, each body's
+/// joints before its children's; a replicate's content once per copy, moved (a free
+/// joint's default position and a mocap body's pose with it).
+fn in_mujoco_order(recs: &[BodyRec]) -> (Vec<LayoutJoint>, Vec<LayoutMocap>) {
+    let (mut joints, mut mocap) = (Vec::new(), Vec::new());
+    let mut todo = vec![(0, IDENTITY)];
+    while let Some((r, moved)) = todo.pop() {
+        for (j, body) in &recs[r].joints {
+            let mut j = j.clone();
+            if j.joint_type == JointType::Free && moved != IDENTITY {
+                let p = pose::compose(moved, *body);
+                j.qpos0 = [p.pos.as_slice(), &p.quat].concat();
+            }
+            joints.push(j);
+        }
+        if let Some(b) = &recs[r].mocap {
+            mocap.push(LayoutMocap { pose: pose::compose(moved, b.pose), ..b.clone() });
+        }
+        // Children in reverse onto the stack, so the first comes out first.
+        for child in recs[r].children.iter().rev() {
+            match *child {
+                Child::Body(c) => todo.push((c, moved)),
+                Child::Repeat { rec, count, at, step } => {
+                    let back = pose::inverse(at);
+                    let mut shifts = Vec::with_capacity(count);
+                    let mut shift = IDENTITY;
+                    for _ in 0..count {
+                        // The copy's transform in the world: at · shift · at⁻¹.
+                        let copy = pose::compose(pose::compose(at, shift), back);
+                        shifts.push(pose::compose(moved, copy));
+                        shift = pose::compose(shift, step);
                     }
+                    todo.extend(shifts.into_iter().rev().map(|s| (rec, s)));
                 }
             }
         }
-        // Addresses in the composed model and in each model's own, in order.
-        // Per instance: its own positions, velocities, controls, activations and mocap
-        // bodies so far.
-        let mut own: HashMap<usize, [usize; 5]> = HashMap::new();
-        for mut joint in joints {
-            let counts = own.entry(joint.inst).or_default();
-            (joint.qpos, joint.dof, joint.own_qpos, joint.own_dof) =
-                (out.nq, out.nv, counts[0], counts[1]);
-            let (q, v) = (joint.joint_type.nq(), joint.joint_type.nv());
-            (out.nq, out.nv, counts[0], counts[1]) =
-                (out.nq + q, out.nv + v, counts[0] + q, counts[1] + v);
-            out.joints.push(joint);
-        }
-        for mut a in actuators {
-            let counts = own.entry(a.inst).or_default();
-            (a.ctrl, a.act, a.own_ctrl, a.own_act) = (out.nu, out.na, counts[2], counts[3]);
-            (out.nu, out.na, counts[2], counts[3]) =
-                (out.nu + a.nctrl, out.na + a.nact, counts[2] + a.nctrl, counts[3] + a.nact);
-            out.actuators.push(a);
-        }
-        for (i, mut b) in mocap.into_iter().enumerate() {
-            let counts = own.entry(b.inst).or_default();
-            (b.index, b.own) = (i, counts[4]);
-            counts[4] += 1;
-            out.mocap.push(b);
-        }
-        out
+    }
+    (joints, mocap)
+}
+
+/// The layout with its addresses: each joint's, actuator's and mocap body's in the
+/// composed model and in its own model's, in order.
+fn numbered<'a>(
+    gathered: Gathered<'a>,
+    joints: Vec<LayoutJoint>,
+    mocap: Vec<LayoutMocap>,
+) -> Layout<'a> {
+    let mut out = Layout {
+        joints: Vec::with_capacity(joints.len()),
+        actuators: Vec::with_capacity(gathered.actuators.len()),
+        mocap: Vec::with_capacity(mocap.len()),
+        nq: 0,
+        nv: 0,
+        nu: 0,
+        na: 0,
+        unexpanded: gathered.unexpanded,
+        keys: gathered.keys,
+        origins: gathered.origins,
+    };
+    // Per instance: its own positions, velocities, controls, activations and mocap
+    // bodies so far.
+    let mut own: HashMap<usize, [usize; 5]> = HashMap::new();
+    for mut joint in joints {
+        let counts = own.entry(joint.inst).or_default();
+        (joint.qpos, joint.dof, joint.own_qpos, joint.own_dof) =
+            (out.nq, out.nv, counts[0], counts[1]);
+        let (q, v) = (joint.joint_type.nq(), joint.joint_type.nv());
+        (out.nq, out.nv, counts[0], counts[1]) =
+            (out.nq + q, out.nv + v, counts[0] + q, counts[1] + v);
+        out.joints.push(joint);
+    }
+    for mut a in gathered.actuators {
+        let counts = own.entry(a.inst).or_default();
+        (a.ctrl, a.act, a.own_ctrl, a.own_act) = (out.nu, out.na, counts[2], counts[3]);
+        (out.nu, out.na, counts[2], counts[3]) =
+            (out.nu + a.nctrl, out.na + a.nact, counts[2] + a.nctrl, counts[3] + a.nact);
+        out.actuators.push(a);
+    }
+    for (i, mut b) in mocap.into_iter().enumerate() {
+        let counts = own.entry(b.inst).or_default();
+        (b.index, b.own) = (i, counts[4]);
+        counts[4] += 1;
+        out.mocap.push(b);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schema::Namespace;
+
+    fn read(xml: &str) -> Model {
+        Model::from_xml_str(xml).unwrap()
+    }
+
+    /// The names of the layout's joints, in its order.
+    fn joint_names(m: &Model) -> Vec<String> {
+        let layout = m.layout();
+        layout
+            .joints
+            .iter()
+            .map(|j| m.element(&j.loc).unwrap().identifier().unwrap().to_string())
+            .collect()
+    }
+
+    #[test]
+    fn a_body_s_own_joints_come_before_its_children_s_wherever_they_stand() {
+        let m = read(
+            r#"<mujoco><worldbody>
+                 <body name="a"><body name="b"><joint name="jb"/><geom size="1"/></body>
+                   <joint name="ja"/><frame><joint name="jf"/></frame><geom size="1"/></body>
+               </worldbody></mujoco>"#,
+        );
+        assert_eq!(joint_names(&m), ["ja", "jf", "jb"]);
+    }
+
+    #[test]
+    fn a_joint_s_default_positions_are_its_type_s() {
+        let m = read(
+            r#"<mujoco><compiler angle="radian"/><default><joint ref="0.25"/></default><worldbody>
+                 <body name="a" pos="1 2 3"><freejoint name="free"/><geom size="1"/></body>
+                 <body name="b"><joint name="own" ref="0.5"/><joint name="classed"/>
+                   <joint name="ball" type="ball"/><geom size="1"/></body>
+               </worldbody></mujoco>"#,
+        );
+        let qpos0 = |name: &str| {
+            let loc = m.find(Namespace::Joint, name).unwrap();
+            let layout = m.layout();
+            layout.joints.iter().find(|j| j.loc == loc).unwrap().qpos0.clone()
+        };
+        assert_eq!(qpos0("free"), [1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(qpos0("ball"), [1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(qpos0("own"), [0.5]);
+        assert_eq!(qpos0("classed"), [0.25]);
+    }
+
+    /// MuJoCo 4.0.0 compiles a hinge's `ref` (its own or its class's) to radians
+    /// under the default `angle="degree"`, and a key without `qpos` takes `qpos0`:
+    /// `[1.5708, 0.5, 0.5236]` here, `[90, 0.5, 30]` with `angle="radian"`.
+    #[test]
+    fn a_hinge_s_ref_is_in_radians_as_mujoco_compiles_it() {
+        let qpos0 = |compiler: &str| {
+            let m = read(&format!(
+                r#"<mujoco>{compiler}<default><default class="c"><joint ref="30"/></default></default>
+                   <worldbody><body name="b"><joint name="h" ref="90"/>
+                     <joint name="s" type="slide" ref="0.5"/><joint name="hc" class="c"/>
+                     <geom size="1"/></body></worldbody></mujoco>"#
+            ));
+            m.layout().joints.iter().flat_map(|j| j.qpos0.clone()).collect::<Vec<f64>>()
+        };
+        let degrees = [90f64.to_radians(), 0.5, 30f64.to_radians()];
+        assert_eq!(qpos0(""), degrees);
+        assert_eq!(qpos0(r#"<compiler angle="degree"/>"#), degrees);
+        assert_eq!(qpos0(r#"<compiler angle="radian"/>"#), [90.0, 0.5, 30.0]);
+    }
+
+    #[test]
+    fn a_replicate_s_content_is_numbered_once_per_copy_each_moved() {
+        let m = read(
+            r#"<mujoco><worldbody>
+                 <replicate count="3" offset="1 0 0">
+                   <body name="r"><freejoint name="f"/><geom size="1"/></body>
+                 </replicate>
+               </worldbody></mujoco>"#,
+        );
+        let replicate = m.find(Namespace::Body, "r").unwrap();
+        let node = m.node_by_id(m.element(&replicate).unwrap().parent().unwrap().loc().id());
+        assert_eq!(node.map(replicate_count), Some(3));
+        let layout = m.layout();
+        let x: Vec<f64> = layout.joints.iter().map(|j| j.qpos0[0]).collect();
+        assert_eq!(x, [0.0, 1.0, 2.0]);
+        assert_eq!(layout.joints.iter().map(|j| j.qpos).collect::<Vec<_>>(), [0, 7, 14]);
+        assert_eq!((layout.nq, layout.nv), (21, 18));
     }
 }

@@ -94,7 +94,7 @@ impl Angles {
         }
     }
 
-    fn radians(&self, a: f64) -> f64 {
+    pub(crate) fn radians(&self, a: f64) -> f64 {
         if self.degrees { a.to_radians() } else { a }
     }
 }
