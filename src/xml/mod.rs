@@ -6,6 +6,7 @@ mod save;
 mod source;
 mod write;
 
+pub(crate) use read::scan;
 pub(crate) use source::Source;
 
 pub use read::ReadOptions;

@@ -45,9 +45,13 @@ use crate::xml::source::{NO_RECORD, RecordKind};
 
 mod finish;
 mod include;
+pub(crate) mod scan;
 
 use finish::finish;
 use include::{Includes, canonical, order_as_reference, splice_include};
+
+/// The tag of an include, which is no element: the file it names is read in its place.
+const INCLUDE: &str = "include";
 
 /// How many `<include>`s may nest inside each other.
 pub(crate) const MAX_INCLUDE_DEPTH: usize = 100;
@@ -771,7 +775,7 @@ fn read_tag(
     if parent == usize::MAX {
         return Ok(Open { entry: usize::MAX, rec: NO_RECORD, tag: at.parent_tag });
     }
-    if name == "include" {
+    if name == INCLUDE {
         let rec = record(r, tree, RecordKind::Include, r.arena[parent].id, at);
         // MuJoCo accepts `<include>` anywhere: the included file's root's content is
         // read in its place, as children of `parent`.
