@@ -13,7 +13,9 @@
 //! - `<include file=…>` (relative to the including file's folder) is read as MuJoCo
 //!   reads it, the file's root's content in place of the tag, into the same elements:
 //!   at the root, a singleton section the file gives again merges (the later value
-//!   winning per attribute, wherever the include is); one model's include tree
+//!   winning per attribute, wherever the include is), and the elements a file
+//!   included at the root adds to a section come after the including file's own, in
+//!   the reference's order (`include::order_as_reference`); one model's include tree
 //!   includes each file once (MuJoCo's rule);
 //! - file attributes are read at once, relative to the model's folder and the
 //!   `compiler` folder settings seen so far; a nameless mesh, texture or height field
@@ -187,7 +189,9 @@ impl ReadOptions {
     /// in turn, read once however often it is named; each include file at most once,
     /// as one model includes a file once), plus O(in-memory files) to copy their table
     /// for the model. An `<include>`d file's text counts in `L` and its elements in
-    /// `n`, plus O(its length) to keep a copy of its text while reading.
+    /// `n`, plus O(its length) to keep a copy of its text while reading; with a file
+    /// included at the root, O(m · log m) more to order the `m` elements of the
+    /// sections files share.
     ///
     /// # Errors
     /// A [`ReadError`] with the line and column of the problem (and the file, for an
