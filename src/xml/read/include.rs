@@ -245,7 +245,7 @@ pub(super) fn splice_include(
 /// merges where it is read, the later value winning, as MuJoCo reads includes.
 ///
 /// Time: O(m · log m) for the `m` children of the merged elements, when there is a
-/// root-level include; O(1) otherwise.
+/// root-level include; O(files read) otherwise.
 pub(super) fn order_as_reference(arena: &mut [Pending], files: &[FileRead<'_>]) {
     if files.iter().all(|f| f.group == 0) || arena.is_empty() {
         return;
