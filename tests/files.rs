@@ -607,3 +607,30 @@ fn nul_in_a_scope_name_is_refused_by_rename_scope() {
     assert_eq!(m, scene);
     assert!(scene.rename_scope("robot", "arm").is_ok());
 }
+
+/// An asset `<model>` file brings every file its elements name as the reader finds
+/// them (the schema's file attributes, not only those named `file`: a cube map's six
+/// sides), with the folder each one's type names, and the files of an include inside a
+/// section read as that section's content.
+#[test]
+fn an_asset_model_file_brings_every_file_attribute_and_its_includes_files() {
+    let png = b"\x89PNG".to_vec();
+    let robot = r#"<mujoco><compiler texturedir="tex"/><asset>
+        <texture name="sky" type="skybox" fileright="r.png" fileleft="l.png" fileup="u.png" filedown="d.png" filefront="f.png" fileback="b.png"/>
+        <include file="meshes.xml"/></asset></mujoco>"#;
+    let meshes = r#"<mujoco><mesh file="arm.stl"/></mujoco>"#;
+    let mut opts = ReadOptions::new()
+        .asset("robot.xml", robot.as_bytes().to_vec())
+        .asset("meshes.xml", meshes.as_bytes().to_vec())
+        .asset("arm.stl", STL.as_bytes().to_vec());
+    for side in ["r", "l", "u", "d", "f", "b"] {
+        opts = opts.asset(&format!("tex/{side}.png"), png.clone());
+    }
+    let m = opts
+        .read_str(r#"<mujoco><asset><model name="robot" file="robot.xml"/></asset></mujoco>"#)
+        .unwrap();
+    let mut want: std::collections::BTreeSet<String> =
+        ["r", "l", "u", "d", "f", "b"].iter().map(|s| format!("tex/{s}.png")).collect();
+    want.extend(["meshes.xml".to_string(), "arm.stl".to_string()]);
+    assert_eq!(companions(&m), want);
+}

@@ -84,17 +84,6 @@ impl Model {
         other: &Model,
         override_attributes: bool,
     ) -> Result<Model, EditError> {
-        self.include_copy_ids(other, override_attributes).map(|(m, _)| m)
-    }
-
-    /// [`Model::include_copy`], with where each element of `other` went: merged into
-    /// an element of this model, or copied (the reader keeps its records of an
-    /// included file's tags through it).
-    pub(crate) fn include_copy_ids(
-        &self,
-        other: &Model,
-        override_attributes: bool,
-    ) -> Result<(Model, HashMap<ElementId, ElementId>), EditError> {
         if !other.index.scopes.is_empty() {
             return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
         }
@@ -118,7 +107,7 @@ impl Model {
             ));
         }
         crate::model::settings::check(&m).map_err(|k| EditError::new(k, String::new()))?;
-        Ok((m, c.ids))
+        Ok(m)
     }
 
     /// [`Model::include_copy`] in place.

@@ -14,8 +14,9 @@ use smol_str::SmolStr;
 
 use super::tree::{Attr, ElementId, Node};
 use crate::error::{ErrorKind, ValueError};
+pub(crate) use crate::files::Basepaths;
 use crate::files::{FileContext, Located};
-use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace, Role};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{self, AttrInput, FileAsset, Value};
 
 /// A set of attribute assignments: values to set and attributes to clear, in order.
@@ -231,39 +232,6 @@ pub(crate) fn empty_node_with_id(id: ElementId, kind: ElementKind) -> Node {
     Node::new(id, kind, Vec::new(), children)
 }
 
-/// The folder settings of a model's compiler, which decide where files are read from.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Basepaths {
-    pub(crate) mesh: Option<SmolStr>,
-    pub(crate) texture: Option<SmolStr>,
-    pub(crate) asset: Option<SmolStr>,
-}
-
-impl Basepaths {
-    pub(crate) fn for_namespace(&self, ns: Option<PathNamespace>) -> Option<&str> {
-        let own = match ns {
-            Some(PathNamespace::Mesh) => self.mesh.as_deref(),
-            Some(PathNamespace::Texture) => self.texture.as_deref(),
-            Some(PathNamespace::Asset) => self.asset.as_deref(),
-            None => return None,
-        };
-        match ns {
-            Some(PathNamespace::Mesh | PathNamespace::Texture) => own.or(self.asset.as_deref()),
-            _ => own,
-        }
-    }
-
-    /// Records a `compiler` folder setting.
-    pub(crate) fn set(&mut self, ns: Option<PathNamespace>, value: Option<SmolStr>) {
-        match ns {
-            Some(PathNamespace::Mesh) => self.mesh = value,
-            Some(PathNamespace::Texture) => self.texture = value,
-            Some(PathNamespace::Asset) => self.asset = value,
-            None => {}
-        }
-    }
-}
-
 /// Everything needed to turn inputs into checked values.
 pub(crate) struct ValueCtx<'a> {
     pub(crate) files: &'a FileContext,
@@ -348,7 +316,7 @@ impl ValueCtx<'_> {
                 let base = self.basepaths.for_namespace(path_namespace);
                 let asset = if kind.is(Role::AssetModel) {
                     // A model file brings the files it names (exported beside it).
-                    self.model_files.read(self.files, base, text, 0)?.0
+                    self.model_files.read(self.files, base, text, ElementKind::ROOT, 0)?.0
                 } else {
                     FileAsset::from_path_and_contents(text, self.files.read(base, text)?.1)
                 };
@@ -383,9 +351,10 @@ pub(crate) const MAX_MODEL_FILE_COMPANIONS: usize = 100_000;
 /// named: a folder of files that each name the next several times costs one read of
 /// each file, not one per path through them.
 #[derive(Debug, Default)]
-pub(crate) struct ModelFiles(RefCell<HashMap<FileKey, ModelFile>>);
+pub(crate) struct ModelFiles(RefCell<HashMap<(FileKey, ElementKind), ModelFile>>);
 
-/// A model file, told apart by what its companions depend on: on disk, its canonical
+/// A model file, told apart by what its companions depend on (with the element kind
+/// its root's content is read as, which decides what its elements are): on disk, its canonical
 /// path and the canonical folder its own files resolve in (they differ for a
 /// symlinked file, whose files are found beside the link); in memory, its contents (by
 /// their SHA-1: one file under two keys is one file) and the folder its files on disk
@@ -405,8 +374,10 @@ struct ModelFile {
 }
 
 impl ModelFiles {
-    /// The model file `file` (as written, with the folder setting `dir`) found from
-    /// `ctx`, at `depth` model files below the model being read, with the files it
+    /// The model file `file` (as written, with the folder setting `dir`; its root's
+    /// content read as `read_as`: the root for an asset model file, the element
+    /// holding the include for an included file) found from `ctx`, at `depth` model
+    /// files below the model being read, with the files it
     /// names (its companions), and how many levels deep it goes. Read and scanned once
     /// per [`ModelFiles`]; a file met again is only named again (and refused as
     /// [`ErrorKind::TooDeep`] if its levels reach too deep from here, as reading it
@@ -419,6 +390,7 @@ impl ModelFiles {
         ctx: &FileContext,
         dir: Option<&str>,
         file: &str,
+        read_as: ElementKind,
         depth: usize,
     ) -> Result<(FileAsset, usize), ErrorKind> {
         let (full, located) = ctx.locate(dir, file)?;
@@ -434,6 +406,7 @@ impl ModelFiles {
             }
         };
         let named = |m: &ModelFile| (m.asset.named_as(file), m.levels);
+        let key = (key, read_as);
         if let Some(m) = self.0.borrow().get(&key) {
             if m.levels > 0 && depth + m.levels > MAX_MODEL_FILE_DEPTH {
                 return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
@@ -444,7 +417,7 @@ impl ModelFiles {
             Located::Memory { bytes, .. } => bytes,
             Located::Disk(path) => ctx.read_disk(&path)?.into(),
         };
-        let (companions, levels) = self.companions(&inner, &bytes, depth)?;
+        let (companions, levels) = self.companions(&inner, &bytes, read_as, depth)?;
         let asset = FileAsset::from_path_and_contents(file, bytes).with_companions(companions);
         let m = ModelFile { asset, levels };
         let out = named(&m);
@@ -452,14 +425,15 @@ impl ModelFiles {
         Ok(out)
     }
 
-    /// The files an MJCF model file names (read from `ctx`, its folder), by their
-    /// paths relative to it as MuJoCo resolves them: `file` attributes, with the
-    /// compiler's `meshdir` (meshes, height fields, skins, flexcomps), `texturedir`
+    /// The files an MJCF model file names (read from `ctx`, its folder; its root's
+    /// content read as `read_as`), by their paths relative to it as MuJoCo resolves
+    /// them: its file attributes (found by `files::scan`, as the reader finds them), with
+    /// the compiler's `meshdir` (meshes, height fields, skins, flexcomps), `texturedir`
     /// (textures) and `assetdir` (both), the last setting of each applying to every
     /// file as MuJoCo's compiler settings do; model files and includes it names bring
     /// theirs in turn. Each path once (a path named again names the same file). A file
-    /// that is not UTF-8 or not well-formed has none (MuJoCo reports it). Also how many
-    /// model files deep it goes.
+    /// that is not UTF-8 has none, one not well-formed those named before the error
+    /// (MuJoCo reports it). Also how many model files deep it goes.
     ///
     /// Time: O(size of the file + its companions), plus reading the files it names
     /// (each model file once per [`ModelFiles`]).
@@ -467,55 +441,24 @@ impl ModelFiles {
         &self,
         ctx: &FileContext,
         bytes: &[u8],
+        read_as: ElementKind,
         depth: usize,
     ) -> Result<(Vec<(SmolStr, FileAsset)>, usize), ErrorKind> {
-        use quick_xml::events::Event;
         let Ok(text) = std::str::from_utf8(bytes) else { return Ok((Vec::new(), 0)) };
         if depth >= MAX_MODEL_FILE_DEPTH {
             return Err(ErrorKind::TooDeep(MAX_MODEL_FILE_DEPTH));
         }
-        // (tag, file) of every element with a file, and the compiler's folders.
-        let mut refs: Vec<(String, String)> = Vec::new();
-        let mut dirs: [Option<String>; 3] = [None, None, None];
-        let mut reader = quick_xml::Reader::from_str(text);
-        loop {
-            let tag = match reader.read_event() {
-                Ok(Event::Start(t) | Event::Empty(t)) => t,
-                Ok(Event::Eof) | Err(_) => break,
-                Ok(_) => continue,
-            };
-            let name = tag.name().as_ref().to_string();
-            for a in tag.attributes().flatten() {
-                let Ok(v) = a.normalized_value(quick_xml::XmlVersion::default()) else {
-                    continue;
-                };
-                match (name.as_str(), a.key.as_ref()) {
-                    ("compiler", "meshdir") => dirs[0] = Some(v.into_owned()),
-                    ("compiler", "texturedir") => dirs[1] = Some(v.into_owned()),
-                    ("compiler", "assetdir") => dirs[2] = Some(v.into_owned()),
-                    (_, "file") if !v.is_empty() => refs.push((name.clone(), v.into_owned())),
-                    _ => {}
-                }
-            }
-        }
-        let [meshdir, texturedir, assetdir] = dirs;
         let mut out = Companions::default();
         let mut levels = 1;
-        for (tag, file) in refs {
-            let dir = match tag.as_str() {
-                "mesh" | "hfield" | "skin" | "flexcomp" => {
-                    meshdir.as_deref().or(assetdir.as_deref())
-                }
-                "texture" => texturedir.as_deref().or(assetdir.as_deref()),
-                _ => None,
-            };
-            let joined = SmolStr::from(crate::files::normalize(&crate::files::join(dir, &file)));
+        for named in crate::files::scan::named_files(text, read_as) {
+            let (dir, file) = (named.folder.as_deref(), named.file.as_str());
+            let joined = SmolStr::from(crate::files::normalize(&crate::files::join(dir, file)));
             if out.has(&joined) {
                 // Named again: the same file, with the same files of its own.
                 continue;
             }
-            let asset = if matches!(tag.as_str(), "model" | "include") {
-                let (asset, below) = self.read(ctx, dir, &file, depth + 1)?;
+            let asset = if let Some(read_as) = named.names_files {
+                let (asset, below) = self.read(ctx, dir, file, read_as, depth + 1)?;
                 levels = levels.max(below + 1);
                 // Its files, relative to it: relative to this one, under its folder.
                 let folder = joined.rsplit_once('/').map_or("", |(d, _)| d);
@@ -525,7 +468,7 @@ impl ModelFiles {
                 }
                 asset.named_as(&joined).with_companions(Vec::new())
             } else {
-                FileAsset::from_path_and_contents(&joined, ctx.read(dir, &file)?.1)
+                FileAsset::from_path_and_contents(&joined, ctx.read(dir, file)?.1)
             };
             out.push(joined, &asset)?;
         }
@@ -667,7 +610,7 @@ pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
             if from_stem {
                 Some(SmolStr::from(f.stem()))
             } else {
-                model_name_in(f.contents())
+                crate::files::scan::model_name(f.contents())
             }
         }
         _ => None,
@@ -677,23 +620,6 @@ pub(crate) fn name_from_file(kind: ElementKind, attrs: &mut Vec<Attr>) {
             let i = ident as u16;
             let p = attrs.binary_search_by_key(&i, |(k, _)| *k).unwrap_or_else(|p| p);
             attrs.insert(p, (i, v));
-        }
-    }
-}
-
-/// The `model` attribute of the root element of an MJCF file, if it has one.
-fn model_name_in(contents: &[u8]) -> Option<SmolStr> {
-    let mut xml = quick_xml::Reader::from_reader(contents);
-    let mut buf = Vec::new();
-    loop {
-        match xml.read_event_into(&mut buf).ok()? {
-            quick_xml::events::Event::Start(t) | quick_xml::events::Event::Empty(t) => {
-                let a = t.try_get_attribute("model").ok()??;
-                let v = a.normalized_value(quick_xml::XmlVersion::default()).ok()?;
-                return (!v.is_empty()).then(|| SmolStr::from(v.as_ref()));
-            }
-            quick_xml::events::Event::Eof => return None,
-            _ => buf.clear(),
         }
     }
 }

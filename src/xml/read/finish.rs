@@ -162,9 +162,10 @@ fn index_names(
         });
         if let (Some(ns), Some(n)) = (p.kind.namespace(), &ident) {
             if names.insert((ns, n.clone()), p.id).is_some() {
-                let (kind, offset) =
-                    (ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() }, p.offset);
-                return Err(r.err(kind, offset));
+                let kind = ErrorKind::DuplicateIdentifier { namespace: ns, name: n.clone() };
+                // In the file its tag is in (an included file's, maybe).
+                let (file, offset) = (p.file, p.offset);
+                return Err(r.err_in(file, kind, offset));
             }
             if let Some(segment) = crate::model::slashed_segment(n) {
                 *slashed.entry(segment.into()).or_insert(0) += 1;
@@ -314,15 +315,4 @@ pub(super) fn resolve_attrs(
             attrs[j].1 = Value::Reference(Reference::Element(id));
         }
     }
-}
-
-/// Resolves named references across a whole model (after includes were merged).
-pub(super) fn resolve_all(model: &Model) -> Model {
-    let lookup = |ns, n: &str| model.find(ns, n).map(|l| l.id());
-    let root = model.root.rebuild(|n, children| {
-        let mut attrs = n.attrs().to_vec();
-        resolve_attrs(n.kind(), &mut attrs, lookup);
-        n.with_parts(attrs, children)
-    });
-    model.next(root, model.index.clone())
 }

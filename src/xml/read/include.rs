@@ -1,22 +1,23 @@
 //! `<include>`: the include tree's rules (cycles, files included twice, depth), the
-//! file an include names, and reading it: at the root as a model merged into the
-//! including one, inside an element in place.
+//! file an include names, and reading it as MuJoCo does: its root's content in place
+//! of the tag, into the including file's elements (at the root, a singleton section
+//! given again merges into the one read before, later values winning).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use quick_xml::events::BytesStart;
 
 use super::{
-    MAX_INCLUDE_DEPTH, NONE, Reader, SrcFile, children_of, in_settings, parse, push_child,
-    push_unique, read_document, unique_child, utf8,
+    FileRead, MAX_INCLUDE_DEPTH, NONE, Pending, Place, Reader, Spot, SrcFile, Text, children_of,
+    parse, utf8,
 };
 use crate::error::{ErrorKind, ReadError};
 use crate::files::{self, FileContext};
 use crate::model::Model;
-use crate::model::tree::{ElementId, Node};
-use crate::schema::{ElementKind, Multiplicity};
+use crate::model::tree::ElementId;
+use crate::schema::Multiplicity;
 use crate::xml::source::{RecordKind, SourceBuilder};
 
 /// The files of one model's include tree, for the rules on them: a file includes
@@ -82,11 +83,6 @@ impl Includes {
             }
             None => model,
         }
-    }
-
-    /// Whether the document being read is the main one (no include is open).
-    pub(super) fn at_main(&self) -> bool {
-        self.stack.len() == 1
     }
 
     /// Enters the file `key` (checked by [`include_source`]).
@@ -195,131 +191,77 @@ pub(super) fn include_source(
     Ok((bytes.into(), full, ctx, key, true))
 }
 
-/// A root-level `<include>`: the file read as a model of its own, merged later.
-pub(super) fn read_include(
+/// An `<include>` (its tag at `offset`) in the element at `spot`: the included file's
+/// root's content is read as that element's children in the include's place, into
+/// the same arena (one id space, one name index, one resolution of references), with
+/// the file's own path in errors and its own folder for the files it names. Its
+/// elements nest at the include's depth, and a singleton it gives that the element
+/// was given already is given twice in one tag. The compiler's folder settings carry
+/// in and out, as they are global in MuJoCo.
+pub(super) fn splice_include(
     r: &mut Reader<'_>,
     tag: &BytesStart<'_>,
     offset: usize,
-    max_depth: usize,
-    tree: &mut Includes,
-) -> Result<Model, ReadError> {
-    let (bytes, file, ctx, key, on_disk) = include_source(r, tag, offset, tree)?;
-    let text = utf8(&bytes, Some(&file))?;
-    let src = tree.record_file(Some(&file), on_disk, text, false, None);
-    tree.push(key);
-    let res = read_document(text, Some(file.clone()), ctx, max_depth, tree, r.model_files, src);
-    tree.pop();
-    res
-}
-
-/// An `<include>` inside an element (at `parent` in the arena): the included file's
-/// root's children are read as `parent`'s children in its place, as MuJoCo pastes
-/// the file's content there.
-pub(super) fn inline_include(
-    r: &mut Reader<'_>,
-    tag: &BytesStart<'_>,
-    offset: usize,
-    parent: usize,
+    spot: Spot,
     max_depth: usize,
     tree: &mut Includes,
 ) -> Result<(), ReadError> {
     let (bytes, file, ctx, key, on_disk) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
-    let src = tree.record_file(Some(&file), on_disk, text, false, Some(r.arena[parent].id));
-    let mut sub = Reader {
-        text,
-        file: Some(file),
-        ctx,
-        model_files: r.model_files,
-        arena: Vec::new(),
-        basepaths: r.basepaths.clone(),
-        settings_set_at: HashMap::new(),
-        scratch: Vec::new(),
-        src,
-        hoisted: None,
-    };
+    let entry = spot.entry;
+    let src = tree.record_file(Some(&file), on_disk, text, false, Some(r.arena[entry].id));
+    // Each file is included once: more than 2^32 of them do not fit in memory.
+    let too_many = || r.err(ErrorKind::TooManyFiles(u32::MAX as usize), offset);
+    let at = u32::try_from(r.files.len()).map_err(|_| too_many())?;
+    // At the root, the file's elements are ordered as its own group (see
+    // `order_as_reference`); inside an element, in place, as its includer's.
+    let group = if entry == 0 { at } else { r.files[r.at as usize].group };
+    let text = Text::Included(Arc::from(text));
+    r.files.push(FileRead { text, path: Some(file), group });
+    let outer = (std::mem::replace(&mut r.at, at), std::mem::replace(&mut r.ctx, ctx));
+    let outer_src = std::mem::replace(&mut r.src, src);
     tree.push(key);
-    let parsed = parse(&mut sub, r.arena[parent].kind, max_depth, tree);
+    let res = parse(r, Place::Entry(spot), max_depth, tree);
     tree.pop();
-    let parsed = parsed?;
-    if !parsed.includes.is_empty() {
-        // Root-level includes of a file included inside an element cannot happen:
-        // its root's children are read inline, `<include>`s among them too.
-        return Err(r.err(ErrorKind::Syntax("an include inside an element".into()), offset));
-    }
-    // Graft: the sub-arena's root is `parent`; its other entries follow ours.
-    let base = r.arena.len() - 1;
-    let shift = |i: usize| match i {
-        NONE => NONE,
-        0 => parent,
-        i => i + base,
-    };
-    let root_children: Vec<usize> = children_of(&sub.arena, 0).map(shift).collect();
-    let mut entries = sub.arena.into_iter();
-    if entries.next().is_none() {
-        return Ok(());
-    }
-    for mut p in entries {
-        p.first_child = shift(p.first_child);
-        p.last_child = shift(p.last_child);
-        p.next_sibling = shift(p.next_sibling);
-        p.first_unique = shift(p.first_unique);
-        p.next_unique = shift(p.next_unique);
-        r.arena.push(p);
-    }
-    for c in root_children {
-        let kind = r.arena[c].kind;
-        if kind.multiplicity() != Multiplicity::Repeated {
-            if unique_child(&r.arena, parent, kind).is_some() {
-                return Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset));
-            }
-            push_unique(&mut r.arena, parent, c);
-        }
-        push_child(&mut r.arena, parent, c);
-    }
-    Ok(())
+    (r.at, r.ctx) = outer;
+    r.src = outer_src;
+    res.map(|_| ())
 }
 
-/// A global setting that both the file and an `<include>` at `offset` set is taken
-/// as MuJoCo reads includes (their text in place of the tag): from the one later in
-/// the document. Returns the model and the include with the losing values dropped,
-/// so that merging them finds no conflict.
-pub(super) fn settings_in_document_order(
-    model: &Model,
-    inc: &Model,
-    offset: usize,
-    set_at: &HashMap<(ElementKind, u16), usize>,
-) -> Result<(Model, Model), crate::EditError> {
-    let (mut model, mut inc) = (model.clone(), inc.clone());
-    let sections: Vec<Node> =
-        inc.root.children().iter().filter(|c| in_settings(c.kind())).cloned().collect();
-    for section in sections {
-        for n in section.descendants() {
-            let kind = n.kind();
-            for (i, v) in n.attrs() {
-                let Some(&main_at) = set_at.get(&(kind, *i)) else { continue };
-                let own = model
-                    .root
-                    .children()
-                    .iter()
-                    .filter(|c| in_settings(c.kind()))
-                    .flat_map(Node::descendants)
-                    .find(|m| m.kind() == kind);
-                let Some(own) = own else { continue };
-                let name = kind.attr(*i as usize).name;
-                let own_loc = model.scoped_loc(&[], own.id());
-                if main_at > offset {
-                    // The file's own value comes later: the include's is overridden.
-                    let inc_loc = inc.scoped_loc(&[], n.id());
-                    inc = inc.clear_attr(&inc_loc, name)?;
-                } else {
-                    model = model.set(
-                        &own_loc,
-                        crate::Attrs::new().set(name, crate::AttrInput::Value(v.clone())),
-                    )?;
-                }
-            }
-        }
+/// Orders the content of root-level includes as the reference (dm_control) does, which
+/// reads each such file as a model of its own and `include_copy`s it after the
+/// including file's content: in every element merged across files (the root and its
+/// singletons, at any depth), the repeated children are ordered by the group of the
+/// file their tag is in (stably, document order within a group). Groups are the
+/// files' indices, met in document order, so a file's own content comes before that
+/// of the files it includes at its root, and those in the order of their includes.
+/// Content included inside an element stays in place (the reference reads no such
+/// include; MuJoCo pastes it there). Settings are not moved: a singleton given again
+/// merges where it is read, the later value winning, as MuJoCo reads includes.
+///
+/// Time: O(m · log m) for the `m` children of the merged elements, when there is a
+/// root-level include; O(files read) otherwise.
+pub(super) fn order_as_reference(arena: &mut [Pending], files: &[FileRead<'_>]) {
+    if files.iter().all(|f| f.group == 0) || arena.is_empty() {
+        return;
     }
-    Ok((model, inc))
+    let group = |arena: &[Pending], c: usize| files[arena[c].file as usize].group;
+    let mut merged = vec![0];
+    while let Some(e) = merged.pop() {
+        let mut kids: Vec<usize> = children_of(arena, e).collect();
+        merged.extend(
+            kids.iter().filter(|&&c| arena[c].kind.multiplicity() != Multiplicity::Repeated),
+        );
+        if kids.is_sorted_by_key(|&c| group(arena, c)) {
+            continue;
+        }
+        kids.sort_by_key(|&c| group(arena, c));
+        arena[e].first_child = kids[0];
+        for w in kids.windows(2) {
+            arena[w[0]].next_sibling = w[1];
+        }
+        let last = kids[kids.len() - 1];
+        arena[last].next_sibling = NONE;
+        arena[e].last_child = last;
+    }
 }

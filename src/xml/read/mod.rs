@@ -6,10 +6,17 @@
 //!   (nothing is ever expanded);
 //! - on the root only `model` is read (the tag may be anything starting with
 //!   `mujoco`, as in the reference);
-//! - a singleton tag given twice merges (later values win per attribute);
-//! - root-level `<include file=…>` is read as its own model (relative to the including
-//!   file's folder) and merged with [`Model::include_copy`] after the main content;
-//!   one model's include tree includes each file once (MuJoCo's rule);
+//! - a section given twice at the root merges (later values win per attribute), as
+//!   MuJoCo merges them; any other singleton given twice in one element is
+//!   [`ErrorKind::DuplicateChild`], as MuJoCo refuses it (a singleton in a section
+//!   given twice merges as its section does);
+//! - `<include file=…>` (relative to the including file's folder) is read as MuJoCo
+//!   reads it, the file's root's content in place of the tag, into the same elements:
+//!   at the root, a singleton section the file gives again merges (the later value
+//!   winning per attribute, wherever the include is), and the elements a file
+//!   included at the root adds to a section come after the including file's own, in
+//!   the reference's order (`include::order_as_reference`); one model's include tree
+//!   includes each file once (MuJoCo's rule);
 //! - file attributes are read at once, relative to the model's folder and the
 //!   `compiler` folder settings seen so far; a nameless mesh, texture or height field
 //!   is named after its file;
@@ -34,15 +41,18 @@ use crate::model::{
     Basepaths, Input, Model, ModelFiles, ValueCtx, check_class_named, check_required,
     name_from_file,
 };
-use crate::schema::{AttrType, ElementKind, Multiplicity, PathNamespace};
+use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
 use crate::xml::source::{NO_RECORD, RecordKind};
 
 mod finish;
 mod include;
 
-use finish::{finish, resolve_all};
-use include::{Includes, canonical, inline_include, read_include, settings_in_document_order};
+use finish::finish;
+use include::{Includes, canonical, order_as_reference, splice_include};
+
+/// The tag of an include, which is no element: the file it names is read in its place.
+use crate::files::scan::INCLUDE;
 
 /// How many `<include>`s may nest inside each other.
 pub(crate) const MAX_INCLUDE_DEPTH: usize = 100;
@@ -177,10 +187,10 @@ impl ReadOptions {
     /// and hashing the files it names (each asset model file, and the files it names
     /// in turn, read once however often it is named; each include file at most once,
     /// as one model includes a file once), plus O(in-memory files) to copy their table
-    /// for the model. Each root-level `<include>` is read the same way and
-    /// merged by [`Model::include_copy`] (O(n · log n) each); a model with includes
-    /// then resolves references by name again, and a reference that names nothing
-    /// costs O(named elements) there.
+    /// for the model. An `<include>`d file's text counts in `L` and its elements in
+    /// `n`, plus O(its length) to keep a copy of its text while reading; with a file
+    /// included at the root, O(m · log m) more to order the `m` elements of the
+    /// sections files share.
     ///
     /// # Errors
     /// A [`ReadError`] with the line and column of the problem (and the file, for an
@@ -194,7 +204,7 @@ impl ReadOptions {
     ///   [`ErrorKind::MissingRequired`]: an attribute the element does not have, a
     ///   value that does not fit, a required attribute not given;
     /// - [`ErrorKind::DuplicateIdentifier`]: a name used twice in its namespace
-    ///   (also across includes);
+    ///   (also across includes: reported at the later one, in its file);
     /// - [`ErrorKind::FileNotFound`], [`ErrorKind::FileOutsideRoot`]: a file or
     ///   include that cannot be read, or (confined) lies outside the model's folder;
     /// - [`ErrorKind::InvalidUtf8`]: an included file that is not UTF-8;
@@ -206,9 +216,8 @@ impl ReadOptions {
     ///   100,000 files (counting the model files it names, each path once);
     /// - [`ErrorKind::TooDeep`]: elements nested deeper than
     ///   [`max_depth`](ReadOptions::max_depth), includes more than 100 deep, or asset
-    ///   model files naming model files more than 16 deep;
-    /// - [`ErrorKind::AttributeConflict`]: an include whose global settings disagree
-    ///   with the including model's.
+    ///   model files naming model files more than 16 deep (an included file's
+    ///   elements count at the depth of the `<include>`, as if pasted there).
     pub fn read_str(&self, text: &str) -> Result<Model, ReadError> {
         let ctx = self.context(self.base_dir.clone());
         // The main text takes the first place in the include tree, as a file does.
@@ -336,14 +345,19 @@ struct Pending {
     /// allocates nothing for it.
     first_unique: usize,
     next_unique: usize,
+    /// Where its (first) tag is: the offset in the text of `Reader::files[file]`.
     offset: usize,
+    file: u32,
+    /// The tag of its parent it was last given in (`Open::tag`), for a singleton
+    /// given twice in one tag.
+    given_in: u32,
 }
 
 /// No arena entry (the end of a children list).
 const NONE: usize = usize::MAX;
 
 impl Pending {
-    fn new(kind: ElementKind, attrs: Arc<[Attr]>, offset: usize) -> Pending {
+    fn new(kind: ElementKind, attrs: Arc<[Attr]>, (file, offset): (u32, usize)) -> Pending {
         Pending {
             kind,
             id: ElementId::fresh(),
@@ -354,6 +368,8 @@ impl Pending {
             first_unique: NONE,
             next_unique: NONE,
             offset,
+            file,
+            given_in: 0,
         }
     }
 }
@@ -393,23 +409,56 @@ fn children_of(arena: &[Pending], i: usize) -> impl Iterator<Item = usize> + '_ 
     std::iter::successors(first, move |&c| Some(arena[c].next_sibling).filter(|&n| n != NONE))
 }
 
+/// The text of a file read: the main text as given, an included file's as read.
+#[derive(Clone)]
+enum Text<'t> {
+    Given(&'t str),
+    Included(Arc<str>),
+}
+
+impl std::ops::Deref for Text<'_> {
+    type Target = str;
+    fn deref(&self) -> &str {
+        match self {
+            Text::Given(t) => t,
+            Text::Included(t) => t,
+        }
+    }
+}
+
+/// A file read: its text and path (for the positions of errors found after reading),
+/// and the group its elements are ordered in (`include::order_as_reference`).
+struct FileRead<'t> {
+    text: Text<'t>,
+    path: Option<PathBuf>,
+    /// The main text's and each file included at the root have their own group (its
+    /// index in `Reader::files`: the order they are met in), a file included inside an
+    /// element its includer's.
+    group: u32,
+}
+
+/// Reads one document and the files it includes, into one arena. What belongs to the
+/// file being read (`at`, `ctx`, `src`) is swapped while an include is read.
 struct Reader<'t> {
-    text: &'t str,
-    file: Option<PathBuf>,
+    /// Every file read so far, the main text first.
+    files: Vec<FileRead<'t>>,
+    /// The file being read, in `files`.
+    at: u32,
+    /// Where the files the file being read names are.
     ctx: FileContext,
     /// The asset model files this read has read.
     model_files: &'t ModelFiles,
     arena: Vec<Pending>,
+    /// How many tags were opened (`next_tag`).
+    tags: u32,
+    /// The compiler's folder settings read so far (global in MuJoCo: those an
+    /// included file sets apply after its include too, and the other way round).
     basepaths: Basepaths,
-    /// Where each global setting (an attribute of an element inside `compiler`,
-    /// `option`, `size`, `visual` or `statistic`) was last set in this file, by
-    /// element kind and attribute index: an `<include>` that sets it too is merged
-    /// as MuJoCo reads includes, the later one in the document winning.
-    settings_set_at: HashMap<(ElementKind, u16), usize>,
     /// The attributes of the tag being read: one buffer for all, so that each
     /// element allocates its attributes once, at their final size.
     scratch: Vec<Attr>,
-    /// Where this text's tags are recorded (`xml::source`), if the source is kept.
+    /// Where the tags of the file being read are recorded (`xml::source`), if the
+    /// source is kept.
     src: Option<SrcFile>,
     /// The class `/` folded into the root class (`finish::hoist_root_class`): its
     /// element and the root class's.
@@ -423,14 +472,29 @@ struct SrcFile {
     file: u32,
     /// `Element` for the main file; `FileRoot` for an included file.
     root_kind: RecordKind,
-    /// The element an included file's root stands for, when it is not the file's own
-    /// root (a file included inside an element).
+    /// The element an included file's root stands for (the element holding the
+    /// `<include>`); `None` for the main text's root, which stands for itself.
     stands_for: Option<ElementId>,
 }
 
 impl Reader<'_> {
+    /// A number for a tag opened now, told apart from those opened before.
+    fn next_tag(&mut self) -> u32 {
+        // Wrapping after 2^32 tags: a singleton then given again in a tag that many
+        // tags before can be taken as given twice in one tag, in an input of 2^32 tags.
+        self.tags = self.tags.wrapping_add(1);
+        self.tags
+    }
+
+    /// The error `kind` at `offset` in the file being read.
     fn err(&self, kind: ErrorKind, offset: usize) -> ReadError {
-        ReadError::new(kind, self.file.clone(), Some(TextPos::of_offset(self.text, offset)))
+        self.err_in(self.at, kind, offset)
+    }
+
+    /// The error `kind` at `offset` in the file `files[file]`.
+    fn err_in(&self, file: u32, kind: ErrorKind, offset: usize) -> ReadError {
+        let f = &self.files[file as usize];
+        ReadError::new(kind, f.path.clone(), Some(TextPos::of_offset(&f.text, offset)))
     }
 
     /// Reads the attributes of a tag into `attrs` (later values win), sorted by index.
@@ -441,7 +505,6 @@ impl Reader<'_> {
         attrs: &mut Vec<Attr>,
         offset: usize,
     ) -> Result<(), ReadError> {
-        let settings = in_settings(kind);
         // Duplicate names are found by attribute index here (a bit per index below
         // 256), not by quick-xml's check, which compares every name with every earlier
         // one and allocates a list of them per tag. Two names with one index are
@@ -485,9 +548,6 @@ impl Reader<'_> {
                     .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
             }
             let i = index as u16;
-            if settings {
-                self.settings_set_at.insert((kind, i), offset);
-            }
             let pos = attrs.iter().position(|(k, _)| *k == i);
             match (pos, value) {
                 (Some(p), Some(v)) => attrs[p].1 = v,
@@ -530,13 +590,6 @@ impl Reader<'_> {
     }
 }
 
-/// What [`parse`] found besides the arena: root-level includes (read as models, with
-/// the offset of their tag and the first record of their file) and the model name.
-struct Parsed {
-    includes: Vec<(Model, usize, usize)>,
-    model_name: Option<SmolStr>,
-}
-
 /// A tag being read: where it is in the text and the record of its parent.
 #[derive(Clone, Copy)]
 struct At {
@@ -544,28 +597,61 @@ struct At {
     /// Just after the tag.
     after: usize,
     parent_rec: u32,
-    /// How many tags are open around it.
+    /// The parent's tag (`Open::tag`).
+    parent_tag: u32,
+    /// How many elements are open around it (an included file's root counting as
+    /// the element it is read into).
     depth: usize,
 }
 
 /// An open tag: its arena entry (`usize::MAX` for content that is not read: an
-/// include's content) and its record (`NO_RECORD` when not recorded).
-type Open = (usize, u32);
+/// include's content), its record (`NO_RECORD` when not recorded), and the tag it is
+/// (`Reader::tags` when it was opened; an included file's root is the tag of the
+/// `<include>`'s parent, whose content it continues).
+#[derive(Clone, Copy)]
+struct Open {
+    entry: usize,
+    rec: u32,
+    tag: u32,
+}
 
-/// Reads the events of `r.text` into `r.arena`. The root element becomes an entry of
-/// kind `root_kind` (the model's root, or, for a file included inside an element,
-/// that element's kind, whose children the file's root's children are).
+/// Where [`parse`] reads a file's content: the main text's into a new root entry;
+/// an included file's into the arena entry `entry` (the element holding the
+/// `<include>`: see [`Spot`]).
+#[derive(Clone, Copy)]
+enum Place {
+    Root,
+    Entry(Spot),
+}
+
+/// Where an included file's content goes: the arena entry of the element holding the
+/// `<include>`, that element's tag (`Open::tag`) and how many elements are open
+/// around it.
+#[derive(Clone, Copy)]
+struct Spot {
+    entry: usize,
+    tag: u32,
+    depth: usize,
+}
+
+/// Reads the events of the file being read (`r.at`) into `r.arena`, in the place
+/// `into` says; returns the `model` attribute of the main text's root.
 fn parse(
     r: &mut Reader<'_>,
-    root_kind: ElementKind,
+    into: Place,
     max_depth: usize,
     tree: &mut Includes,
-) -> Result<Parsed, ReadError> {
+) -> Result<Option<SmolStr>, ReadError> {
     let mut stack: Vec<Open> = Vec::new();
-    let mut xml = quick_xml::Reader::from_str(r.text);
-    let text = r.text;
-    let mut parsed = Parsed { includes: Vec::new(), model_name: None };
-    let mut seen_root = false;
+    // A shared copy: `r` stays free to be changed while the text is read.
+    let text = r.files[r.at as usize].text.clone();
+    let mut xml = quick_xml::Reader::from_str(&text);
+    let (mut model_name, mut seen_root) = (None, false);
+    // How many elements are open around the file's root.
+    let outer = match into {
+        Place::Root => 0,
+        Place::Entry(spot) => spot.depth,
+    };
     loop {
         let offset = xml.buffer_position() as usize;
         let event = match xml.read_event() {
@@ -579,8 +665,8 @@ fn parse(
             Event::Start(t) => (t, false),
             Event::Empty(t) => (t, true),
             Event::End(_) => {
-                if let (Some((_, rec)), Some(src)) = (stack.pop(), tree.src.as_mut()) {
-                    src.close(rec, offset, xml.buffer_position() as usize);
+                if let (Some(open), Some(src)) = (stack.pop(), tree.src.as_mut()) {
+                    src.close(open.rec, offset, xml.buffer_position() as usize);
                 }
                 continue;
             }
@@ -596,19 +682,21 @@ fn parse(
             _ => continue,
         };
         let after = xml.buffer_position() as usize;
-        let Some(&(parent, parent_rec)) = stack.last() else {
+        let Some(&parent) = stack.last() else {
             if seen_root {
                 return Err(r.err(ErrorKind::Syntax("more than one root element".into()), offset));
             }
             seen_root = true;
-            let open = read_root(r, &tag, root_kind, tree, (offset, after), &mut parsed)?;
+            let (open, name) = read_root(r, &tag, into, tree, (offset, after))?;
+            model_name = name;
             if !empty {
                 stack.push(open);
             }
             continue;
         };
-        let at = At { offset, after, parent_rec, depth: stack.len() };
-        let open = read_tag(r, &tag, parent, root_kind, at, max_depth, tree, &mut parsed)?;
+        let depth = outer + stack.len();
+        let at = At { offset, after, parent_rec: parent.rec, parent_tag: parent.tag, depth };
+        let open = read_tag(r, &tag, parent.entry, at, max_depth, tree)?;
         if !empty {
             stack.push(open);
         }
@@ -619,7 +707,7 @@ fn parse(
     if !stack.is_empty() {
         return Err(r.err(ErrorKind::Syntax("unclosed element at end of input".into()), text.len()));
     }
-    Ok(parsed)
+    Ok(model_name)
 }
 
 /// Records a tag (`kind`, standing for the element `id`) under the record
@@ -633,83 +721,73 @@ fn record(r: &Reader<'_>, tree: &mut Includes, kind: RecordKind, id: ElementId, 
     }
 }
 
-/// The root tag: its name is checked, its `model` attribute read.
+/// The root tag: its name is checked; the main text's root becomes the arena's first
+/// entry, its `model` attribute returned; an included file's root stands for the
+/// entry it is read into (its `model` attribute is not read, as in MuJoCo).
 fn read_root(
     r: &mut Reader<'_>,
     tag: &BytesStart<'_>,
-    root_kind: ElementKind,
+    into: Place,
     tree: &mut Includes,
     (offset, after): (usize, usize),
-    parsed: &mut Parsed,
-) -> Result<Open, ReadError> {
+) -> Result<(Open, Option<SmolStr>), ReadError> {
     let qname = tag.name();
     let name: &str = qname.as_ref();
     if !name.starts_with("mujoco") {
         return Err(r.err(ErrorKind::WrongRoot(name.into()), offset));
     }
+    let mut model_name = None;
     for a in tag.attributes() {
         let a = a.map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
-        if a.key.as_ref() == "model" {
+        if a.key.as_ref() == "model" && matches!(into, Place::Root) {
             let v = a
                 .normalized_value(quick_xml::XmlVersion::default())
                 .map_err(|e| r.err(ErrorKind::Syntax(e.to_string()), offset))?;
-            parsed.model_name = Some(SmolStr::from(v.as_ref()));
+            model_name = Some(SmolStr::from(v.as_ref()));
         }
     }
-    r.arena.push(Pending::new(root_kind, no_attrs(), offset));
+    let (entry, open_tag) = match into {
+        Place::Root => {
+            r.arena.push(Pending::new(ElementKind::ROOT, no_attrs(), (r.at, offset)));
+            (0, r.next_tag())
+        }
+        Place::Entry(spot) => (spot.entry, spot.tag),
+    };
     let rec = match (r.src, tree.src.as_mut()) {
         (Some(f), Some(src)) => {
-            let id = f.stands_for.unwrap_or(r.arena[0].id);
+            let id = f.stands_for.unwrap_or(r.arena[entry].id);
             src.open(f.file, f.root_kind, id, NO_RECORD, offset, after)
         }
         _ => NO_RECORD,
     };
-    Ok((0, rec))
+    Ok((Open { entry, rec, tag: open_tag }, model_name))
 }
 
 /// A tag under the root: an `<include>`, content that is not read, or an element.
-#[allow(clippy::too_many_arguments)]
 fn read_tag(
     r: &mut Reader<'_>,
     tag: &BytesStart<'_>,
     parent: usize,
-    root_kind: ElementKind,
     at: At,
     max_depth: usize,
     tree: &mut Includes,
-    parsed: &mut Parsed,
 ) -> Result<Open, ReadError> {
     let qname = tag.name();
     let name: &str = qname.as_ref();
     let offset = at.offset;
     if parent == usize::MAX {
-        return Ok((usize::MAX, NO_RECORD));
+        return Ok(Open { entry: usize::MAX, rec: NO_RECORD, tag: at.parent_tag });
     }
-    if name == "include" {
+    if name == INCLUDE {
         let rec = record(r, tree, RecordKind::Include, r.arena[parent].id, at);
-        if parent != 0 || root_kind != ElementKind::ROOT {
-            // Inside an element (MuJoCo accepts `<include>` anywhere): the included
-            // file's root's children are read in its place.
-            inline_include(r, tag, offset, parent, max_depth, tree)?;
-        } else {
-            let from = tree.src.as_ref().map_or(0, |s| s.records.len());
-            let inc = read_include(r, tag, offset, max_depth, tree)?;
-            // The compiler's folders are global in MuJoCo: those the included file
-            // sets apply to the files named after the include here too.
-            let folders = inc.basepaths();
-            for (ns, v) in [
-                (PathNamespace::Mesh, folders.mesh),
-                (PathNamespace::Texture, folders.texture),
-                (PathNamespace::Asset, folders.asset),
-            ] {
-                if v.is_some() {
-                    r.basepaths.set(Some(ns), v);
-                }
-            }
-            parsed.includes.push((inc, offset, from));
-        }
+        // MuJoCo accepts `<include>` anywhere: the included file's root's content is
+        // read in its place, as children of `parent`.
+        // The file's root stands for `parent`, which has `at.depth - 1` elements open
+        // around it.
+        let spot = Spot { entry: parent, tag: at.parent_tag, depth: at.depth - 1 };
+        splice_include(r, tag, offset, spot, max_depth, tree)?;
         // An include's content is ignored; tracked so that its end tag matches.
-        return Ok((usize::MAX, rec));
+        return Ok(Open { entry: usize::MAX, rec, tag: at.parent_tag });
     }
     let parent_kind = r.arena[parent].kind;
     let Some(kind) = parent_kind.child(name) else {
@@ -718,17 +796,18 @@ fn read_tag(
     if at.depth >= max_depth {
         return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
     }
-    let index = read_element(r, tag, parent, kind, offset)?;
+    let index = read_element(r, tag, (parent, at.parent_tag), kind, offset)?;
     let rec = record(r, tree, RecordKind::Element, r.arena[index].id, at);
-    Ok((index, rec))
+    Ok(Open { entry: index, rec, tag: r.next_tag() })
 }
 
-/// An element of `kind` under the arena entry `parent`: a new entry, or (a singleton
+/// An element of `kind` under the arena entry `parent` (in its tag `parent_tag`): a
+/// new entry, or (a section given again at the root, or a singleton of a section
 /// given again) the entry read before, its attributes updated. Returns the entry.
 fn read_element(
     r: &mut Reader<'_>,
     tag: &BytesStart<'_>,
-    parent: usize,
+    (parent, parent_tag): (usize, u32),
     kind: ElementKind,
     offset: usize,
 ) -> Result<usize, ReadError> {
@@ -740,7 +819,10 @@ fn read_element(
     let mut attrs = std::mem::take(&mut r.scratch);
     attrs.clear();
     match (kind.multiplicity(), existing) {
-        (Multiplicity::Singleton, Some(e)) => {
+        // MuJoCo merges sections given again at the root, and refuses any other
+        // singleton given twice in one tag (an included file's content in it too).
+        (Multiplicity::Singleton, Some(e)) if parent == 0 || r.arena[e].given_in != parent_tag => {
+            r.arena[e].given_in = parent_tag;
             attrs.extend(r.arena[e].attrs.iter().cloned());
             let res = r.read_attrs(kind, tag, &mut attrs, offset);
             r.arena[e].attrs = take_attrs(&mut attrs);
@@ -748,7 +830,7 @@ fn read_element(
             res?;
             Ok(e)
         }
-        (Multiplicity::OnDemand, Some(_)) => {
+        (_, Some(_)) => {
             r.scratch = attrs;
             Err(r.err(ErrorKind::DuplicateChild(kind.tag()), offset))
         }
@@ -762,7 +844,8 @@ fn read_element(
             let stored = take_attrs(&mut attrs);
             r.scratch = attrs;
             let i = r.arena.len();
-            r.arena.push(Pending::new(kind, stored, offset));
+            r.arena.push(Pending::new(kind, stored, (r.at, offset)));
+            r.arena[i].given_in = parent_tag;
             push_child(&mut r.arena, parent, i);
             if m != Multiplicity::Repeated {
                 push_unique(&mut r.arena, parent, i);
@@ -772,8 +855,8 @@ fn read_element(
     }
 }
 
-/// Reads one document; the main one (not an include) with the `<attach>`es that have
-/// a saved scene's shape reopened as attachments (`xml::scene::reopen`), each part read
+/// Reads the main document (includes are spliced into it as it is read), with the
+/// `<attach>`es that have a saved scene's shape reopened as attachments (`xml::scene::reopen`), each part read
 /// from its file with its own source kept (so that it saves losslessly in turn), and
 /// the model as the text spells it kept in the source beside the reopened one.
 fn read_document(
@@ -785,12 +868,8 @@ fn read_document(
     model_files: &ModelFiles,
     src: Option<SrcFile>,
 ) -> Result<Model, ReadError> {
-    let main = tree.at_main();
     let keep_source = tree.src.is_some();
     let model = read_literal(text, file, ctx, max_depth, tree, model_files, src)?;
-    if !main {
-        return Ok(model);
-    }
     let reopened =
         crate::xml::scene::reopen::reopen(model.clone(), text, &mut |text, path, ctx| {
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -818,51 +897,24 @@ fn read_literal(
     src: Option<SrcFile>,
 ) -> Result<Model, ReadError> {
     let mut r = Reader {
-        text,
-        file,
+        files: vec![FileRead { text: Text::Given(text), path: file, group: 0 }],
+        at: 0,
+        tags: 0,
         ctx,
         model_files,
         arena: Vec::new(),
         basepaths: Basepaths::default(),
-        settings_set_at: HashMap::new(),
         scratch: Vec::new(),
         src,
         hoisted: None,
     };
     let first = tree.src.as_ref().map_or(0, |s| s.records.len());
-    let Parsed { includes, model_name } = parse(&mut r, ElementKind::ROOT, max_depth, tree)?;
+    let model_name = parse(&mut r, Place::Root, max_depth, tree)?;
+    order_as_reference(&mut r.arena, &r.files);
     let model = finish(&mut r, model_name)?;
     if let (Some((from, to)), Some(src)) = (r.hoisted, tree.src.as_mut()) {
         // The class `/` folded into the root class: its tag stands for the root class.
         src.remap(first, &HashMap::from([(from, to)]));
     }
-    if includes.is_empty() {
-        return Ok(model);
-    }
-    let mut model = model;
-    for (inc, offset, from) in includes {
-        let inc = inc.with_name(model.name());
-        let (model2, inc) = settings_in_document_order(&model, &inc, offset, &r.settings_set_at)
-            .map_err(|e| r.err(e.kind().clone(), offset))?;
-        let (merged, ids) =
-            model2.include_copy_ids(&inc, false).map_err(|e| r.err(e.kind().clone(), offset))?;
-        if let Some(src) = tree.src.as_mut() {
-            src.remap(from, &ids);
-        }
-        model = merged;
-    }
-    Ok(resolve_all(&model))
-}
-
-/// Whether elements of `kind` hold global settings (they sit in `compiler`, `option`,
-/// `size`, `visual` or `statistic`).
-fn in_settings(kind: ElementKind) -> bool {
-    let mut k = kind;
-    while let Some(p) = k.spec().parent {
-        if p == ElementKind::ROOT {
-            return crate::model::settings::is_settings_section(k);
-        }
-        k = p;
-    }
-    false
+    Ok(model)
 }

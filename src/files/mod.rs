@@ -12,6 +12,10 @@ use crate::error::ErrorKind;
 
 /// The default cap on the size of one file read from disk: 1 GiB, far above any real
 /// mesh, texture or model file.
+pub(crate) mod scan;
+
+pub(crate) use scan::Basepaths;
+
 pub(crate) const DEFAULT_MAX_FILE_SIZE: u64 = 1 << 30;
 
 /// How a model finds the files its attributes and `<include>`s name.
