@@ -70,15 +70,12 @@ fn tag_comparisons(text: &str) -> Vec<(usize, String)> {
 
 /// Files outside `src/xml/read/` that parse XML, each with why:
 /// - `files/scan.rs` finds the files an MJCF file names (what an asset `<model>`
-///   file brings with it) by the schema, as the reader would read them; edits of a
-///   model need it too, and `model` sits below `xml`, so it lives in the files layer
-///   below both (in `xml` it made the circle `model` <-> `xml`);
-/// - `xml/scene/reopen.rs` reads the paths asset `<model>`s were written with (a file
-///   value keeps the file's contents and name, not the path it was found at).
-const XML_PARSED_OUTSIDE_THE_READER: &[(&str, &str)] = &[
-    ("src/files/scan.rs", "the files a file names, for the model layer"),
-    ("src/xml/scene/reopen.rs", "the asset models' paths as written"),
-];
+///   file brings with it, and the paths asset `<model>`s are written with, which a
+///   reopened scene reads its parts from) by the schema, as the reader would read
+///   them; edits of a model need it too, and `model` sits below `xml`, so it lives in
+///   the files layer below both (in `xml` it made the circle `model` <-> `xml`).
+const XML_PARSED_OUTSIDE_THE_READER: &[(&str, &str)] =
+    &[("src/files/scan.rs", "the files a file names, for the model layer")];
 
 /// Whether code (not comments or strings) parses XML: names the XML parser crate.
 fn parses_xml(text: &str) -> bool {

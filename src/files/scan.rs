@@ -58,6 +58,9 @@ pub(crate) struct NamedFile {
     /// as (the root for an asset `<model>` file, the element holding an `<include>` for
     /// an included file).
     pub(crate) names_files: Option<ElementKind>,
+    /// The name of the element naming it, for an asset `<model>` (which
+    /// `<attach model=…>` refers to).
+    pub(crate) model: Option<String>,
 }
 
 /// The files that MJCF `text`, whose root's content is read as the element kind
@@ -71,7 +74,8 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
     use quick_xml::events::Event;
     // (file, folder namespace, names files as) in document order; the folders apply
     // once the whole text is seen.
-    let mut found: Vec<(String, Option<PathNamespace>, Option<ElementKind>)> = Vec::new();
+    let mut found: Vec<(String, Option<PathNamespace>, Option<ElementKind>, Option<String>)> =
+        Vec::new();
     let mut folders = Basepaths::default();
     // The kinds of the open elements (`None`: not read, such as an include's content).
     let mut open: Vec<Option<ElementKind>> = Vec::new();
@@ -102,19 +106,24 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
                 // Its content is not read; the file it names is, in the parent's place.
                 let file = values().filter(|(k, v)| k == "file" && !v.is_empty()).last();
                 if let (Some(parent), Some((_, file))) = (parent, file) {
-                    found.push((file, None, Some(parent)));
+                    found.push((file, None, Some(parent), None));
                 }
                 None
             }
             Some(&parent) => parent.and_then(|p| p.child(name)),
         };
         if let (Some(kind), false) = (kind, open.is_empty()) {
+            let ident = kind.identifier();
+            let model = kind.is(Role::AssetModel).then(|| {
+                values().find(|(k, _)| kind.attr_index(k).is_some() && kind.attr_index(k) == ident)
+            });
+            let model = model.flatten().map(|(_, v)| v);
             for (key, value) in values() {
                 let Some(i) = kind.attr_index(&key) else { continue };
                 match kind.attr(i).ty {
                     AttrType::File { path_namespace } if !value.is_empty() => {
                         let names = kind.is(Role::AssetModel).then_some(ElementKind::ROOT);
-                        found.push((value, path_namespace, names));
+                        found.push((value, path_namespace, names, model.clone()));
                     }
                     AttrType::Basepath { path_namespace } => {
                         let value = Some(SmolStr::from(value)).filter(|v| !v.is_empty());
@@ -130,10 +139,11 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
     }
     found
         .into_iter()
-        .map(|(file, ns, names_files)| NamedFile {
+        .map(|(file, ns, names_files, model)| NamedFile {
             file,
             folder: folders.for_namespace(ns).map(SmolStr::from),
             names_files,
+            model,
         })
         .collect()
 }
@@ -209,6 +219,18 @@ mod tests {
         let asset = ElementKind::ROOT.child("asset").unwrap();
         let text = r#"<mujoco><mesh file="a.stl"/></mujoco>"#;
         assert_eq!(files(text, asset), [named("a.stl", None, None)]);
+    }
+
+    /// An asset `<model>`'s file is named with the model's name (what `<attach
+    /// model=…>` refers to); other files, and a model without a name, with none.
+    #[test]
+    fn asset_models_name_their_file_with_their_name() {
+        let text = r#"<mujoco><asset><model name="robot" file="r.xml"/><model file="n.xml"/>
+            <mesh name="robot" file="m.stl"/></asset></mujoco>"#;
+        let models: Vec<_> =
+            named_files(text, ElementKind::ROOT).into_iter().map(|n| (n.file, n.model)).collect();
+        let want = [("r.xml", Some("robot")), ("n.xml", None), ("m.stl", None)];
+        assert_eq!(models, want.map(|(f, m)| (f.to_string(), m.map(str::to_string))));
     }
 
     #[test]

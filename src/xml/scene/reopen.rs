@@ -184,39 +184,12 @@ fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model>
 }
 
 /// The `file` of every asset `<model name=...>` written in `text` itself (not in an
-/// include), by name.
+/// include), by name, as the file scan finds them (`files::scan`).
 fn asset_model_paths(text: &str) -> HashMap<String, String> {
-    use quick_xml::events::Event;
-    let mut out = HashMap::new();
-    let mut reader = quick_xml::Reader::from_str(text);
-    // The open elements' tags.
-    let mut open: Vec<String> = Vec::new();
-    loop {
-        let (tag, empty) = match reader.read_event() {
-            Ok(Event::Start(t)) => (t, false),
-            Ok(Event::Empty(t)) => (t, true),
-            Ok(Event::End(_)) => {
-                open.pop();
-                continue;
-            }
-            Ok(Event::Eof) | Err(_) => break,
-            Ok(_) => continue,
-        };
-        let name = tag.name().as_ref().to_string();
-        if open.len() == 2 && open[1] == "asset" && name == "model" {
-            let attr = |key: &str| {
-                let a = tag.try_get_attribute(key).ok()??;
-                a.normalized_value(quick_xml::XmlVersion::default()).ok().map(|v| v.into_owned())
-            };
-            if let (Some(n), Some(f)) = (attr("name"), attr("file")) {
-                out.insert(n, f);
-            }
-        }
-        if !empty {
-            open.push(name);
-        }
-    }
-    out
+    crate::files::scan::named_files(text, ElementKind::ROOT)
+        .into_iter()
+        .filter_map(|f| Some((f.model?, f.file)))
+        .collect()
 }
 
 /// The bodies and frames with a scene's attachment shape whose model is among
