@@ -72,10 +72,11 @@ pub(crate) struct NamedFile {
 /// Time: O(length of `text`).
 pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
     use quick_xml::events::Event;
-    // (file, folder namespace, names files as) in document order; the folders apply
+    // In document order, each with the namespace of its folder: the folders apply
     // once the whole text is seen.
-    let mut found: Vec<(String, Option<PathNamespace>, Option<ElementKind>, Option<String>)> =
-        Vec::new();
+    let mut found: Vec<(NamedFile, Option<PathNamespace>)> = Vec::new();
+    let named =
+        |file: String, names_files, model| NamedFile { file, folder: None, names_files, model };
     let mut folders = Basepaths::default();
     // The kinds of the open elements (`None`: not read, such as an include's content).
     let mut open: Vec<Option<ElementKind>> = Vec::new();
@@ -106,7 +107,7 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
                 // Its content is not read; the file it names is, in the parent's place.
                 let file = values().filter(|(k, v)| k == "file" && !v.is_empty()).last();
                 if let (Some(parent), Some((_, file))) = (parent, file) {
-                    found.push((file, None, Some(parent), None));
+                    found.push((named(file, Some(parent), None), None));
                 }
                 None
             }
@@ -123,7 +124,7 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
                 match kind.attr(i).ty {
                     AttrType::File { path_namespace } if !value.is_empty() => {
                         let names = kind.is(Role::AssetModel).then_some(ElementKind::ROOT);
-                        found.push((value, path_namespace, names, model.clone()));
+                        found.push((named(value, names, model.clone()), path_namespace));
                     }
                     AttrType::Basepath { path_namespace } => {
                         let value = Some(SmolStr::from(value)).filter(|v| !v.is_empty());
@@ -139,11 +140,9 @@ pub(crate) fn named_files(text: &str, root: ElementKind) -> Vec<NamedFile> {
     }
     found
         .into_iter()
-        .map(|(file, ns, names_files, model)| NamedFile {
-            file,
+        .map(|(named, ns)| NamedFile {
             folder: folders.for_namespace(ns).map(SmolStr::from),
-            names_files,
-            model,
+            ..named
         })
         .collect()
 }
