@@ -421,6 +421,38 @@ fn a_frame_over_free_bodies_is_written_as_a_frame() {
     assert!(xml.contains("<frame name=\"ball/\">"), "{xml}");
     assert!(xml.contains("<frame name=\"ball/ball/\">"), "{xml}");
     assert!(back.check().is_empty(), "{:?}", back.check());
+    // Free bodies at the attached model's world level but not among its worldbody's
+    // children (MuJoCo 4.0 refuses a free joint below a body: "free joint can only
+    // be used on top level"): inside a MuJoCo `<frame>`, a `<replicate>`, an
+    // attachment of its own that holds no other body, or free by a default class.
+    let in_frame = read(
+        r#"<mujoco model="p"><worldbody><frame pos="0 0 1"><body name="b"><freejoint/><geom size=".1"/></body></frame></worldbody></mujoco>"#,
+    );
+    let in_replicate = read(
+        r#"<mujoco model="p"><worldbody><replicate count="2" offset="1 0 0"><body name="b"><freejoint/><geom size=".1"/></body></replicate></worldbody></mujoco>"#,
+    );
+    let by_class = read(
+        r#"<mujoco model="p"><default><default class="free"><joint type="free"/></default></default><worldbody><frame childclass="free"><body name="b"><joint/><geom size=".1"/></body></frame></worldbody></mujoco>"#,
+    );
+    let mut holder = Model::new("holder");
+    holder.attach_mut(&holder.worldbody(), &ball()).unwrap();
+    for (what, part) in
+        [("frame", in_frame), ("replicate", in_replicate), ("class", by_class), ("nested", holder)]
+    {
+        let mut scene = Model::new("arena");
+        scene.attach_mut(&scene.worldbody(), &part).unwrap();
+        let scope = part.name();
+        let (xml, back) = round_trip(&scene);
+        assert!(xml.contains(&format!("<frame name=\"{scope}/\">")), "{what}: {xml}");
+        assert!(back.check().is_empty(), "{what}: {:?}", back.check());
+    }
+    // A free body below a body is no world-level body: the frame stays a body.
+    let below = read(
+        r#"<mujoco model="p"><worldbody><body name="a"><body name="b"><freejoint/><geom size=".1"/></body></body></worldbody></mujoco>"#,
+    );
+    let mut scene = Model::new("arena");
+    scene.attach_mut(&scene.worldbody(), &below).unwrap();
+    assert!(scene.to_xml_string().unwrap().contains("<body name=\"p/\">"));
     // A frame that moves is a body (and its model's freejoint is then MuJoCo's to
     // refuse, as the reference writes it).
     let mut moving = Model::new("arena");
