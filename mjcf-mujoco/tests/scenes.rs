@@ -28,46 +28,6 @@ use mjcf::{Event, Model};
 use mjcf_mujoco::{Compiled, MuJoCo, ObjKind, Physics};
 use support::mujoco;
 
-/// The arrays both compiles must agree on: those of the judge's read-back
-/// comparison, without the keys' values.
-const FLOATS: &[&str] = &[
-    "body_pos",
-    "body_quat",
-    "body_ipos",
-    "body_iquat",
-    "body_mass",
-    "body_inertia",
-    "jnt_pos",
-    "jnt_axis",
-    "jnt_range",
-    "dof_damping",
-    "dof_armature",
-    "dof_frictionloss",
-    "geom_size",
-    "geom_pos",
-    "geom_quat",
-    "geom_friction",
-    "site_pos",
-    "site_size",
-    "actuator_gear",
-    "actuator_gainprm",
-    "actuator_biasprm",
-    "actuator_ctrlrange",
-    "qpos0",
-    "tendon_stiffness",
-];
-const INTS: &[&str] = &[
-    "body_parentid",
-    "jnt_type",
-    "geom_type",
-    "geom_contype",
-    "geom_conaffinity",
-    "actuator_trntype",
-    "actuator_trnid",
-    "sensor_type",
-    "sensor_objid",
-];
-
 /// A name as compared: an automatic name (`robot//unnamed_geom_0` or, from a part's
 /// file, `robot///unnamed_geom_0`) as the scope it is in.
 fn compared(name: Option<&str>) -> Option<String> {
@@ -108,23 +68,9 @@ fn difference(scene: &Compiled, composed: &Compiled) -> Option<String> {
             ));
         }
     }
-    for field in FLOATS {
-        let (x, y) = (scene.floats(field).ok()?, composed.floats(field).ok()?);
-        if x.len() != y.len()
-            || x.iter().zip(y).any(|(p, q)| {
-                p.to_bits() != q.to_bits() && (p - q).abs() > 1e-12 * p.abs().max(1.0)
-            })
-        {
-            return Some(format!("{field}: {x:?} vs {y:?}"));
-        }
-    }
-    if scene.floats32("geom_rgba").ok()? != composed.floats32("geom_rgba").ok()? {
-        return Some("geom_rgba differs".into());
-    }
-    for field in INTS {
-        if scene.ints(field).ok()? != composed.ints(field).ok()? {
-            return Some(format!("{field} differs"));
-        }
+    // The arrays of the judge's read-back comparison, without the keys' values.
+    if let Some(d) = support::array_difference(scene, composed, support::COMPARED_FLOATS) {
+        return Some(d);
     }
     // The options: both simulate the same steps.
     let run = |c: &Compiled| -> Option<Vec<f64>> {
