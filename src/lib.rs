@@ -100,8 +100,8 @@ pub use crate::schema::{
 };
 pub use crate::value::{AttrInput, FileAsset, Reference, Value};
 pub use crate::xml::{
-    ReadOptions, SaveError, SavedScene, Scene, ScenePart, SourceText, WriteOptions, Written,
-    WrittenElement,
+    ReadOptions, SaveError, SaveOptions, SavedScene, Scene, ScenePart, SourceText, WriteOptions,
+    Written, WrittenElement,
 };
 
 /// An [`Element`] with attributes, as `Element::new(tag).attr(name, value)...`:

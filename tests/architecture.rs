@@ -9,6 +9,9 @@
 //!   modules (edges from `use crate::…`, `use super::…` and `crate::…`/`super::…`
 //!   paths in code).
 //!
+//! - the file system is touched only in `src/files/` (one canonical path, one
+//!   reader with the caps and confinement, one writer for every file written).
+//!
 //! `tests/docs.rs` holds the checks over documents: no comment or document cites a
 //! line of code by number, and the README's real-model floor is `.ci/run`'s.
 
@@ -40,6 +43,53 @@ fn sources() -> Vec<(PathBuf, String)> {
             (p.strip_prefix(root).unwrap().to_path_buf(), text)
         })
         .collect()
+}
+
+/// What names a use of the file system in code.
+const FILE_SYSTEM: &[&str] = &[
+    "std::fs",
+    "fs::",
+    "File::",
+    "OpenOptions",
+    "Path::exists",
+    ".exists()",
+    "metadata(",
+    "read_dir",
+    "canonicalize",
+    "symlink(",
+];
+
+/// The file-system uses in the code of `text` (comments, strings and the test
+/// module at its end left out), by line.
+fn file_system_uses(text: &str) -> Vec<(usize, &'static str)> {
+    let code = code_only(text);
+    let code = ["#[cfg(test)]", "#[cfg(all(test"]
+        .iter()
+        .filter_map(|m| code.find(m))
+        .min()
+        .map_or(code.as_str(), |at| &code[..at]);
+    let mut out = Vec::new();
+    for (i, line) in code.lines().enumerate() {
+        out.extend(FILE_SYSTEM.iter().filter(|f| line.contains(*f)).map(|f| (i + 1, *f)));
+    }
+    out
+}
+
+/// The file layer (`src/files/`) is the only library code that touches the file
+/// system; test modules (a `tests.rs` file, a `#[cfg(test)]` module) may.
+#[test]
+fn the_file_system_is_touched_only_in_src_files() {
+    let found: Vec<String> = sources()
+        .into_iter()
+        .map(|(p, t)| (p.display().to_string(), t))
+        .filter(|(p, _)| !p.starts_with("src/files/") && !p.ends_with("/tests.rs"))
+        .flat_map(|(p, t)| {
+            file_system_uses(&t).into_iter().map(move |(line, what)| format!("{p}:{line}: {what}"))
+        })
+        .collect();
+    assert!(found.is_empty(), "touch the file system in src/files/ only: {found:#?}");
+    let sample = "/// std::fs::read(p)\nfn f() { let s = \"std::fs\"; std::fs::write(p, b)?; }\n#[cfg(test)]\nmod tests { fn g() { std::fs::read(p); } }";
+    assert_eq!(file_system_uses(sample), [(2, "std::fs"), (2, "fs::")]);
 }
 
 /// The places in `text` where an element's tag is compared with a string literal:

@@ -1,7 +1,11 @@
 //! Where a model's files come from: its folder on disk and an optional in-memory map.
 //!
-//! The only module besides the reader that touches the file system. File attributes
-//! are read when they are set, so a model value never reads files later.
+//! The only module that touches the file system (`tests/architecture.rs` checks it):
+//! reading with the size cap and folder confinement, one canonical path, the scan
+//! of the files an MJCF file names ([`scan`]), the asset model files one read or
+//! edit reads ([`model_files`]) and the one writer of every file the crate writes
+//! ([`write`]). File attributes are read when they are set, so a model value never
+//! reads files later.
 
 use std::collections::HashMap;
 use std::io::Read;
@@ -10,9 +14,11 @@ use std::sync::Arc;
 
 use crate::error::ErrorKind;
 
+pub(crate) mod model_files;
 /// The default cap on the size of one file read from disk: 1 GiB, far above any real
 /// mesh, texture or model file.
 pub(crate) mod scan;
+pub(crate) mod write;
 
 pub(crate) use scan::Basepaths;
 
@@ -83,6 +89,34 @@ pub(crate) fn read_regular(open: &Path, shown: &Path, limit: u64) -> Result<Vec<
         return Err(too_large());
     }
     Ok(bytes)
+}
+
+/// The canonical path of `path`: absolute, with every symlink followed and `.`
+/// and `..` resolved. For a path that does not exist (yet), its nearest existing
+/// folder's canonical path joined with the rest, normalised. The one answer to
+/// whether two paths name one file.
+///
+/// Time: O(length of the path) system calls.
+pub(crate) fn canonical(path: &Path) -> PathBuf {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        return p;
+    }
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let absolute = PathBuf::from(normalize(&absolute.to_string_lossy()));
+    let mut rest: Vec<&std::ffi::OsStr> = Vec::new();
+    let mut at = absolute.as_path();
+    loop {
+        if let Ok(found) = std::fs::canonicalize(at) {
+            return rest.iter().rev().fold(found, |p, c| p.join(c));
+        }
+        match (at.parent(), at.file_name()) {
+            (Some(parent), Some(name)) => {
+                rest.push(name);
+                at = parent;
+            }
+            _ => return absolute,
+        }
+    }
 }
 
 /// Joins a folder setting (`meshdir`) and a path as MJCF does.

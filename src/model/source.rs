@@ -21,6 +21,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use crate::files::write::Fingerprint;
 use crate::model::Model;
 use crate::model::tree::ElementId;
 
@@ -76,6 +77,9 @@ pub(crate) struct SourceFile {
     /// The path as read (joined with the folder of the file that includes it), to
     /// write it back in place; `None` for text not read from disk.
     pub(crate) disk: Option<PathBuf>,
+    /// What the file on disk held when it was read, so that a save can tell whether
+    /// another program changed it since.
+    pub(crate) read: Option<Fingerprint>,
     pub(crate) text: Arc<str>,
     /// The file's root tag.
     pub(crate) root: u32,

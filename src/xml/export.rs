@@ -13,9 +13,9 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::io;
 use std::path::{Component, Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{ExportError, WriteError};
+use crate::files::write::{self, Fault};
 use crate::id::ElementId;
 use crate::model::Model;
 use crate::value::{FileAsset, Value};
@@ -191,10 +191,10 @@ impl Model {
         // Those already there must be real folders (checked again when created), and
         // no file may have a folder under its name.
         for folder in &folders {
-            real_folder(&dir.join(folder), false)?;
+            write::real_folder(&dir.join(folder), false).map_err(fault)?;
         }
         for path in files.iter().map(|(_, path, _)| path).chain([&xml_path]) {
-            if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+            if write::is_folder(path) {
                 return Err(ExportError::Io {
                     path: path.clone(),
                     kind: io::ErrorKind::IsADirectory,
@@ -202,16 +202,16 @@ impl Model {
                 });
             }
         }
-        std::fs::create_dir_all(dir).map_err(|e| io_error(dir, &e))?;
+        write::make_folder(dir).map_err(fault)?;
         for folder in &folders {
-            real_folder(&dir.join(folder), true)?;
+            write::real_folder(&dir.join(folder), true).map_err(fault)?;
         }
         for (_, path, contents) in files {
-            if !holds(&path, contents) {
-                write_by_rename(&path, contents)?;
+            if !write::holds(&path, contents) {
+                write::write_by_rename(&path, contents).map_err(fault)?;
             }
         }
-        write_by_rename(&xml_path, xml.as_bytes())?;
+        write::write_by_rename(&xml_path, xml.as_bytes()).map_err(fault)?;
         Ok(xml_path)
     }
 }
@@ -280,107 +280,10 @@ fn invalid(path: PathBuf, reason: &str) -> ExportError {
     ExportError::Io { path, kind: io::ErrorKind::InvalidInput, reason: reason.to_string() }
 }
 
-/// Checks that `folder` is a real folder (not a symlink, whatever it points at),
-/// creating it if missing and `create`; without `create`, a missing folder is fine.
-fn real_folder(folder: &Path, create: bool) -> Result<(), ExportError> {
-    // Twice at most: a folder another export creates between the check and ours is
-    // checked again.
-    for _ in 0..2 {
-        match std::fs::symlink_metadata(folder) {
-            Ok(m) if m.file_type().is_symlink() => {
-                return Err(ExportError::SymlinkedFolder { path: folder.to_path_buf() });
-            }
-            Ok(m) if m.is_dir() => return Ok(()),
-            Ok(_) => {
-                return Err(ExportError::Io {
-                    path: folder.to_path_buf(),
-                    kind: io::ErrorKind::NotADirectory,
-                    reason: "not a folder".to_string(),
-                });
-            }
-            Err(e) if e.kind() == io::ErrorKind::NotFound && !create => return Ok(()),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => match std::fs::create_dir(folder) {
-                Ok(()) => return Ok(()),
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {}
-                Err(e) => return Err(io_error(folder, &e)),
-            },
-            Err(e) => return Err(io_error(folder, &e)),
-        }
-    }
-    Err(ExportError::Io {
-        path: folder.to_path_buf(),
-        kind: io::ErrorKind::AlreadyExists,
-        reason: "changed while it was created".to_string(),
-    })
-}
-
-fn io_error(path: &Path, e: &io::Error) -> ExportError {
-    ExportError::Io { path: path.to_path_buf(), kind: e.kind(), reason: e.to_string() }
-}
-
-/// Whether `path` is a regular file (not a link) holding exactly `contents`.
-fn holds(path: &Path, contents: &[u8]) -> bool {
-    std::fs::symlink_metadata(path)
-        .is_ok_and(|m| m.file_type().is_file() && m.len() == contents.len() as u64)
-        && std::fs::read(path).is_ok_and(|b| b == contents)
-}
-
-/// The number of the next temporary file of this process.
-static NEXT: AtomicU64 = AtomicU64::new(0);
-
-/// Writes `contents` to a fresh temporary file beside `path` (created new: never an
-/// existing file or link), then renames it to `path`; on failure the temporary file
-/// is removed and the error names `path`.
-fn write_by_rename(path: &Path, contents: &[u8]) -> Result<(), ExportError> {
-    use std::io::Write;
-    let folder = path.parent().unwrap_or(Path::new("."));
-    loop {
-        let n = NEXT.fetch_add(1, Ordering::Relaxed);
-        // Short, so that it fits wherever the final name fits.
-        let tmp = folder.join(format!(".mjcf-export-{}-{n}.tmp", std::process::id()));
-        let file = std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp);
-        let mut file = match file {
-            // Left by an earlier process of the same id: take the next number.
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(io_error(path, &e)),
-            Ok(f) => f,
-        };
-        let result = file.write_all(contents).and_then(|()| {
-            drop(file);
-            std::fs::rename(&tmp, path)
-        });
-        return result.map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            io_error(path, &e)
-        });
-    }
-}
-
-#[cfg(all(test, unix))]
-mod tests {
-    use super::*;
-
-    /// Links placed at the temporary names the next writes would take (say, by
-    /// another user of a shared folder) are never opened: each write takes a name
-    /// that does not exist yet, and the file the links point at stays as it was.
-    #[test]
-    fn temporary_files_never_open_an_existing_link() {
-        let dir = std::env::temp_dir().join(format!("mjcf-export-unit-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let target = dir.with_extension("target");
-        std::fs::write(&target, b"keep").unwrap();
-        let first = NEXT.load(Ordering::Relaxed);
-        for n in first..first + 20 {
-            let tmp = dir.join(format!(".mjcf-export-{}-{n}.tmp", std::process::id()));
-            std::os::unix::fs::symlink(&target, tmp).unwrap();
-        }
-        write_by_rename(&dir.join("a.stl"), b"new").unwrap();
-        assert_eq!(std::fs::read(&target).unwrap(), b"keep");
-        assert_eq!(std::fs::read(dir.join("a.stl")).unwrap(), b"new");
-        assert!(std::fs::symlink_metadata(dir.join("a.stl")).unwrap().file_type().is_file());
-        assert!(NEXT.load(Ordering::Relaxed) > first + 20);
-        std::fs::remove_dir_all(&dir).unwrap();
-        std::fs::remove_file(&target).unwrap();
+/// The error for a write of the file layer that failed.
+fn fault(f: Fault) -> ExportError {
+    match f {
+        Fault::SymlinkedFolder(path) => ExportError::SymlinkedFolder { path },
+        Fault::Io(path, kind, reason) => ExportError::Io { path, kind, reason },
     }
 }

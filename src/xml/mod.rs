@@ -8,7 +8,7 @@ mod source;
 mod write;
 
 pub use read::ReadOptions;
-pub use save::{SaveError, SourceText};
+pub use save::{SaveError, SaveOptions, SourceText};
 pub use scene::{SavedScene, Scene, ScenePart};
 pub(crate) use write::policy::frame_keeps_bodies_top_level;
 pub use write::{WriteOptions, Written, WrittenElement};

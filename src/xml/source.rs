@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use crate::files::write::Fingerprint;
 use crate::model::Model;
 use crate::model::tree::ElementId;
 
@@ -27,11 +28,12 @@ impl SourceBuilder {
         &mut self,
         rel: Option<PathBuf>,
         disk: Option<PathBuf>,
+        read: Option<Fingerprint>,
         text: &str,
     ) -> Option<u32> {
         u32::try_from(text.len()).ok()?;
         let i = u32::try_from(self.files.len()).ok()?;
-        self.files.push(SourceFile { rel, disk, text: Arc::from(text), root: NO_RECORD });
+        self.files.push(SourceFile { rel, disk, read, text: Arc::from(text), root: NO_RECORD });
         Some(i)
     }
 

@@ -14,6 +14,7 @@ use super::{
     parse, utf8,
 };
 use crate::error::{ErrorKind, ReadError};
+use crate::files::write::Fingerprint;
 use crate::files::{self, FileContext};
 use crate::model::Model;
 use crate::model::tree::ElementId;
@@ -49,23 +50,24 @@ impl Includes {
     }
 
     /// Records a file read (`shown`: its path as read, on disk or, for an in-memory
-    /// file, as written) whose root stands for `stands_for` (the main file's: `None`
-    /// and `main`). `None` when the source is not kept.
+    /// file, as written; `on_disk`: for a file read from disk, what it held) whose
+    /// root stands for `stands_for` (the main file's: `None` and `main`). `None` when
+    /// the source is not kept.
     pub(super) fn record_file(
         &mut self,
         shown: Option<&Path>,
-        on_disk: bool,
+        on_disk: Option<Fingerprint>,
         text: &str,
         main: bool,
         stands_for: Option<ElementId>,
     ) -> Option<SrcFile> {
         let src = self.src.as_mut()?;
         let rel = shown.map(|p| match (on_disk, &self.main_dir) {
-            (true, Some(dir)) => relative_to(p, dir),
+            (Some(_), Some(dir)) => relative_to(p, dir),
             _ => p.to_path_buf(),
         });
-        let disk = shown.filter(|_| on_disk).map(Path::to_path_buf);
-        let file = src.file(rel, disk, text);
+        let disk = shown.filter(|_| on_disk.is_some()).map(Path::to_path_buf);
+        let file = src.file(rel, disk, on_disk, text);
         if file.is_none() {
             // Too long to record: no source is kept for this model.
             self.src = None;
@@ -126,11 +128,6 @@ fn relative_to(path: &Path, dir: &Path) -> PathBuf {
     out
 }
 
-pub(super) fn canonical(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path)
-        .unwrap_or_else(|_| PathBuf::from(files::normalize(&path.to_string_lossy())))
-}
-
 /// An included file: its bytes, its path (for messages), the file context its own
 /// files resolve in, and its key on the include stack (for cycles).
 pub(super) type IncludeSource = (Arc<[u8]>, PathBuf, FileContext, PathBuf, bool);
@@ -182,7 +179,7 @@ pub(super) fn include_source(
     // a regular file within the size cap.
     let path = r.ctx.disk_path(&file).map_err(|k| r.err(k, offset))?;
     let full = path.full.clone();
-    let key = canonical(&full);
+    let key = files::canonical(&full);
     if let Some(refused) = tree.refuse(&key, &full) {
         return Err(r.err(refused, offset));
     }
@@ -209,7 +206,8 @@ pub(super) fn splice_include(
     let (bytes, file, ctx, key, on_disk) = include_source(r, tag, offset, tree)?;
     let text = utf8(&bytes, Some(&file))?;
     let entry = spot.entry;
-    let src = tree.record_file(Some(&file), on_disk, text, false, Some(r.arena[entry].id));
+    let read = on_disk.then(|| Fingerprint::of(&bytes));
+    let src = tree.record_file(Some(&file), read, text, false, Some(r.arena[entry].id));
     // Each file is included once: more than 2^32 of them do not fit in memory.
     let too_many = || r.err(ErrorKind::TooManyFiles(u32::MAX as usize), offset);
     let at = u32::try_from(r.files.len()).map_err(|_| too_many())?;

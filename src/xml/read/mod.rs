@@ -35,6 +35,7 @@ use quick_xml::events::{BytesStart, Event};
 use smol_str::SmolStr;
 
 use crate::error::{ErrorKind, ReadError, TextPos};
+use crate::files::write::Fingerprint;
 use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, no_attrs, take_attrs};
 use crate::model::{
@@ -49,7 +50,7 @@ mod finish;
 mod include;
 
 use finish::finish;
-use include::{Includes, canonical, order_as_reference, splice_include};
+use include::{Includes, order_as_reference, splice_include};
 
 /// The tag of an include, which is no element: the file it names is read in its place.
 use crate::files::scan::INCLUDE;
@@ -224,7 +225,7 @@ impl ReadOptions {
         let dir = self.base_dir.clone();
         let mut tree = Includes::new(PathBuf::from("<main text>"), dir, self.keep_source);
         let model_files = ModelFiles::default();
-        let src = tree.record_file(None, false, text, true, None);
+        let src = tree.record_file(None, None, text, true, None);
         let m = read_document(text, None, ctx, self.max_depth, &mut tree, &model_files, src)?;
         Ok(tree.attach_source(m))
     }
@@ -256,10 +257,11 @@ impl ReadOptions {
         let text = utf8(&bytes, Some(path))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let ctx = self.context(Some(dir.clone()));
-        let mut tree = Includes::new(canonical(path), Some(dir), self.keep_source);
+        let mut tree = Includes::new(files::canonical(path), Some(dir), self.keep_source);
         let model_files = ModelFiles::default();
         let file = Some(path.to_path_buf());
-        let src = tree.record_file(Some(path), true, text, true, None);
+        let read = Some(Fingerprint::of(&bytes));
+        let src = tree.record_file(Some(path), read, text, true, None);
         let m = read_document(text, file, ctx, self.max_depth, &mut tree, &model_files, src)?;
         Ok(tree.attach_source(m))
     }
@@ -873,8 +875,10 @@ fn read_document(
     let reopened =
         crate::xml::scene::reopen::reopen(model.clone(), text, &mut |text, path, ctx| {
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            let mut tree = Includes::new(canonical(path), Some(dir), keep_source);
-            let src = tree.record_file(Some(path), true, text, true, None);
+            let mut tree = Includes::new(files::canonical(path), Some(dir), keep_source);
+            // A part's text is its file's bytes (read as UTF-8 as they are).
+            let read = Some(Fingerprint::of(text.as_bytes()));
+            let src = tree.record_file(Some(path), read, text, true, None);
             let file = Some(path.to_path_buf());
             let m = read_document(text, file, ctx, max_depth, &mut tree, model_files, src)?;
             Ok(tree.attach_source(m))

@@ -27,9 +27,10 @@ mod tag;
 
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Path, PathBuf};
 
 use crate::error::WriteError;
+use crate::files::write::{self, Fault, Fingerprint, OnDisk};
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
 use crate::schema::{AttrType, ElementKind, Multiplicity};
@@ -68,6 +69,15 @@ pub enum SaveError {
     /// model's, or the folder given to [`Model::save_as`]).
     #[error("'{}' lies outside the folder it is to be written in", .0.display())]
     OutsideRoot(PathBuf),
+    /// A file the save must write changed on disk since it was read (another
+    /// program edited or removed it): nothing was written. Save with
+    /// [`SaveOptions::overwrite_changed`] to overwrite it on purpose.
+    #[error("'{}' changed on disk since it was read; nothing was saved (SaveOptions::overwrite_changed overwrites it)", .0.display())]
+    ChangedOnDisk(PathBuf),
+    /// A folder a file is to be written in, below the folder written to, is a symlink
+    /// (a link there would send the file elsewhere): nothing was written.
+    #[error("'{}' is a symlink, not a folder to write in; nothing was saved", .0.display())]
+    SymlinkedFolder(PathBuf),
     /// A file could not be written.
     #[error("cannot write '{}': {reason}", path.display())]
     Io {
@@ -92,6 +102,28 @@ pub enum SaveError {
         /// The attribute.
         attribute: &'static str,
     },
+}
+
+/// How [`Model::save_with`] saves.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SaveOptions {
+    overwrite_changed: bool,
+}
+
+impl SaveOptions {
+    /// The default options: a file changed on disk since the read is not overwritten.
+    pub fn new() -> SaveOptions {
+        SaveOptions::default()
+    }
+
+    /// Overwrite a file that changed on disk since it was read, instead of refusing
+    /// the save with [`SaveError::ChangedOnDisk`]. Default: off.
+    #[must_use]
+    pub fn overwrite_changed(mut self, yes: bool) -> SaveOptions {
+        self.overwrite_changed = yes;
+        self
+    }
 }
 
 /// One file of a model's source, as [`Model::to_source_files`] writes it.
@@ -144,83 +176,165 @@ impl Model {
         Ok(outputs(self, false)?.texts.into_iter().map(|o| o.text).collect())
     }
 
-    /// Saves the model into the files it was read from, losslessly: each file whose
-    /// text changes is written in place (atomically: a temporary file beside it, then
-    /// renamed over it), the others are not touched (same bytes, same modification
-    /// time). What is kept: an element no edit touched is written byte for byte; an
-    /// edited element keeps its untouched attributes' text, quoting and order, with
-    /// changed values in place, new ones appended and removed ones gone with their
-    /// spacing; a new element is indented like its siblings; a removed element goes
-    /// with the comments directly before it; nothing is renamed, no class or
-    /// automatic name is added, file attributes and compiler folders stay as written.
-    /// An edit inside an included file is saved into that file. A confined model
+    /// Saves the model into the files it was read from, losslessly, with default
+    /// [`SaveOptions`]: each file whose text changes is written in place (atomically:
+    /// a temporary file created new beside it, then renamed over it), the others are
+    /// never written (same bytes, same modification time), even when their file on
+    /// disk differs from the text read (another program's edit is kept; a save of an
+    /// earlier version undoes what a save of this process wrote there). What is
+    /// kept: an element no edit touched is written byte for byte; an edited element
+    /// keeps its untouched attributes' text, quoting and order, with changed values in
+    /// place, new ones appended and removed ones gone with their spacing; a new element
+    /// is indented like its siblings; a removed element goes with the comments
+    /// directly before it; nothing is renamed, no class or automatic name is added,
+    /// file attributes and compiler folders stay as written. An edit inside an
+    /// included file is saved into that file. A confined model
     /// ([`ReadOptions::confine_to_base_dir`](crate::ReadOptions::confine_to_base_dir))
     /// writes no file outside its folder. Returns the files written.
+    ///
+    /// **A file changed on disk since it was read is not overwritten**: when a file
+    /// the save must write no longer holds what was read from it (another program
+    /// edited it, by its content), nothing at all is written and the save returns
+    /// [`SaveError::ChangedOnDisk`] naming it; [`SaveOptions::overwrite_changed`]
+    /// overwrites such files on purpose ([`Model::save_with`]).
     ///
     /// The model keeps the source it was read from: saving a later version writes
     /// what changed since the read (so saving twice writes once).
     ///
     /// A model with attachments saves as a scene (MuJoCo's `<attach>` of an asset
     /// `<model>`, as [`Model::save_scene`] writes one): its own files as above, an
-    /// attachment the reader reopened and no edit touched as it was read, one added in
-    /// code as a new `<body name="s/">` holding an `<attach>`, with a new asset
-    /// `<model>`; a detached one goes with its asset `<model>` when nothing else uses
-    /// it. Each attached model read from a file in the model's folder (or below it) is
-    /// saved losslessly into its own files (an edit through
-    /// [`Model::edit_attached`] goes there); one built in code, read from elsewhere,
-    /// or a second version of a file another attachment uses is written with the plain
-    /// writer as [`Model::save_scene`] writes a part, into a new file beside the
-    /// model's (named after the model; a file already there with other bytes is never
-    /// replaced). The rules are in the `xml::save::scene` module documentation.
+    /// attachment the reader reopened and no edit touched as it was read (its asset
+    /// `<model file=...>` as written, wherever its file lies, and nothing written for
+    /// it), one added in code as a new `<body name="s/">` holding an `<attach>`, with
+    /// a new asset `<model>`; a detached one goes with its asset `<model>` when nothing
+    /// else uses it. Each attached model read from a file in the model's folder (or
+    /// below it) is saved losslessly into its own files (an edit through
+    /// [`Model::edit_attached`] goes there); one built in code, an edited one read from
+    /// outside the model's folder (its file there is never changed), or a second
+    /// version of a file another attachment uses is written with the plain writer as
+    /// [`Model::save_scene`] writes a part, into a new file beside the model's (named
+    /// after the model; a file already there with other bytes is never replaced), and
+    /// its `<model file=...>` names that file. The rules are in the `xml::save::scene`
+    /// module documentation.
     ///
-    /// Time: as [`Model::to_source_files`], plus reading each file on disk (to
-    /// compare) and writing the changed ones.
+    /// Time: as [`Model::to_source_files`], plus reading each file to write on disk
+    /// (to compare) and writing the changed ones.
     ///
     /// # Errors
     /// As [`Model::to_source_files`], and [`SaveError::NoPath`] when a file to write
-    /// was not read from disk (or, for a part written anew, when the model's was not), [`SaveError::OutsideRoot`] when (confined) it leads
-    /// out of the model's folder, [`SaveError::Io`] when it cannot be written. Files
-    /// written before an error stay written.
+    /// was not read from disk (or, for a part written anew, when the model's was not),
+    /// [`SaveError::OutsideRoot`] when (confined) it leads out of the model's folder,
+    /// [`SaveError::ChangedOnDisk`] when a file to write changed on disk since it was
+    /// read, [`SaveError::SymlinkedFolder`] when a folder a new file of the scene goes
+    /// in is a symlink, [`SaveError::Io`] when a file cannot be written. Every check
+    /// is made before the first file is written; a failure of the system while
+    /// writing leaves the files written before it written.
     pub fn save(&self) -> Result<Vec<PathBuf>, SaveError> {
+        self.save_with(&SaveOptions::default())
+    }
+
+    /// [`Model::save`] with `options`.
+    ///
+    /// Time: as [`Model::save`].
+    ///
+    /// # Errors
+    /// As [`Model::save`]; with [`SaveOptions::overwrite_changed`], never
+    /// [`SaveError::ChangedOnDisk`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, SaveError, SaveOptions};
+    /// let dir = std::env::temp_dir().join(format!("mjcf-doc-save-with-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir)?;
+    /// let path = dir.join("a.xml");
+    /// std::fs::write(&path, "<mujoco>\n  <option timestep=\"0.01\"/>\n</mujoco>\n")?;
+    /// let m = Model::from_path(&path)?;
+    /// // Another program edits the file after the read.
+    /// std::fs::write(&path, "<mujoco>\n  <option timestep=\"0.02\"/>\n</mujoco>\n")?;
+    /// let option = m.section("option").unwrap();
+    /// let edited = m.set(&option, mjcf::Attrs::new().set("timestep", 0.005))?;
+    /// assert!(matches!(edited.save(), Err(SaveError::ChangedOnDisk(p)) if p == path));
+    /// // Overwriting on purpose.
+    /// edited.save_with(&SaveOptions::new().overwrite_changed(true))?;
+    /// assert!(std::fs::read_to_string(&path)?.contains("0.005"));
+    /// # std::fs::remove_dir_all(&dir)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn save_with(&self, options: &SaveOptions) -> Result<Vec<PathBuf>, SaveError> {
         let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
         let out = outputs(self, false)?;
         let folder = src.files.first().and_then(|f| f.disk.as_deref()).and_then(Path::parent);
-        let mut written = Vec::new();
+        // What to write, every check made first: nothing is written if one fails.
+        let mut plan: Vec<(PathBuf, Option<PathBuf>, &[u8])> = Vec::new();
         for o in &out.texts {
-            let disk = o.disk.clone().or_else(|| Some(folder?.join(o.text.path.as_ref()?)));
-            let on_disk = disk.as_ref().and_then(|d| std::fs::read(d).ok());
-            if on_disk.as_deref() == Some(o.text.text.as_bytes()) {
-                continue;
-            }
-            let (Some(path), Some(rel)) = (disk, &o.text.path) else {
-                return Err(SaveError::NoPath);
+            let bytes = o.text.text.as_bytes();
+            let (path, new) = match (&o.disk, folder, &o.text.path) {
+                (Some(disk), _, _) => (disk.clone(), None),
+                (None, Some(folder), Some(rel)) => (folder.join(rel), Some(rel.clone())),
+                _ => return Err(SaveError::NoPath),
             };
-            if self.files.confine {
-                let rel = rel.to_string_lossy();
-                self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.clone()))?;
+            let read = o.read.as_ref();
+            match write::on_disk(&path, bytes, read) {
+                OnDisk::Same => continue,
+                // A file whose text did not change since the read is written only
+                // back over what an earlier save of this process put there.
+                OnDisk::Ours => {}
+                _ if o.disk.is_some() && !o.text.changed => continue,
+                OnDisk::Changed | OnDisk::Missing
+                    if read.is_some() && !options.overwrite_changed =>
+                {
+                    return Err(SaveError::ChangedOnDisk(path));
+                }
+                _ => {}
             }
-            write_atomically(&path, o.text.text.as_bytes())?;
-            written.push(path);
+            self.confined(o.text.path.as_deref(), &path)?;
+            plan.push((path, new, bytes));
         }
         for (rel, bytes) in &out.files {
             let Some(path) = folder.map(|f| f.join(rel)) else { return Err(SaveError::NoPath) };
-            if std::fs::read(&path).ok().as_deref() == Some(&bytes[..]) {
+            let planned = plan.iter().any(|(p, _, _)| *p == path);
+            if planned || write::on_disk(&path, bytes, None) == OnDisk::Same {
                 continue;
             }
-            if self.files.confine {
-                let rel = rel.to_string_lossy();
-                self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.clone()))?;
+            self.confined(Some(rel), &path)?;
+            plan.push((path, Some(rel.clone()), bytes));
+        }
+        let folder = folder.unwrap_or(Path::new(""));
+        for (_, new, _) in &plan {
+            if let Some(rel) = new {
+                let rel = write::inside(rel).ok_or_else(|| SaveError::OutsideRoot(rel.clone()))?;
+                write::real_folders(folder, &rel, false).map_err(fault)?;
             }
-            write_atomically(&path, bytes)?;
+        }
+        let mut written = Vec::with_capacity(plan.len());
+        for (path, new, bytes) in plan {
+            if let Some(rel) = new.as_deref().and_then(write::inside) {
+                write::real_folders(folder, &rel, true).map_err(fault)?;
+            }
+            write::write_by_rename(&path, bytes).map_err(fault)?;
             written.push(path);
         }
         Ok(written)
     }
 
+    /// For a confined model, refuses a file `rel` (from the model's folder; written at
+    /// `path`) that leads out of its folder.
+    fn confined(&self, rel: Option<&Path>, path: &Path) -> Result<(), SaveError> {
+        if !self.files.confine {
+            return Ok(());
+        }
+        let rel = rel.ok_or(SaveError::NoPath)?.to_string_lossy();
+        self.files.disk_path(&rel).map_err(|_| SaveError::OutsideRoot(path.to_path_buf()))?;
+        Ok(())
+    }
+
     /// Saves the model's files into the folder `dir`, with the same relative paths
     /// as they had from the model's folder (every file, changed or not), losslessly
     /// as [`Model::save`], with the asset files their elements name (meshes,
-    /// textures, ...) at the paths they are named by. Returns the files written.
+    /// textures, ...) at the paths they are named by. `dir` is created if missing;
+    /// below it, every folder a file goes in is a real folder (found or created),
+    /// never a symlink, and each file is written as [`Model::save`] writes one (a
+    /// temporary file created new, renamed over it). Returns the files written.
     ///
     /// Time: as [`Model::to_source_files`], plus writing the files and assets.
     ///
@@ -228,23 +342,34 @@ impl Model {
     /// As [`Model::to_source_files`]; [`SaveError::NoPath`] for a model read from a
     /// string or with an in-memory include; [`SaveError::OutsideRoot`] for a file
     /// whose relative path leads out of `dir` (an include or asset named through
-    /// `..`); [`SaveError::Io`] when a file cannot be written.
+    /// `..`); [`SaveError::SymlinkedFolder`] when a folder below `dir` that a file goes
+    /// in is a symlink (nothing is written then); [`SaveError::Io`] when a file cannot
+    /// be written.
     pub fn save_as(&self, dir: impl AsRef<Path>) -> Result<Vec<PathBuf>, SaveError> {
         let dir = dir.as_ref();
         let out = outputs(self, true)?;
-        let mut written = Vec::new();
-        for o in &out.texts {
+        let mut plan: Vec<(PathBuf, &[u8])> = Vec::new();
+        let texts = out.texts.iter().map(|o| {
             let rel = o.text.path.as_ref().ok_or(SaveError::NoPath)?;
-            let path = inside(dir, rel)?;
-            write_atomically(&path, o.text.text.as_bytes())?;
-            written.push(path);
-        }
-        for (rel, contents) in &out.files {
-            let path = inside(dir, rel)?;
-            if written.contains(&path) {
-                continue;
+            Ok((rel, o.text.text.as_bytes()))
+        });
+        let files = out.files.iter().map(|(rel, bytes)| Ok((rel, &bytes[..])));
+        for item in texts.chain(files) {
+            let (rel, bytes) = item?;
+            let rel = write::inside(rel).ok_or_else(|| SaveError::OutsideRoot(rel.clone()))?;
+            if !plan.iter().any(|(p, _)| *p == rel) {
+                plan.push((rel, bytes));
             }
-            write_atomically(&path, contents)?;
+        }
+        for (rel, _) in &plan {
+            write::real_folders(dir, rel, false).map_err(fault)?;
+        }
+        write::make_folder(dir).map_err(fault)?;
+        let mut written = Vec::with_capacity(plan.len());
+        for (rel, bytes) in plan {
+            write::real_folders(dir, &rel, true).map_err(fault)?;
+            let path = dir.join(rel);
+            write::write_by_rename(&path, bytes).map_err(fault)?;
             written.push(path);
         }
         Ok(written)
@@ -313,6 +438,8 @@ struct Output {
     text: SourceText,
     /// Where it was read from (`None`: not read; written beside the model's file).
     disk: Option<PathBuf>,
+    /// What that file held when it was read.
+    read: Option<Fingerprint>,
 }
 
 impl Outputs {
@@ -355,6 +482,7 @@ fn outputs(model: &Model, with_assets: bool) -> Result<Outputs, SaveError> {
         own.push(Output {
             text: SourceText { path: file.rel.clone(), text, changed },
             disk: file.disk.clone(),
+            read: file.read,
         });
     }
     own.append(&mut out.texts);
@@ -367,32 +495,12 @@ fn outputs(model: &Model, with_assets: bool) -> Result<Outputs, SaveError> {
     Ok(out)
 }
 
-/// `rel` under `dir`, refused if it leads out of it.
-fn inside(dir: &Path, rel: &Path) -> Result<PathBuf, SaveError> {
-    let normal = PathBuf::from(crate::files::normalize(&rel.to_string_lossy()));
-    let leaves = normal.is_absolute()
-        || normal.components().any(|c| matches!(c, Component::ParentDir | Component::Prefix(_)));
-    if leaves {
-        return Err(SaveError::OutsideRoot(rel.to_path_buf()));
+/// The error for a write of the file layer that failed.
+fn fault(f: Fault) -> SaveError {
+    match f {
+        Fault::SymlinkedFolder(path) => SaveError::SymlinkedFolder(path),
+        Fault::Io(path, _, reason) => SaveError::Io { path, reason },
     }
-    Ok(dir.join(normal))
-}
-
-/// Writes `bytes` to `path` through a temporary file beside it, renamed over it, so
-/// that the file is never seen half written; the folder is made if missing.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), SaveError> {
-    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    let io = |e: std::io::Error| SaveError::Io { path: path.to_path_buf(), reason: e.to_string() };
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(io)?;
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let tmp = dir.join(format!(".{name}.{}-{n}.tmp", std::process::id()));
-    let res = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    if res.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    res.map_err(io)
 }
 
 /// The text of an attribute value as written, its entities and character

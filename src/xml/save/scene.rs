@@ -23,9 +23,13 @@
 //! - read from a file in the scene's folder (or below it), and the first value in
 //!   document order to claim that file: losslessly into its own files (its includes
 //!   and its own attachments too, recursively), at their paths;
-//! - otherwise (built in code, read from a string or from outside the folder, or a
-//!   second version of a file another value claimed, such as a copy edited with
-//!   `edit_attached` where another attachment shares the original): with the plain
+//! - read from a file outside the scene's folder and untouched (saving it would write
+//!   nothing): kept where it is, its asset `<model file=...>` as written; nothing is
+//!   written for it (not by a save into another folder, which takes every file);
+//! - otherwise (built in code, read from a string, edited after being read from
+//!   outside the folder (that file is never changed), or a second version of a file
+//!   another value claimed, such as a copy edited with `edit_attached` where another
+//!   attachment shares the original): with the plain
 //!   writer, as [`Model::save_scene`] writes a part (`xml::scene`), into a new file
 //!   named after the model (`robot.xml`, `robot_1.xml` if taken) beside the scene's
 //!   file, with the files it names (meshes with their hash, its own parts).
@@ -39,6 +43,7 @@ use smol_str::SmolStr;
 use super::tag::Tag;
 use super::{Output, Outputs, SaveError, SourceText, unescape};
 use crate::error::WriteError;
+use crate::files::write::{self, OnDisk};
 use crate::model::settings;
 use crate::model::source::Source;
 use crate::model::tree::{ElementId, Node};
@@ -77,11 +82,11 @@ enum Part {
 pub(super) fn spell(model: &Model, src: &Source, with_assets: bool) -> Result<Spelled, SaveError> {
     let lit = src.spelled();
     let folder = src.files.first().and_then(|f| f.disk.as_deref()).and_then(Path::parent);
-    let folder = folder.map(canonical);
+    let folder = folder.map(crate::files::canonical);
     let values = distinct_values(model);
-    let parts = save_parts(&values, src, folder.as_deref(), with_assets)?;
     // The asset `<model>` of each value: the one read for its file, or a new one.
     let read_assets = read_asset_models(lit, src);
+    let parts = save_parts(&values, src, folder.as_deref(), &read_assets, with_assets)?;
     let mut used: HashSet<SmolStr> = HashSet::new();
     let mut reused: HashSet<ElementId> = HashSet::new();
     let mut new_assets: Vec<Node> = Vec::new();
@@ -149,12 +154,6 @@ fn conflict(what: &str) -> SaveError {
     SaveError::Write(WriteError::Conflict(what.to_string()))
 }
 
-/// `path` with its links and `..` resolved, as far as the file system knows it.
-fn canonical(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path)
-        .unwrap_or_else(|_| PathBuf::from(crate::files::normalize(&path.to_string_lossy())))
-}
-
 /// A file path's name without its extension (folders kept, `/`-separated) and its
 /// extension with the dot.
 fn split_name(rel: &Path) -> (String, String) {
@@ -186,6 +185,7 @@ fn save_parts(
     values: &[&Model],
     src: &Source,
     folder: Option<&Path>,
+    read_assets: &HashMap<PathBuf, Node>,
     with_assets: bool,
 ) -> Result<Vec<Part>, SaveError> {
     // Every path of the scene's own files, and each claimed file, lower case (file
@@ -195,10 +195,21 @@ fn save_parts(
         src.files.iter().filter_map(|f| f.rel.as_deref()).map(key).collect();
     let mut parts: Vec<Option<Part>> = Vec::with_capacity(values.len());
     for v in values {
-        let rel = own_file(v, folder).filter(|rel| !taken.contains(&key(rel)));
-        match rel {
-            Some(rel) => {
-                let outputs = super::outputs(v, with_assets)?;
+        let own = own_file(v, folder);
+        let inside = own.clone().filter(|rel| !taken.contains(&key(rel)));
+        // Read from outside the folder: kept where it is while untouched (not for a
+        // save into another folder, which takes every file along).
+        let outside = || {
+            let kept = own.is_none() && !with_assets;
+            read_from(v, folder, read_assets).filter(|_| kept)
+        };
+        let Some(rel) = inside.clone().or_else(outside) else {
+            parts.push(None);
+            continue;
+        };
+        match super::outputs(v, with_assets)? {
+            outputs if inside.is_none() && !untouched(&outputs) => parts.push(None),
+            outputs => {
                 let at = rel.parent().map(Path::to_path_buf).unwrap_or_default();
                 for o in &outputs.texts {
                     if let Some(p) = &o.text.path {
@@ -208,7 +219,6 @@ fn save_parts(
                 taken.insert(key(&rel));
                 parts.push(Some(Part::Lossless { rel, outputs: outputs.under(&at) }));
             }
-            None => parts.push(None),
         }
     }
     // The others, named after their models in the names left.
@@ -227,9 +237,10 @@ fn save_parts(
             }
             let scene = v.to_scene(&name).map_err(SaveError::Write)?;
             let text = write_part(scene.root()).map_err(SaveError::Write)?;
-            // A file on disk that this save did not write before is not replaced.
-            let there = folder.map(|f| f.join(&name)).and_then(|p| std::fs::read(p).ok());
-            if there.is_some_and(|b| b != text.as_bytes()) {
+            // A file on disk with other bytes, that this process did not write, is
+            // not replaced.
+            let there = folder.map(|f| write::on_disk(&f.join(&name), text.as_bytes(), None));
+            if there == Some(OnDisk::Changed) {
                 continue;
             }
             let files: Vec<(String, Arc<[u8]>)> = scene
@@ -260,7 +271,24 @@ fn save_parts(
 fn own_file(v: &Model, folder: Option<&Path>) -> Option<PathBuf> {
     let src = v.source.as_deref()?;
     let disk = src.files.first()?.disk.as_deref()?;
-    canonical(disk).strip_prefix(folder?).ok().map(Path::to_path_buf)
+    crate::files::canonical(disk).strip_prefix(folder?).ok().map(Path::to_path_buf)
+}
+
+/// The path (as the scene's text writes it) of the asset `<model>` read for `v`'s
+/// main file, wherever that file lies, if there is one.
+fn read_from(
+    v: &Model,
+    folder: Option<&Path>,
+    read_assets: &HashMap<PathBuf, Node>,
+) -> Option<PathBuf> {
+    let disk = crate::files::canonical(v.source.as_deref()?.files.first()?.disk.as_deref()?);
+    let folder = folder?;
+    read_assets.keys().find(|p| crate::files::canonical(&folder.join(p)) == disk).cloned()
+}
+
+/// Whether saving a part writes nothing: each of its texts as read, no other file.
+fn untouched(outputs: &Outputs) -> bool {
+    outputs.texts.iter().all(|o| !o.text.changed && o.disk.is_some()) && outputs.files.is_empty()
 }
 
 /// The outputs of every part, in order.
@@ -274,6 +302,7 @@ fn gather(parts: Vec<Part>) -> Outputs {
                 out.texts.push(Output {
                     text: SourceText { path: Some(path), text, changed: true },
                     disk: None,
+                    read: None,
                 });
                 out.files.extend(files.into_iter().map(|(n, b)| (PathBuf::from(n), b)));
             }

@@ -145,10 +145,7 @@ fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model>
         };
         let Ok(text) = std::str::from_utf8(file.contents()) else { continue };
         let Ok((full, _)) = model.files.locate(None, path) else { continue };
-        let key = (
-            std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone()),
-            file.sha1_hex().to_string(),
-        );
+        let key = (crate::files::canonical(&full), file.sha1_hex().to_string());
         if let Some(part) = READ.with(|r| r.borrow().get(&key).cloned()) {
             parts.insert(node.id(), part);
             continue;
