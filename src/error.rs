@@ -286,8 +286,11 @@ pub enum ErrorKind {
         /// The other model's value.
         theirs: String,
     },
-    /// `attach` at an element that is neither a site nor a worldbody.
-    #[error("cannot attach at a <{0}>: only at a site or the worldbody")]
+    /// `attach` at an element that is neither a site nor a worldbody (`attach_in` at
+    /// one that is neither a body nor a `<frame>`, or at an attachment frame).
+    #[error(
+        "cannot attach at a <{0}>: attach takes a site or the worldbody, attach_in a body or a <frame>"
+    )]
     InvalidParent(&'static str),
     /// A scope path that names no attachment.
     #[error("no model is attached at scope '{}'{}", cut(.scope), attached_list(attached))]

@@ -16,13 +16,25 @@ use crate::schema::Role;
 use smol_str::SmolStr;
 use std::sync::Arc;
 
+/// Where an attachment frame goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Placement {
+    /// [`Model::attach`]: right after a site (placed as the site), or at the end of
+    /// the worldbody.
+    AtSite,
+    /// [`Model::attach_in`]: at the end of a body's or `<frame>`'s children.
+    Inside,
+}
+
 impl Model {
     /// Attaches `child` at `at`, a site (of this model or of a model attached to it) or
     /// a worldbody, and returns the new model and a locator of the attachment frame.
+    /// ([`Model::attach_in`] attaches at a body or a MuJoCo `<frame>`.)
     ///
     /// The frame copies `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`, `euler` and
-    /// `user` from the site, and sits right after it (after frames attached there
-    /// before), or at the end of the worldbody. The child's names get the scope prefix
+    /// `user` from the site (placed where MuJoCo places the site), and sits right after
+    /// it (after frames attached there before), or at the end of the worldbody. The
+    /// child's names get the scope prefix
     /// `name/` when written, where `name` is the child's model name, or `name_1`,
     /// `name_2`, ... if the model that receives it already has an attachment of that
     /// name, or a literal name read from MJCF that starts with `name/` (a composed
@@ -38,7 +50,8 @@ impl Model {
     ///
     /// # Errors
     /// Leaving `self` unchanged:
-    /// - [`ErrorKind::InvalidParent`]: `at` is neither a site nor a worldbody;
+    /// - [`ErrorKind::InvalidParent`]: `at` is neither a site nor a worldbody (as
+    ///   dm_control refuses; [`Model::attach_in`] takes a body or `<frame>`);
     /// - [`ErrorKind::StaleLocator`]: `at` is not in this model;
     /// - [`ErrorKind::InvalidValue`] (with [`ValueError::SlashInIdentifier`]): the
     ///   child's model name holds a `/`;
@@ -87,7 +100,72 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn attach_mut(&mut self, at: &Loc, child: &Model) -> Result<Attachment, EditError> {
-        self.attach_named_mut(at, child, child.name())
+        self.attach_named_mut(at, child, child.name(), Placement::AtSite)
+    }
+
+    /// Attaches `child` inside `at`, a body (the worldbody too) or a MuJoCo `<frame>`
+    /// of this model or of a model attached to it, as MjSpec attaches at a body or
+    /// frame: the attachment frame is `at`'s last child, with no pose of its own, so
+    /// the child's top level is placed in `at`'s coordinates. Scopes, merging,
+    /// detach and `==` are [`Model::attach`]'s; the frame is written as
+    /// [`Model::attach`]'s are (a body named with the scope, or a MuJoCo `<frame>`).
+    /// A child whose top-level bodies are free, attached inside a body other than the
+    /// worldbody, is what MuJoCo refuses ("free joint can only be used on top
+    /// level"): [`Model::check`] reports it.
+    ///
+    /// Time: as [`Model::attach`].
+    ///
+    /// # Errors
+    /// As [`Model::attach`]; [`ErrorKind::InvalidParent`] when `at` is neither a body
+    /// nor a `<frame>`, or is an attachment frame (attach inside its parent, or at a
+    /// body of its model).
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, Namespace, element};
+    /// let mut table = Model::new("table");
+    /// let top = table.add_mut(&table.worldbody(), element!("body", name = "top", pos = [0.0, 0.0, 0.8]))?;
+    /// let mut arm = Model::new("arm");
+    /// arm.add_mut(&arm.worldbody(), element!("body", name = "base"))?;
+    /// let (scene, a) = table.attach_in(&top, &arm)?; // no site needed
+    /// assert!(scene.find(Namespace::Body, "arm/base").is_some());
+    /// assert_eq!(scene.element(a.frame()).and_then(|f| f.parent()).map(|p| p.loc()), Some(top));
+    /// assert_eq!(scene.detach(&a)?, table);
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn attach_in(&self, at: &Loc, child: &Model) -> Result<(Model, Attachment), EditError> {
+        let mut new = self.clone();
+        let a = new.attach_in_mut(at, child)?;
+        Ok((new, a))
+    }
+
+    /// [`Model::attach_in`] in place: returns the attachment (its frame and scope).
+    ///
+    /// Time: as [`Model::attach`].
+    ///
+    /// # Errors
+    /// As [`Model::attach_in`]; `self` is unchanged on error.
+    pub fn attach_in_mut(&mut self, at: &Loc, child: &Model) -> Result<Attachment, EditError> {
+        self.attach_named_mut(at, child, child.name(), Placement::Inside)
+    }
+
+    /// [`Model::attach_in`] under a scope name of the caller's choice, as
+    /// [`Model::attach_as`] (MjSpec's `body.attach_frame(..., prefix="gripper/")`).
+    ///
+    /// Time: as [`Model::attach`].
+    ///
+    /// # Errors
+    /// As [`Model::attach_in`] and [`Model::attach_as`].
+    pub fn attach_in_as(
+        &self,
+        at: &Loc,
+        child: &Model,
+        scope: &str,
+    ) -> Result<(Model, Attachment), EditError> {
+        let mut new = self.clone();
+        new.check_scope_name(scope)?;
+        let a = new.attach_named_mut(at, child, scope, Placement::Inside)?;
+        Ok((new, a))
     }
 
     /// [`Model::attach`] under a scope name of the caller's choice instead of the
@@ -139,6 +217,13 @@ impl Model {
         child: &Model,
         scope: &str,
     ) -> Result<Attachment, EditError> {
+        self.check_scope_name(scope)?;
+        self.attach_named_mut(at, child, scope, Placement::AtSite)
+    }
+
+    /// Refuses a scope name given by the caller that is empty, holds a `/` or a
+    /// character XML cannot hold.
+    fn check_scope_name(&self, scope: &str) -> Result<(), EditError> {
         if scope.is_empty() {
             return Err(EditError::new(
                 ErrorKind::InvalidValue {
@@ -150,26 +235,27 @@ impl Model {
                 String::new(),
             ));
         }
-        crate::model::check_model_name(scope).map_err(|k| EditError::new(k, String::new()))?;
-        self.attach_named_mut(at, child, scope)
+        crate::model::check_model_name(scope).map_err(|k| EditError::new(k, String::new()))
     }
 
-    /// [`Model::attach_mut`] with the scope's base name given (`base`, `base_1`, ...).
+    /// [`Model::attach_mut`] with the scope's base name given (`base`, `base_1`, ...),
+    /// placed as `placement` says.
     fn attach_named_mut(
         &mut self,
         at: &Loc,
         child: &Model,
         base: &str,
+        placement: Placement,
     ) -> Result<Attachment, EditError> {
         if at.scope().is_empty() {
             // In place: every check comes first, then the edit copies only what other
             // versions share (nothing, when `self` owns the path alone).
-            let (frame, scope) = self.attach_here(at, child, base)?;
+            let (frame, scope) = self.attach_here(at, child, base, placement)?;
             return Ok(Attachment::new(self.scoped_loc(&[], frame), scope));
         }
         let (new, frame) = self.in_scope(at.scope(), |m: &Model| {
             let mut m = m.clone();
-            let (frame, _) = m.attach_here(at, child, base)?;
+            let (frame, _) = m.attach_here(at, child, base, placement)?;
             Ok((m, frame))
         })?;
         settings::check(&new).map_err(|k| EditError::new(k, String::new()))?;
@@ -197,6 +283,7 @@ impl Model {
         at: &Loc,
         child: &Model,
         base: &str,
+        placement: Placement,
     ) -> Result<(ElementId, SmolStr), EditError> {
         let path = self.path_of(at.id()).ok_or_else(|| self.stale(at))?;
         let err = |k: ErrorKind| EditError::new(k, self.describe(&path));
@@ -211,12 +298,21 @@ impl Model {
         }
         let tag = node.kind().tag();
         let (parent_path, parent, position, body_kind, attrs) = match node.kind().role() {
+            // At the end of the worldbody's (or body's, or frame's) children, in its
+            // coordinates.
+            Some(Role::Body | Role::Frame)
+                if placement == Placement::Inside && node.attached().is_none() =>
+            {
+                let kind =
+                    node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                (path.clone(), node, node.children().len(), kind, Vec::new())
+            }
             Some(Role::Worldbody) => {
                 let kind =
                     node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 (path.clone(), node, node.children().len(), kind, Vec::new())
             }
-            Some(Role::Site) if !path.is_empty() => {
+            Some(Role::Site) if placement == Placement::AtSite && !path.is_empty() => {
                 let (last, parent_path) =
                     path.split_last().map(|(l, p)| (*l, p.to_vec())).unwrap_or_default();
                 let parent = self.node_at(&parent_path).ok_or_else(|| err(ErrorKind::NotFound))?;
