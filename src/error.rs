@@ -300,6 +300,13 @@ pub enum ErrorKind {
         /// The scopes attached where the search stopped (nearest first, then the rest).
         attached: Vec<SmolStr>,
     },
+    /// A removal refused because elements refer to what it would remove
+    /// ([`Model::remove_with`](crate::Model::remove_with) with `Referrers::Refuse`).
+    #[error("cannot remove: referred to by {}; remove them first, or cascade (Referrers::Cascade)", .by.join(", "))]
+    Referenced {
+        /// Each referring element and attribute (`m: joint`).
+        by: Vec<String>,
+    },
     /// A removal that would take attached content with it.
     #[error("removing this element affects attached models; remove with attachments explicitly")]
     AffectsAttachments,

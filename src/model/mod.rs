@@ -6,6 +6,7 @@
 
 mod arrays;
 mod build;
+mod cascade;
 pub(crate) mod check;
 mod cursor;
 pub(crate) mod defaults;
@@ -44,6 +45,7 @@ pub(crate) use build::{
     Basepaths, Input, ModelFiles, ValueCtx, check_class_named, check_required, empty_node,
     empty_node_with_id, name_from_file,
 };
+pub use cascade::{Referrers, Removal};
 pub use check::{Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
