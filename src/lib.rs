@@ -84,6 +84,7 @@ mod value;
 mod write_options;
 mod xml;
 
+pub use crate::compose::Part;
 pub use crate::error::{
     EditError, Error, ErrorKind, ExportError, ReadError, TextPos, ValueError, WriteError,
 };

@@ -3,3 +3,6 @@
 
 mod attach;
 mod include;
+mod part;
+
+pub use part::Part;
