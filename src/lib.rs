@@ -122,6 +122,8 @@ pub use crate::xml::{
 /// let a = element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1);
 /// let b = Element::new("geom").attr("type", "box").attr("size", [0.1, 0.1, 0.1]).attr("mass", 1);
 /// assert_eq!(a, b);
+/// // Keywords are bare words; a raw identifier is the same name.
+/// assert_eq!(element!("joint", ref = 0.5), element!("joint", r#ref = 0.5));
 /// // Integers and floats mixed in one list, as Python's `[2, 2, .1]`:
 /// let (x, i) = (0.5_f32, 3_u32);
 /// let c = element!("camera", xyaxes = [0, 1, 0, -0.5, x, i], pos = [2, 2, 0.1]);
@@ -167,13 +169,20 @@ macro_rules! __assign {
     // and floats mix. Any other value (`[0.1; 3]`, a variable, text) is the next arm's.
     ($method:ident; $target:expr; $name:tt = [$($item:expr),* $(,)?] $(, $($rest:tt)*)?) => {
         $crate::__assign!($method; $target.$method(
-            stringify!($name),
+            $crate::__name(stringify!($name)),
             [$(<::core::primitive::f64 as ::core::convert::From<_>>::from($item)),*],
         ); $($($rest)*)?)
     };
     ($method:ident; $target:expr; $name:tt = $value:expr $(, $($rest:tt)*)?) => {
-        $crate::__assign!($method; $target.$method(stringify!($name), $value); $($($rest)*)?)
+        $crate::__assign!($method; $target.$method($crate::__name(stringify!($name)), $value); $($($rest)*)?)
     };
+}
+
+/// An attribute name as [`element!`] and [`attrs!`] are given it: a raw identifier
+/// (`r#ref`, `r#type`) is the name without its `r#`.
+#[doc(hidden)]
+pub fn __name(written: &'static str) -> &'static str {
+    written.strip_prefix("r#").unwrap_or(written)
 }
 
 #[cfg(doctest)]

@@ -8,6 +8,7 @@
 
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
+use crate::model::follow;
 use crate::model::frame::placed_frame_attrs;
 use crate::model::settings;
 use crate::model::tree::{Attached, ElementId, Node};
@@ -403,12 +404,15 @@ impl Model {
             let node = m.node_at(&path).ok_or_else(missing)?;
             let mut index = m.index.clone();
             index.remove_subtree(node);
+            // The frame's own joints leave the model's keys (`model::follow`).
+            let follow = follow::has_keys(m) && follow::moves_layout(node);
             let root = m.root.update_path(parent_path, |p| {
                 let mut children = p.children().clone();
                 children.remove(*pos);
                 Ok::<_, EditError>(p.with_children(children))
             })?;
-            Ok((m.next(root, index), ()))
+            let out = m.next(root, index);
+            Ok((if follow { m.keys_followed(out) } else { out }, ()))
         })?;
         Ok(m)
     }

@@ -13,6 +13,7 @@ use crate::schema::{AttrType, Multiplicity};
 use crate::value::{AttrInput, Value};
 
 use super::build::{self, Input, ModelFiles, ValueCtx, apply_attrs, check_class_named, empty_node};
+use super::follow;
 use super::frame::{check_frame_child, frame_settable};
 use super::settings::is_settings_section;
 use super::tree::{ElementId, Node};
@@ -215,6 +216,9 @@ impl Model {
         };
         let parent_id = parent_node.id();
         let id = node.id();
+        // Keys follow a new joint, actuator or mocap body (`follow`): the model before
+        // the edit (an O(1) clone) for the layout to follow from.
+        let before = (follow::has_keys(self) && follow::moves_layout(&node)).then(|| self.clone());
         // The index is filled first (with the slot the insert will give), so that a
         // duplicate name leaves the tree untouched.
         let (ord, _) = children.slot_at_insert(position);
@@ -241,6 +245,9 @@ impl Model {
             return Err(self.stale(loc));
         };
         parent.children.insert(position, node);
+        if let Some(before) = before {
+            *self = before.keys_followed(self.clone());
+        }
         Ok(id)
     }
 
@@ -437,8 +444,10 @@ impl Model {
             }
             index.rename(node.id(), new_name.map(SmolStr::from));
         }
+        let follow = follow::has_keys(self) && follow::moves_layout(node);
         let root = self.root.update_path(&path, |_| Ok::<_, EditError>(new_node))?;
-        Ok(self.next(root, index))
+        let out = self.next(root, index);
+        Ok(if follow { self.keys_followed(out) } else { out })
     }
 
     /// Removes the element at `loc` with its subtree. A singleton (such as `option`)
@@ -554,7 +563,9 @@ impl Model {
                 Ok::<_, EditError>(p.with_children(children))
             })?
         };
-        Ok(self.next(root, index))
+        let out = self.next(root, index);
+        let follow = follow::has_keys(self) && follow::moves_layout(&node);
+        Ok(if follow { self.keys_followed(out) } else { out })
     }
 
     /// [`Model::with_name`] in place.

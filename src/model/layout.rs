@@ -154,6 +154,17 @@ pub struct Layout<'a> {
     pub(crate) origins: HashMap<usize, Pose>,
 }
 
+impl LayoutJoint {
+    /// Whether the joint is the model's own (of its own tree, an attachment frame's
+    /// joints included), not of a model attached to it: the joints its own keys
+    /// hold values for.
+    ///
+    /// Time: O(1).
+    pub fn is_own(&self) -> bool {
+        self.inst == 0
+    }
+}
+
 impl Layout<'_> {
     /// The pose of instance `inst`'s world in the composed world.
     pub(crate) fn origin(&self, inst: usize) -> Pose {

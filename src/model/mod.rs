@@ -14,6 +14,7 @@ pub(crate) mod diff;
 mod edit;
 mod elems;
 mod eq;
+pub(crate) mod follow;
 pub(crate) mod frame;
 mod index;
 pub(crate) mod keys;
