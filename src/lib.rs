@@ -92,7 +92,7 @@ pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
     Attachment, Attrs, Element, ElementRef, Event, JointType, Layout, LayoutActuator, LayoutJoint,
-    LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind, ScopeRef,
+    LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind, ScopeRef, Advice, AdviceKind,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

@@ -189,6 +189,61 @@ impl Model {
         self.attach(&self.worldbody(), child)
     }
 
+    /// [`Model::attach`] of `child` [`welded`](Model::welded): its top-level bodies
+    /// lose their free joints, so they are fixed to the body that holds the site
+    /// instead of floating. MuJoCo accepts a free joint only on a body whose parent
+    /// is the world ("free joint can only be used on top level"), so attaching a
+    /// model with free bodies at a site inside a body is refused by MuJoCo and
+    /// reported by [`Model::check`] ([`ProblemKind::FreeJointNotTopLevel`](crate::ProblemKind));
+    /// this is the remedy, a gripper on an arm, say. At a site of the world it is
+    /// the same as attaching the welded model.
+    ///
+    /// Time: as [`Model::attach`], plus [`Model::welded`].
+    ///
+    /// # Errors
+    /// As [`Model::attach`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut arm = Model::new("arm");
+    /// let link = arm.add_mut(&arm.worldbody(), element!("body", name = "link"))?;
+    /// arm.add_mut(&link, element!("joint", name = "shoulder"))?;
+    /// arm.add_mut(&link, element!("geom", size = [0.1]))?;
+    /// let tip = arm.add_mut(&link, element!("site", name = "tip"))?;
+    /// let mut ball = Model::new("ball");
+    /// let b = ball.add_mut(&ball.worldbody(), element!("body", name = "b"))?;
+    /// ball.add_mut(&b, element!("freejoint"))?;
+    /// ball.add_mut(&b, element!("geom", size = [0.1]))?;
+    /// assert!(!arm.attach(&tip, &ball)?.0.check().is_empty()); // MuJoCo refuses it
+    /// let (held, _) = arm.attach_welded(&tip, &ball)?;
+    /// assert!(held.check().is_empty());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn attach_welded(&self, at: &Loc, child: &Model) -> Result<(Model, Attachment), EditError> {
+        self.attach(at, &child.welded()?)
+    }
+
+    /// The model without the free joints of its top-level bodies (through `<frame>`s,
+    /// `<replicate>`s and attachments that keep them top level): what
+    /// [`Model::attach_welded`] attaches. Every other element stays, and references
+    /// to a removed joint are cleared as [`Model::remove`] clears them; a key keeps
+    /// its values (the joint's 7 positions included), which [`Model::check`] then
+    /// reports as longer than the model.
+    ///
+    /// Time: O(N) for a composed model of N elements, plus one [`Model::remove`] per
+    /// free joint.
+    ///
+    /// # Errors
+    /// As [`Model::remove`] (not expected: every joint removed was just found).
+    pub fn welded(&self) -> Result<Model, EditError> {
+        let mut out = self.clone();
+        for joint in crate::model::check::top_level_free_joints(self) {
+            out.remove_mut(&joint)?;
+        }
+        Ok(out)
+    }
+
     /// Attaches `child` at `at`, an element of this model's own tree, in place;
     /// returns the frame's id and the scope name. Every check (and the settings fold,
     /// which can fail) comes before the first change, so on error `self` is unchanged.

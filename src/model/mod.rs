@@ -44,7 +44,7 @@ pub(crate) use build::{
     Basepaths, Input, ModelFiles, ValueCtx, check_class_named, check_required, empty_node,
     empty_node_with_id, name_from_file,
 };
-pub use check::{Problem, ProblemKind};
+pub use check::{Advice, AdviceKind, Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;

@@ -1,0 +1,85 @@
+//! Rule *a free joint only on a top-level body* ([`ProblemKind::FreeJointNotTopLevel`]).
+
+use crate::model::layout::{JointType, joint_type};
+use crate::schema::Role;
+
+use super::ProblemKind;
+use super::walk::{Event, Rule};
+
+/// A free joint (`<freejoint>`, or `<joint type="free">` by its own type or its
+/// classes') on a body whose parent, once composed, is a body rather than the world:
+/// MuJoCo refuses it ("free joint can only be used on top level"). `<frame>`s and
+/// `<replicate>`s between the body and the world are transparent, and so is an
+/// attachment frame written as MuJoCo's `<frame>`; one written as a body is a body.
+/// Attaching a model with free top-level bodies at a site inside a body makes this.
+#[derive(Default)]
+pub(super) struct FreeJointNotTopLevel;
+
+impl<'m> Rule<'m> for FreeJointNotTopLevel {
+    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+        if e.is_body
+            || e.body.world
+            || e.body.top_level
+            || !matches!(e.node.kind().role(), Some(Role::Joint | Role::Freejoint))
+        {
+            return;
+        }
+        if joint_type(e.model, e.node, e.class) == JointType::Free {
+            out.push(ProblemKind::FreeJointNotTopLevel);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Model;
+    use crate::model::check::tests::kinds_of;
+
+    /// Shapes checked against MuJoCo 4.0.0 (it refuses exactly the `true` ones).
+    #[test]
+    fn a_free_joint_is_refused_below_a_body_and_accepted_at_the_world_s_top_level() {
+        let cases = [
+            (r#"<body><geom size="1"/><body><freejoint/><geom size="1"/></body></body>"#, true),
+            (r#"<body><frame><body><joint type="free"/><geom size="1"/></body></frame></body>"#, true),
+            (r#"<frame><body><freejoint/><geom size="1"/></body></frame>"#, false),
+            (
+                r#"<replicate count="2" offset="1 0 0"><body><freejoint/><geom size="1"/></body></replicate>"#,
+                false,
+            ),
+            (r#"<body><freejoint/><geom size="1"/></body>"#, false),
+        ];
+        for (body, refused) in cases {
+            let m = Model::from_xml_str(&format!("<mujoco><worldbody>{body}</worldbody></mujoco>"))
+                .unwrap();
+            let expected = if refused { vec![ProblemKind::FreeJointNotTopLevel] } else { vec![] };
+            assert_eq!(kinds_of(&m, FreeJointNotTopLevel), expected, "{body}");
+        }
+        let by_class = r#"<mujoco><default><joint type="free"/></default><worldbody>
+            <body><geom size="1"/><body><joint/><geom size="1"/></body></body></worldbody></mujoco>"#;
+        let m = Model::from_xml_str(by_class).unwrap();
+        assert_eq!(kinds_of(&m, FreeJointNotTopLevel), [ProblemKind::FreeJointNotTopLevel]);
+    }
+}
+
+/// The free joints on the world's top-level bodies of `model` (through `<frame>`s,
+/// `<replicate>`s and attachment frames written as `<frame>`): those that would stop
+/// being top level if `model` were attached below a body.
+pub(crate) fn top_level_free_joints(model: &crate::model::Model) -> Vec<crate::model::Loc> {
+    /// Flags every top-level free joint (a problem only to carry its locator out).
+    struct TopLevelFree;
+    impl<'m> Rule<'m> for TopLevelFree {
+        fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+            let joint = matches!(e.node.kind().role(), Some(Role::Joint | Role::Freejoint));
+            if !e.is_body
+                && joint
+                && e.body.top_level
+                && joint_type(e.model, e.node, e.class) == JointType::Free
+            {
+                out.push(ProblemKind::FreeJointNotTopLevel);
+            }
+        }
+    }
+    let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(TopLevelFree)];
+    super::walk::run(model, &mut rules).into_iter().map(|p| p.loc).collect()
+}
