@@ -1,7 +1,7 @@
 //! Reference checks before MuJoCo (`Model::check`), who refers to an element
 //! (`references_to`), and the names MuJoCo will see (`full_name`, `from_full_name`).
 
-use mjcf::{EditError, Model, Namespace, ProblemKind, WriteOptions, element};
+use mjcf::{AdviceKind, EditError, Model, Namespace, ProblemKind, WriteOptions, element};
 
 #[path = "support/robot.rs"]
 mod robot;
@@ -110,19 +110,24 @@ fn keys_are_held_to_the_model_they_will_be_written_for() -> Result<(), EditError
         let a = scene.attach_mut(&scene.worldbody(), &r)?;
         scene.add_mut(a.frame(), element!("freejoint"))?;
     }
-    // (The frames move without mass: the other problem found here.)
+    // MuJoCo compiles it, so check() says nothing of the keys (the frames move
+    // without mass: the one problem here); advice() says so, once per key, and what
+    // to do.
     let keys = |problems: Vec<mjcf::Problem>| -> Vec<mjcf::Problem> {
         problems
             .into_iter()
             .filter(|p| !matches!(p.kind, ProblemKind::MasslessMovingBody))
             .collect()
     };
-    let kinds: Vec<ProblemKind> = keys(scene.check()).into_iter().map(|p| p.kind).collect();
-    assert_eq!(kinds, [ProblemKind::UncomposedKey, ProblemKind::UncomposedKey]);
-    assert!(keys(scene.check())[0].to_string().contains("merge_keyframes"));
-    // Composed (merge_keyframes), each robot's key fits its robot.
+    assert_eq!(keys(scene.check()), vec![]);
+    let advice: Vec<AdviceKind> = scene.advice().into_iter().map(|a| a.kind).collect();
+    assert_eq!(advice, [AdviceKind::UncomposedKey, AdviceKind::UncomposedKey]);
+    assert!(scene.advice()[0].to_string().contains("merge_keyframes"));
+    // Composed (merge_keyframes), each robot's key fits its robot, and there is no
+    // advice.
     let merged = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
     assert_eq!(keys(scene.check_with(&merged)), vec![]);
+    assert_eq!(scene.advice_with(&merged), vec![]);
     // A key with more values than there is room for: MuJoCo refuses it.
     let long = r.set_attr(&r.find(Namespace::Key, "home").unwrap(), "qpos", [0.5, 0.1])?;
     let a = scene.attach(&scene.worldbody(), &long)?.0;

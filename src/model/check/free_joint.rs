@@ -41,7 +41,10 @@ mod tests {
     fn a_free_joint_is_refused_below_a_body_and_accepted_at_the_world_s_top_level() {
         let cases = [
             (r#"<body><geom size="1"/><body><freejoint/><geom size="1"/></body></body>"#, true),
-            (r#"<body><frame><body><joint type="free"/><geom size="1"/></body></frame></body>"#, true),
+            (
+                r#"<body><frame><body><joint type="free"/><geom size="1"/></body></frame></body>"#,
+                true,
+            ),
             (r#"<frame><body><freejoint/><geom size="1"/></body></frame>"#, false),
             (
                 r#"<replicate count="2" offset="1 0 0"><body><freejoint/><geom size="1"/></body></replicate>"#,

@@ -167,8 +167,8 @@ fn enter<'m>(
     parent: Option<&Open<'m>>,
 ) -> Open<'m> {
     let role = node.kind().role();
-    let (parent_world, parent_writer_world, parent_body) =
-        parent.map_or((false, false, BodyFacts::WORLD), |p| {
+    let (parent_world, parent_writer_world, parent_body) = parent
+        .map_or((false, false, BodyFacts::WORLD), |p| {
             (p.world_level, p.writer_world, p.event.body)
         });
     let attached = node.attached().is_some();
@@ -178,7 +178,8 @@ fn enter<'m>(
     let outermost_world = inst == 0 && role == Some(Role::Worldbody);
     let transparent = as_frame || matches!(role, Some(Role::Frame | Role::Replicate));
     let world_level = outermost_world || parent_world && transparent;
-    let writer_world = outermost_world || parent_writer_world && (as_frame || role == Some(Role::Frame));
+    let writer_world =
+        outermost_world || parent_writer_world && (as_frame || role == Some(Role::Frame));
     let body = if is_body {
         BodyFacts::child(&parent_body, parent_world, has_own_joints(node))
     } else {
