@@ -175,3 +175,103 @@ fn full_names_go_both_ways() -> Result<(), EditError> {
     assert_eq!(scene.from_full_name(Namespace::Geom, "robot_2//unnamed_geom_1"), None);
     Ok(())
 }
+
+/// An arm with a hinged link holding the site `tip`, a static post holding `top`,
+/// and a site `ground` in the world.
+fn arm() -> Result<Model, EditError> {
+    let mut arm = Model::new("arm");
+    let link = arm.add_mut(&arm.worldbody(), element!("body", name = "link"))?;
+    arm.add_mut(&link, element!("joint", name = "shoulder"))?;
+    arm.add_mut(&link, element!("geom", size = [0.1]))?;
+    arm.add_mut(&link, element!("site", name = "tip"))?;
+    let post = arm.add_mut(&arm.worldbody(), element!("body", name = "post"))?;
+    arm.add_mut(&post, element!("site", name = "top"))?;
+    arm.add_mut(&arm.worldbody(), element!("site", name = "ground"))?;
+    Ok(arm)
+}
+
+/// A model named `name` whose one top-level body `b` holds `extra` and a geom.
+fn floating(name: &str, extra: mjcf::Element, mocap: bool) -> Result<Model, EditError> {
+    let mut m = Model::new(name);
+    let body = if mocap {
+        element!("body", name = "b", mocap = "true")
+    } else {
+        element!("body", name = "b")
+    };
+    let b = m.add_mut(&m.worldbody(), body)?;
+    m.add_mut(&b, extra)?;
+    m.add_mut(&b, element!("geom", size = [0.1]))?;
+    Ok(m)
+}
+
+fn kinds(m: &Model) -> Vec<(String, ProblemKind)> {
+    m.check().into_iter().map(|p| (p.path, p.kind)).collect()
+}
+
+#[test]
+fn a_free_body_attached_inside_a_body_is_reported_and_attached_welded_is_not()
+-> Result<(), EditError> {
+    let arm = arm()?;
+    let site = |n: &str| arm.find(Namespace::Site, n).unwrap();
+    let ball = floating("ball", element!("freejoint"), false)?;
+    for at in ["tip", "top"] {
+        let (scene, _) = arm.attach(&site(at), &ball)?;
+        assert_eq!(
+            kinds(&scene),
+            [("ball//unnamed_joint_0".to_string(), ProblemKind::FreeJointNotTopLevel)],
+            "{at}"
+        );
+        let shown = scene.check()[0].to_string();
+        assert!(shown.contains("free joint can only be used on top level"), "{shown}");
+        assert!(shown.contains("attach_welded"), "{shown}");
+        let (welded, _) = arm.attach_welded(&site(at), &ball)?;
+        assert_eq!(kinds(&welded), [], "{at}");
+    }
+    // In the world the frame is written as MuJoCo's <frame>: the body stays top level.
+    assert_eq!(kinds(&arm.attach(&site("ground"), &ball)?.0), []);
+    // A free joint given to an attachment frame inside a body (`add` refuses a
+    // <freejoint> there; a joint of type free it takes): the frame is a body.
+    let (scene, a) = arm.attach(&site("tip"), &floating("box", element!("joint"), false)?)?;
+    let scene = scene.add(a.frame(), element!("joint", type = "free"))?.0;
+    assert!(
+        kinds(&scene).iter().any(|(_, k)| *k == ProblemKind::FreeJointNotTopLevel),
+        "{:?}",
+        kinds(&scene)
+    );
+    Ok(())
+}
+
+#[test]
+fn a_mocap_body_attached_anywhere_is_reported_and_attached_welded_is_a_plain_body()
+-> Result<(), EditError> {
+    let arm = arm()?;
+    let target = floating("target", element!("site", name = "s"), true)?;
+    for at in ["tip", "top", "ground"] {
+        let site = arm.find(Namespace::Site, at).unwrap();
+        let (scene, _) = arm.attach(&site, &target)?;
+        assert_eq!(
+            kinds(&scene),
+            [("target/b".to_string(), ProblemKind::MocapNotFixedChildOfWorld)],
+            "{at}"
+        );
+        let (welded, a) = arm.attach_welded(&site, &target)?;
+        assert_eq!(kinds(&welded), [], "{at}");
+        let b = welded.find(Namespace::Body, &format!("{}/b", a.scope())).unwrap();
+        assert_eq!(welded.get(&b)?.attr("mocap"), None);
+    }
+    Ok(())
+}
+
+#[test]
+fn a_plane_attached_inside_a_moving_body_is_reported() -> Result<(), EditError> {
+    let arm = arm()?;
+    let floor = floating("floor", element!("geom", type = "plane", size = [1.0, 1.0, 0.1]), false)?;
+    let at = |n: &str| arm.find(Namespace::Site, n).unwrap();
+    let (scene, _) = arm.attach(&at("tip"), &floor)?;
+    let found = scene.check();
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].kind, ProblemKind::PlaneInMovingBody);
+    assert!(found[0].to_string().contains("plane only allowed in static bodies"));
+    assert_eq!(kinds(&arm.attach(&at("top"), &floor)?.0), []);
+    Ok(())
+}

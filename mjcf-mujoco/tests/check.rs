@@ -242,3 +242,32 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
         disagreements[..disagreements.len().min(20)].join("\n")
     );
 }
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn models_attached_welded_inside_a_moving_body_compile_and_attached_plainly_are_refused() {
+    let mujoco = mujoco();
+    let arm = Model::from_xml_str(
+        r#"<mujoco model="arm"><worldbody><body name="link"><joint/><geom size="0.1"/>
+             <site name="tip"/></body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let tip = arm.find(mjcf::Namespace::Site, "tip").unwrap();
+    let ball = part(
+        "ball",
+        element!("body", name = "b")
+            .child(element!("freejoint"))
+            .child(element!("geom", size = [0.1])),
+    );
+    let target = part(
+        "target",
+        element!("body", name = "t", mocap = "true").child(element!("geom", size = [0.1])),
+    );
+    for child in [&ball, &target] {
+        let (plain, _) = arm.attach(&tip, child).unwrap();
+        assert!(refused(&mujoco, &plain).unwrap() && !plain.check().is_empty(), "{}", child.name());
+        let (welded, _) = arm.attach_welded(&tip, child).unwrap();
+        assert!(!refused(&mujoco, &welded).unwrap(), "{} welded", child.name());
+        assert!(welded.check().is_empty(), "{} welded", child.name());
+    }
+}

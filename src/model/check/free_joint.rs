@@ -65,24 +65,33 @@ mod tests {
     }
 }
 
-/// The free joints on the world's top-level bodies of `model` (through `<frame>`s,
-/// `<replicate>`s and attachment frames written as `<frame>`): those that would stop
-/// being top level if `model` were attached below a body.
-pub(crate) fn top_level_free_joints(model: &crate::model::Model) -> Vec<crate::model::Loc> {
-    /// Flags every top-level free joint (a problem only to carry its locator out).
-    struct TopLevelFree;
-    impl<'m> Rule<'m> for TopLevelFree {
+/// What floats at the world's top level of `model` (through `<frame>`s,
+/// `<replicate>`s and attachment frames written as `<frame>`): its free joints and
+/// its mocap bodies (`true` for a mocap body), which MuJoCo refuses once `model` is
+/// attached below a body.
+pub(crate) fn top_level_floating(model: &crate::model::Model) -> Vec<(crate::model::Loc, bool)> {
+    /// Flags every top-level free joint and mocap body (a problem only to carry its
+    /// locator out).
+    struct Floating;
+    impl<'m> Rule<'m> for Floating {
         fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
-            let joint = matches!(e.node.kind().role(), Some(Role::Joint | Role::Freejoint));
-            if !e.is_body
-                && joint
-                && e.body.top_level
+            if !e.body.top_level {
+                return;
+            }
+            let role = e.node.kind().role();
+            if e.is_body {
+                let mocap = crate::model::layout::effective(e.model, e.node, e.class, "mocap");
+                if mocap.and_then(crate::value::Value::as_str) == Some("true") {
+                    out.push(ProblemKind::MocapNotFixedChildOfWorld);
+                }
+            } else if matches!(role, Some(Role::Joint | Role::Freejoint))
                 && joint_type(e.model, e.node, e.class) == JointType::Free
             {
                 out.push(ProblemKind::FreeJointNotTopLevel);
             }
         }
     }
-    let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(TopLevelFree)];
-    super::walk::run(model, &mut rules).into_iter().map(|p| p.loc).collect()
+    let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(Floating)];
+    let found = super::walk::run(model, &mut rules).into_iter();
+    found.map(|p| (p.loc, p.kind == ProblemKind::MocapNotFixedChildOfWorld)).collect()
 }

@@ -26,7 +26,7 @@ mod advice;
 mod arrays;
 mod dofs;
 mod free_joint;
-pub(crate) use free_joint::top_level_free_joints;
+pub(crate) use free_joint::top_level_floating;
 mod key_length;
 mod massless;
 mod mocap;
@@ -126,7 +126,7 @@ pub enum ProblemKind {
     /// `<replicate>`s and attachment frames written as `<frame>` are transparent).
     /// MuJoCo refuses it ("free joint can only be used on top level"). Attaching a
     /// model with free top-level bodies at a site inside a body makes it; attach with
-    /// [`Model::attach_welded`] instead, or move the site to the world.
+    /// [`Model::attach_welded`] instead, or at a site of the world.
     FreeJointNotTopLevel,
     /// A plane geom (its own `type` or its classes') in a body that moves or is below
     /// a moving body. MuJoCo refuses it ("plane only allowed in static bodies");
@@ -135,7 +135,8 @@ pub enum ProblemKind {
     /// A mocap body whose parent is a body once composed, or that has joints. MuJoCo
     /// refuses it ("mocap body '…' is not a fixed child of world"). An attachment
     /// frame written as a body is a body: a model with mocap top-level bodies attached
-    /// anywhere makes it unless its frame is written as MuJoCo's `<frame>`.
+    /// anywhere makes it unless its frame is written as MuJoCo's `<frame>`; attach it
+    /// with [`Model::attach_welded`], which makes them plain bodies.
     MocapNotFixedChildOfWorld,
     /// An array shorter than MuJoCo accepts (`pos="1 2"`: MuJoCo refuses it, "does not
     /// have enough data"); the minimums are MuJoCo's, probed from MuJoCo 4.0.0.
