@@ -30,6 +30,37 @@ impl<'m> Rule<'m> for FreeJointNotTopLevel {
     }
 }
 
+/// What floats at the world's top level of `model` (through `<frame>`s,
+/// `<replicate>`s and attachment frames written as `<frame>`): its free joints and
+/// its mocap bodies (`true` for a mocap body), which MuJoCo refuses once `model` is
+/// attached below a body.
+pub(crate) fn top_level_floating(model: &crate::model::Model) -> Vec<(crate::model::Loc, bool)> {
+    /// Flags every top-level free joint and mocap body (a problem only to carry its
+    /// locator out).
+    struct Floating;
+    impl<'m> Rule<'m> for Floating {
+        fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+            if !e.body.top_level {
+                return;
+            }
+            let role = e.node.kind().role();
+            if e.is_body {
+                let mocap = crate::model::layout::effective(e.model, e.node, e.class, "mocap");
+                if mocap.and_then(crate::value::Value::as_str) == Some("true") {
+                    out.push(ProblemKind::MocapNotFixedChildOfWorld);
+                }
+            } else if matches!(role, Some(Role::Joint | Role::Freejoint))
+                && joint_type(e.model, e.node, e.class) == JointType::Free
+            {
+                out.push(ProblemKind::FreeJointNotTopLevel);
+            }
+        }
+    }
+    let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(Floating)];
+    let found = super::walk::run(model, &mut rules).into_iter();
+    found.map(|p| (p.loc, p.kind == ProblemKind::MocapNotFixedChildOfWorld)).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,35 +94,23 @@ mod tests {
         let m = Model::from_xml_str(by_class).unwrap();
         assert_eq!(kinds_of(&m, FreeJointNotTopLevel), [ProblemKind::FreeJointNotTopLevel]);
     }
-}
 
-/// What floats at the world's top level of `model` (through `<frame>`s,
-/// `<replicate>`s and attachment frames written as `<frame>`): its free joints and
-/// its mocap bodies (`true` for a mocap body), which MuJoCo refuses once `model` is
-/// attached below a body.
-pub(crate) fn top_level_floating(model: &crate::model::Model) -> Vec<(crate::model::Loc, bool)> {
-    /// Flags every top-level free joint and mocap body (a problem only to carry its
-    /// locator out).
-    struct Floating;
-    impl<'m> Rule<'m> for Floating {
-        fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
-            if !e.body.top_level {
-                return;
-            }
-            let role = e.node.kind().role();
-            if e.is_body {
-                let mocap = crate::model::layout::effective(e.model, e.node, e.class, "mocap");
-                if mocap.and_then(crate::value::Value::as_str) == Some("true") {
-                    out.push(ProblemKind::MocapNotFixedChildOfWorld);
-                }
-            } else if matches!(role, Some(Role::Joint | Role::Freejoint))
-                && joint_type(e.model, e.node, e.class) == JointType::Free
-            {
-                out.push(ProblemKind::FreeJointNotTopLevel);
-            }
-        }
+    #[test]
+    fn what_floats_is_the_top_level_free_joints_and_mocap_bodies() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <body name="a"><freejoint name="fa"/><geom size="1"/>
+                   <body><freejoint name="deep"/><geom size="1"/></body></body>
+                 <frame><body name="b"><joint name="fb" type="free"/><geom size="1"/></body></frame>
+                 <body name="m" mocap="true"><geom size="1"/></body>
+               </worldbody></mujoco>"#,
+        )
+        .unwrap();
+        let found: Vec<(String, bool)> = top_level_floating(&m)
+            .into_iter()
+            .map(|(loc, mocap)| (m.full_name(&loc).unwrap(), mocap))
+            .collect();
+        let expected = [("fa", false), ("fb", false), ("m", true)];
+        assert_eq!(found, expected.map(|(n, b)| (n.to_string(), b)));
     }
-    let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(Floating)];
-    let found = super::walk::run(model, &mut rules).into_iter();
-    found.map(|p| (p.loc, p.kind == ProblemKind::MocapNotFixedChildOfWorld)).collect()
 }

@@ -8,11 +8,11 @@
 use std::collections::HashSet;
 
 use crate::model::cursor::{Step, Walk};
+use crate::model::frame::frame_keeps_bodies_top_level;
 use crate::model::layout::ClassesInForce;
 use crate::model::tree::{ElementId, Node};
 use crate::model::{Loc, Model};
 use crate::schema::Role;
-use crate::xml::frame_keeps_bodies_top_level;
 
 use super::{Problem, ProblemKind, problem_path};
 
