@@ -154,6 +154,29 @@ fn composed_mutants(m: &Model) -> Vec<(String, Model)> {
             }
         }
     }
+    // Attachment frames are bodies: a mocap flag or joints given to one.
+    let empty =
+        part("mutant_empty", element!("body", name = "e").child(element!("geom", size = [0.1])));
+    for (place, site) in
+        [("a moving body", "mutant_moving_site"), ("the world", "mutant_world_site")]
+    {
+        let Ok((v, a)) = m.attach(&at(site), &empty) else { continue };
+        if let Ok(v) = v.set_attr(a.frame(), "mocap", "true") {
+            out.push((format!("a mocap attachment frame at a site of {place}"), v));
+        }
+        let ball_hinge = v
+            .add(a.frame(), element!("joint", type = "ball"))
+            .and_then(|(v, _)| v.add(a.frame(), element!("joint")));
+        if let Ok((v, _)) = ball_hinge {
+            out.push((
+                format!("a ball then a hinge on an attachment frame at a site of {place}"),
+                v,
+            ));
+        }
+        if let Ok((v, _)) = v.add(a.frame(), element!("joint", type = "free")) {
+            out.push((format!("a free joint on an attachment frame at a site of {place}"), v));
+        }
+    }
     // The same shapes written directly.
     let plane_in =
         |body: mjcf::Element| body.child(element!("geom", type = "plane", size = [1.0, 1.0, 0.1]));
@@ -219,6 +242,9 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
                     ProblemKind::MocapNotFixedChildOfWorld => {
                         "mocap body not a fixed child of world"
                     }
+                    ProblemKind::RotationAfterBall => "rotation after a ball joint",
+                    ProblemKind::TooManyDofs { .. } => "too many dofs",
+                    ProblemKind::KeyLength { .. } => "key too long",
                     _ => "other",
                 };
                 *by_kind.entry(kind).or_default() += 1;
