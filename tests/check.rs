@@ -254,6 +254,7 @@ fn a_mocap_body_attached_anywhere_is_reported_and_attached_welded_is_a_plain_bod
             [("target/b".to_string(), ProblemKind::MocapNotFixedChildOfWorld)],
             "{at}"
         );
+        assert!(scene.check()[0].to_string().contains("is not a fixed child of world"));
         let (welded, a) = arm.attach_welded(&site, &target)?;
         assert_eq!(kinds(&welded), [], "{at}");
         let b = welded.find(Namespace::Body, &format!("{}/b", a.scope())).unwrap();

@@ -297,3 +297,34 @@ fn models_attached_welded_inside_a_moving_body_compile_and_attached_plainly_are_
         assert!(welded.check().is_empty(), "{} welded", child.name());
     }
 }
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn check_agrees_with_mujoco_on_free_bodies_attached_inside_frames_and_replicates() {
+    let mujoco = mujoco();
+    let arena = Model::from_xml_str(
+        r#"<mujoco model="arena"><worldbody>
+             <frame pos="1 0 0"><site name="in_frame"/></frame>
+             <replicate count="2" offset="1 0 0"><site name="in_replicate"/></replicate>
+             <body name="post"><frame><site name="in_body_frame"/></frame></body>
+           </worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let ball = part(
+        "ball",
+        element!("body", name = "b")
+            .child(element!("freejoint"))
+            .child(element!("geom", size = [0.1])),
+    );
+    let mut verdicts = Vec::new();
+    for site in ["in_frame", "in_replicate", "in_body_frame"] {
+        let at = arena.find(mjcf::Namespace::Site, site).unwrap();
+        let (scene, _) = arena.attach(&at, &ball).unwrap();
+        let refuses = refused(&mujoco, &scene).unwrap();
+        assert_eq!(!scene.check().is_empty(), refuses, "{site}: {:?}", scene.check());
+        verdicts.push((site, refuses));
+    }
+    // MuJoCo 4.0.0's verdicts: a world <frame> keeps the body top level; the writer
+    // writes an attachment frame inside a <replicate> or a body as a body.
+    assert_eq!(verdicts, [("in_frame", false), ("in_replicate", true), ("in_body_frame", true)]);
+}

@@ -14,18 +14,23 @@ use super::walk::{Event, Rule};
 /// fewer it pads). Written with [`WriteOptions::merge_keyframes`], each model's key
 /// is held to its own joints and actuators; without, every key to the composed
 /// model's.
-pub(super) struct KeyLength {
-    /// Per instance (or, for the composed model, under `usize::MAX`): qpos, qvel, act,
-    /// ctrl, mocap bodies.
-    sizes: HashMap<usize, [usize; 5]>,
+pub(super) struct KeyLength<'m> {
+    model: &'m Model,
     merge: bool,
+    /// Per instance (or, for the composed model, under `usize::MAX`): qpos, qvel, act,
+    /// ctrl, mocap bodies; counted from the layout at the first key.
+    sizes: Option<HashMap<usize, [usize; 5]>>,
 }
 
-impl KeyLength {
-    /// The rule for `model` written with `options`; the sizes come from its layout.
-    pub(super) fn new(model: &Model, options: &WriteOptions) -> KeyLength {
+impl<'m> KeyLength<'m> {
+    /// The rule for `model` written with `options`.
+    pub(super) fn new(model: &'m Model, options: &WriteOptions) -> KeyLength<'m> {
+        KeyLength { model, merge: options.merge_keyframes, sizes: None }
+    }
+
+    /// The sizes of `model`'s layout, per instance with `merge`, else for the whole.
+    fn sizes(model: &Model, merge: bool) -> HashMap<usize, [usize; 5]> {
         let layout = model.layout();
-        let merge = options.merge_keyframes;
         let mut sizes: HashMap<usize, [usize; 5]> = HashMap::new();
         let mut add = |inst: usize, k: usize, n: usize| {
             sizes.entry(if merge { inst } else { usize::MAX }).or_default()[k] += n;
@@ -41,20 +46,19 @@ impl KeyLength {
         for b in &layout.mocap {
             add(b.inst, 4, 1);
         }
-        KeyLength { sizes, merge }
+        sizes
     }
 }
 
-impl<'m> Rule<'m> for KeyLength {
+impl<'m> Rule<'m> for KeyLength<'m> {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         if !e.node.kind().is(Role::Key) {
             return;
         }
-        let n = self
-            .sizes
-            .get(&if self.merge { e.inst } else { usize::MAX })
-            .copied()
-            .unwrap_or_default();
+        let (model, merge) = (self.model, self.merge);
+        let sizes = self.sizes.get_or_insert_with(|| KeyLength::sizes(model, merge));
+        let n =
+            sizes.get(&if self.merge { e.inst } else { usize::MAX }).copied().unwrap_or_default();
         let fields = [
             ("qpos", n[0]),
             ("qvel", n[1]),

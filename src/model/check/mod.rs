@@ -214,9 +214,10 @@ impl fmt::Display for Problem {
             ),
             ProblemKind::MocapNotFixedChildOfWorld => write!(
                 f,
-                "{}: a mocap body that is not a child of the world without joints (MuJoCo: \
-                 \"mocap body is not a fixed child of world\"); put it in the world and \
-                 remove its joints, or make it a plain body",
+                "{0}: a mocap body that is not a child of the world without joints (MuJoCo: \
+                 \"mocap body '{0}' is not a fixed child of world\"); put it in the world \
+                 and remove its joints, attach its model with Model::attach_welded, or make \
+                 it a plain body",
                 self.path
             ),
             ProblemKind::ArrayTooShort { attribute, minimum, found } => write!(
