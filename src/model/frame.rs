@@ -1,5 +1,6 @@
 //! The rules of attachment frames: what a frame copies from its site, which of its
-//! attributes can be set later, and which children it takes.
+//! attributes can be set later, which children it takes, and whether it is written
+//! as MuJoCo's `<frame>` (keeping its model's free bodies top level).
 
 use crate::error::ErrorKind;
 use crate::schema::{ElementKind, Role};

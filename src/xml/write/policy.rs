@@ -404,7 +404,8 @@ pub(super) fn passes_world_on(worldbody: bool, parent_in_world: bool, tag: &str)
     worldbody || parent_in_world && tag == "frame"
 }
 
-/// DESIGN D10, decided in the model (where `Model::check` reads it too).
+/// Whether an attachment frame in the world is written as MuJoCo's `<frame>`: decided in
+/// the model, where `Model::check` reads it too.
 pub(crate) use crate::model::frame::frame_keeps_bodies_top_level;
 
 // ---------------------------------------------------------------------------------
