@@ -218,7 +218,7 @@ fn a_free_body_attached_inside_a_body_is_reported_and_attached_welded_is_not()
         let (scene, _) = arm.attach(&site(at), &ball)?;
         assert_eq!(
             kinds(&scene),
-            [("ball//unnamed_joint_0".to_string(), ProblemKind::FreeJointNotTopLevel)],
+            [("ball/b".to_string(), ProblemKind::FreeJointNotTopLevel)],
             "{at}"
         );
         let shown = scene.check()[0].to_string();

@@ -6,25 +6,34 @@ use crate::schema::Role;
 use super::ProblemKind;
 use super::walk::{Event, Rule};
 
-/// A free joint (`<freejoint>`, or `<joint type="free">` by its own type or its
-/// classes') on a body whose parent, once composed, is a body rather than the world:
-/// MuJoCo refuses it ("free joint can only be used on top level"). `<frame>`s and
-/// `<replicate>`s between the body and the world are transparent, and so is an
-/// attachment frame written as MuJoCo's `<frame>`; one written as a body is a body.
-/// Attaching a model with free top-level bodies at a site inside a body makes this.
+/// A body with a free joint (`<freejoint>`, or `<joint type="free">` by its own
+/// type or its classes') whose parent, once composed, is a body rather than the
+/// world: MuJoCo refuses it ("free joint can only be used on top level", naming the
+/// body, as this rule does). `<frame>`s and `<replicate>`s between the body and the
+/// world are transparent, and so is an attachment frame written as MuJoCo's
+/// `<frame>`; one written as a body is a body. Attaching a model with free
+/// top-level bodies at a site inside a body makes this.
 #[derive(Default)]
-pub(super) struct FreeJointNotTopLevel;
+pub(super) struct FreeJointNotTopLevel {
+    /// Per open body: it has a free joint.
+    free: Vec<bool>,
+}
 
 impl<'m> Rule<'m> for FreeJointNotTopLevel {
-    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
-        if e.is_body
-            || e.body.world
-            || e.body.top_level
-            || !matches!(e.node.kind().role(), Some(Role::Joint | Role::Freejoint))
+    fn enter(&mut self, e: &Event<'m>, _: &mut Vec<ProblemKind>) {
+        if e.is_body {
+            self.free.push(false);
+        } else if matches!(e.node.kind().role(), Some(Role::Joint | Role::Freejoint))
+            && joint_type(e.model, e.node, e.class) == JointType::Free
         {
-            return;
+            if let Some(top) = self.free.last_mut() {
+                *top = true;
+            }
         }
-        if joint_type(e.model, e.node, e.class) == JointType::Free {
+    }
+
+    fn leave(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+        if e.is_body && self.free.pop() == Some(true) && !e.body.top_level {
             out.push(ProblemKind::FreeJointNotTopLevel);
         }
     }
@@ -87,12 +96,15 @@ mod tests {
             let m = Model::from_xml_str(&format!("<mujoco><worldbody>{body}</worldbody></mujoco>"))
                 .unwrap();
             let expected = if refused { vec![ProblemKind::FreeJointNotTopLevel] } else { vec![] };
-            assert_eq!(kinds_of(&m, FreeJointNotTopLevel), expected, "{body}");
+            assert_eq!(kinds_of(&m, FreeJointNotTopLevel::default()), expected, "{body}");
         }
         let by_class = r#"<mujoco><default><joint type="free"/></default><worldbody>
             <body><geom size="1"/><body><joint/><geom size="1"/></body></body></worldbody></mujoco>"#;
         let m = Model::from_xml_str(by_class).unwrap();
-        assert_eq!(kinds_of(&m, FreeJointNotTopLevel), [ProblemKind::FreeJointNotTopLevel]);
+        assert_eq!(
+            kinds_of(&m, FreeJointNotTopLevel::default()),
+            [ProblemKind::FreeJointNotTopLevel]
+        );
     }
 
     #[test]

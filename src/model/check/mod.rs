@@ -45,7 +45,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(massless::MasslessMovingBody::default()),
         Box::new(dofs::TooManyDofs::default()),
         Box::new(dofs::RotationAfterBall::default()),
-        Box::new(free_joint::FreeJointNotTopLevel),
+        Box::new(free_joint::FreeJointNotTopLevel::default()),
         Box::new(mocap::MocapNotFixedChildOfWorld),
         Box::new(plane::PlaneInMovingBody),
         Box::new(key_length::KeyLength::new(model, options)),
@@ -120,8 +120,8 @@ pub enum ProblemKind {
         /// The length the key has.
         found: usize,
     },
-    /// A free joint (`<freejoint>`, or a joint of type `free`, by its own type or its
-    /// classes') on a body that is not at the world's top level once composed: its
+    /// A body with a free joint (`<freejoint>`, or a joint of type `free`, by its own
+    /// type or its classes') that is not at the world's top level once composed: its
     /// parent is a body (an attachment frame written as a body counts; `<frame>`s,
     /// `<replicate>`s and attachment frames written as `<frame>` are transparent).
     /// MuJoCo refuses it ("free joint can only be used on top level"). Attaching a
@@ -200,7 +200,7 @@ impl fmt::Display for Problem {
             ),
             ProblemKind::FreeJointNotTopLevel => write!(
                 f,
-                "{}: a free joint on a body that is not at the world's top level (MuJoCo: \
+                "{}: a body with a free joint, not at the world's top level (MuJoCo: \
                  \"free joint can only be used on top level\"); attach its model at a site \
                  of the world, or with Model::attach_welded, or remove the free joint",
                 self.path
