@@ -276,3 +276,33 @@ fn a_plane_attached_inside_a_moving_body_is_reported() -> Result<(), EditError> 
     assert_eq!(kinds(&arm.attach(&at("top"), &floor)?.0), []);
     Ok(())
 }
+
+#[test]
+fn a_free_body_included_inside_a_body_is_reported() {
+    let dir = std::env::temp_dir().join(format!("mjcf-check-include-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("ball.xml"),
+        r#"<mujoco><body name="ball"><freejoint/><geom size="0.1"/></body></mujoco>"#,
+    )
+    .unwrap();
+    let main = |parent: &str| {
+        format!(
+            r#"<mujoco><worldbody>{}<include file="ball.xml"/>{}</worldbody></mujoco>"#,
+            parent,
+            if parent.is_empty() { "" } else { "</body>" }
+        )
+    };
+    for (parent, refused) in [(r#"<body name="post"><geom size="1"/>"#, true), ("", false)] {
+        std::fs::write(dir.join("main.xml"), main(parent)).unwrap();
+        let m = Model::from_path(dir.join("main.xml")).unwrap();
+        let found: Vec<_> = m.check().into_iter().map(|p| (p.path, p.kind)).collect();
+        let expected = if refused {
+            vec![("ball".to_string(), ProblemKind::FreeJointNotTopLevel)]
+        } else {
+            vec![]
+        };
+        assert_eq!(found, expected, "{parent}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

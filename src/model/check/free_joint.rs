@@ -105,6 +105,18 @@ mod tests {
             kinds_of(&m, FreeJointNotTopLevel::default()),
             [ProblemKind::FreeJointNotTopLevel]
         );
+        // By a childclass: refused on the inner body, accepted on the top-level one.
+        let childclass = |inner: &str| {
+            format!(
+                r#"<mujoco><default><default class="f"><joint type="free"/></default></default>
+                   <worldbody><body childclass="f">{inner}<geom size="1"/></body></worldbody></mujoco>"#
+            )
+        };
+        let nested = Model::from_xml_str(&childclass(r#"<body><joint/><geom size="1"/></body>"#));
+        let top = Model::from_xml_str(&childclass("<joint/>"));
+        let rule = FreeJointNotTopLevel::default;
+        assert_eq!(kinds_of(&nested.unwrap(), rule()), [ProblemKind::FreeJointNotTopLevel]);
+        assert_eq!(kinds_of(&top.unwrap(), rule()), []);
     }
 
     #[test]

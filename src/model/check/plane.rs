@@ -54,5 +54,16 @@ mod tests {
             <body><joint/><geom size="1 1 1"/></body></worldbody></mujoco>"#;
         let m = Model::from_xml_str(by_class).unwrap();
         assert_eq!(kinds_of(&m, PlaneInMovingBody), [ProblemKind::PlaneInMovingBody]);
+        // By a childclass: refused in a moving body, accepted in a static one.
+        let childclass = |joint: &str| {
+            format!(
+                r#"<mujoco><default><default class="p"><geom type="plane"/></default></default>
+                   <worldbody><body childclass="p">{joint}<geom size="1 1 1"/></body></worldbody></mujoco>"#
+            )
+        };
+        let moving = r#"<joint type="slide"/><geom type="sphere" size="1"/>"#;
+        let m = Model::from_xml_str(&childclass(moving)).unwrap();
+        assert_eq!(kinds_of(&m, PlaneInMovingBody), [ProblemKind::PlaneInMovingBody]);
+        assert_eq!(kinds_of(&Model::from_xml_str(&childclass("")).unwrap(), PlaneInMovingBody), []);
     }
 }
