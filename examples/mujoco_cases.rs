@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use mjcf::{Model, ProblemKind, WriteOptions, element};
+use mjcf::{AdviceKind, Model, ProblemKind, WriteOptions, element};
 
 fn write(
     out: &Path,
@@ -138,11 +138,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         // The robot's body moves on its hinge: the free frame needs mass of its own.
         let inertial = element!("inertial", pos = [0, 0, 0], mass = 0.1, diaginertia = [1e-3; 3]);
         fleet.add_mut(a.frame(), inertial)?;
-        // check() says each robot's key, written as it is, would set the composed
-        // model's first joints (MuJoCo pads and compiles it); merged, it fits.
-        assert!(fleet.check().iter().all(|p| matches!(p.kind, ProblemKind::UncomposedKey)));
+        // MuJoCo compiles it (check() is empty), but advice() says each robot's key,
+        // written as it is, would set the composed model's first joints (MuJoCo pads
+        // it); merged, it fits and there is no advice.
+        assert!(fleet.check().is_empty());
+        assert!(fleet.advice().iter().all(|a| matches!(a.kind, AdviceKind::UncomposedKey)));
         let merged = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
-        assert!(fleet.check_with(&merged).is_empty());
+        assert!(fleet.check_with(&merged).is_empty() && fleet.advice_with(&merged).is_empty());
     }
     let mut massless = fleet.clone();
     let frame = massless.frame("robot")?;

@@ -92,8 +92,9 @@ pub use crate::history::History;
 pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
-    Attachment, Attrs, Element, ElementRef, Event, JointType, Layout, LayoutActuator, LayoutJoint,
-    LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind, Referrers, Removal, ScopeRef,
+    Advice, AdviceKind, Attachment, Attrs, Element, ElementRef, Event, JointType, Layout,
+    LayoutActuator, LayoutJoint, LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind,
+    Referrers, Removal, ScopeRef,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

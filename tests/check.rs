@@ -1,7 +1,7 @@
 //! Reference checks before MuJoCo (`Model::check`), who refers to an element
 //! (`references_to`), and the names MuJoCo will see (`full_name`, `from_full_name`).
 
-use mjcf::{EditError, Model, Namespace, ProblemKind, WriteOptions, element};
+use mjcf::{AdviceKind, EditError, Model, Namespace, ProblemKind, WriteOptions, element};
 
 #[path = "support/robot.rs"]
 mod robot;
@@ -110,19 +110,24 @@ fn keys_are_held_to_the_model_they_will_be_written_for() -> Result<(), EditError
         let a = scene.attach_mut(&scene.worldbody(), &r)?;
         scene.add_mut(a.frame(), element!("freejoint"))?;
     }
-    // (The frames move without mass: the other problem found here.)
+    // MuJoCo compiles it, so check() says nothing of the keys (the frames move
+    // without mass: the one problem here); advice() says so, once per key, and what
+    // to do.
     let keys = |problems: Vec<mjcf::Problem>| -> Vec<mjcf::Problem> {
         problems
             .into_iter()
             .filter(|p| !matches!(p.kind, ProblemKind::MasslessMovingBody))
             .collect()
     };
-    let kinds: Vec<ProblemKind> = keys(scene.check()).into_iter().map(|p| p.kind).collect();
-    assert_eq!(kinds, [ProblemKind::UncomposedKey, ProblemKind::UncomposedKey]);
-    assert!(keys(scene.check())[0].to_string().contains("merge_keyframes"));
-    // Composed (merge_keyframes), each robot's key fits its robot.
+    assert_eq!(keys(scene.check()), vec![]);
+    let advice: Vec<AdviceKind> = scene.advice().into_iter().map(|a| a.kind).collect();
+    assert_eq!(advice, [AdviceKind::UncomposedKey, AdviceKind::UncomposedKey]);
+    assert!(scene.advice()[0].to_string().contains("merge_keyframes"));
+    // Composed (merge_keyframes), each robot's key fits its robot, and there is no
+    // advice.
     let merged = WriteOptions { merge_keyframes: true, ..WriteOptions::default() };
     assert_eq!(keys(scene.check_with(&merged)), vec![]);
+    assert_eq!(scene.advice_with(&merged), vec![]);
     // A key with more values than there is room for: MuJoCo refuses it.
     let long = r.set_attr(&r.find(Namespace::Key, "home").unwrap(), "qpos", [0.5, 0.1])?;
     let a = scene.attach(&scene.worldbody(), &long)?.0;
@@ -169,4 +174,135 @@ fn full_names_go_both_ways() -> Result<(), EditError> {
     }
     assert_eq!(scene.from_full_name(Namespace::Geom, "robot_2//unnamed_geom_1"), None);
     Ok(())
+}
+
+/// An arm with a hinged link holding the site `tip`, a static post holding `top`,
+/// and a site `ground` in the world.
+fn arm() -> Result<Model, EditError> {
+    let mut arm = Model::new("arm");
+    let link = arm.add_mut(&arm.worldbody(), element!("body", name = "link"))?;
+    arm.add_mut(&link, element!("joint", name = "shoulder"))?;
+    arm.add_mut(&link, element!("geom", size = [0.1]))?;
+    arm.add_mut(&link, element!("site", name = "tip"))?;
+    let post = arm.add_mut(&arm.worldbody(), element!("body", name = "post"))?;
+    arm.add_mut(&post, element!("site", name = "top"))?;
+    arm.add_mut(&arm.worldbody(), element!("site", name = "ground"))?;
+    Ok(arm)
+}
+
+/// A model named `name` whose one top-level body `b` holds `extra` and a geom.
+fn floating(name: &str, extra: mjcf::Element, mocap: bool) -> Result<Model, EditError> {
+    let mut m = Model::new(name);
+    let body = if mocap {
+        element!("body", name = "b", mocap = "true")
+    } else {
+        element!("body", name = "b")
+    };
+    let b = m.add_mut(&m.worldbody(), body)?;
+    m.add_mut(&b, extra)?;
+    m.add_mut(&b, element!("geom", size = [0.1]))?;
+    Ok(m)
+}
+
+fn kinds(m: &Model) -> Vec<(String, ProblemKind)> {
+    m.check().into_iter().map(|p| (p.path, p.kind)).collect()
+}
+
+#[test]
+fn a_free_body_attached_inside_a_body_is_reported_and_attached_welded_is_not()
+-> Result<(), EditError> {
+    let arm = arm()?;
+    let site = |n: &str| arm.find(Namespace::Site, n).unwrap();
+    let ball = floating("ball", element!("freejoint"), false)?;
+    for at in ["tip", "top"] {
+        let (scene, _) = arm.attach(&site(at), &ball)?;
+        assert_eq!(
+            kinds(&scene),
+            [("ball/b".to_string(), ProblemKind::FreeJointNotTopLevel)],
+            "{at}"
+        );
+        let shown = scene.check()[0].to_string();
+        assert!(shown.contains("free joint can only be used on top level"), "{shown}");
+        assert!(shown.contains("attach_welded"), "{shown}");
+        let (welded, _) = arm.attach_welded(&site(at), &ball)?;
+        assert_eq!(kinds(&welded), [], "{at}");
+    }
+    // In the world the frame is written as MuJoCo's <frame>: the body stays top level.
+    assert_eq!(kinds(&arm.attach(&site("ground"), &ball)?.0), []);
+    // A free joint given to an attachment frame inside a body (`add` refuses a
+    // <freejoint> there; a joint of type free it takes): the frame is a body.
+    let (scene, a) = arm.attach(&site("tip"), &floating("box", element!("joint"), false)?)?;
+    let scene = scene.add(a.frame(), element!("joint", type = "free"))?.0;
+    assert!(
+        kinds(&scene).iter().any(|(_, k)| *k == ProblemKind::FreeJointNotTopLevel),
+        "{:?}",
+        kinds(&scene)
+    );
+    Ok(())
+}
+
+#[test]
+fn a_mocap_body_attached_anywhere_is_reported_and_attached_welded_is_a_plain_body()
+-> Result<(), EditError> {
+    let arm = arm()?;
+    let target = floating("target", element!("site", name = "s"), true)?;
+    for at in ["tip", "top", "ground"] {
+        let site = arm.find(Namespace::Site, at).unwrap();
+        let (scene, _) = arm.attach(&site, &target)?;
+        assert_eq!(
+            kinds(&scene),
+            [("target/b".to_string(), ProblemKind::MocapNotFixedChildOfWorld)],
+            "{at}"
+        );
+        assert!(scene.check()[0].to_string().contains("is not a fixed child of world"));
+        let (welded, a) = arm.attach_welded(&site, &target)?;
+        assert_eq!(kinds(&welded), [], "{at}");
+        let b = welded.find(Namespace::Body, &format!("{}/b", a.scope())).unwrap();
+        assert_eq!(welded.get(&b)?.attr("mocap"), None);
+    }
+    Ok(())
+}
+
+#[test]
+fn a_plane_attached_inside_a_moving_body_is_reported() -> Result<(), EditError> {
+    let arm = arm()?;
+    let floor = floating("floor", element!("geom", type = "plane", size = [1.0, 1.0, 0.1]), false)?;
+    let at = |n: &str| arm.find(Namespace::Site, n).unwrap();
+    let (scene, _) = arm.attach(&at("tip"), &floor)?;
+    let found = scene.check();
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].kind, ProblemKind::PlaneInMovingBody);
+    assert!(found[0].to_string().contains("plane only allowed in static bodies"));
+    assert_eq!(kinds(&arm.attach(&at("top"), &floor)?.0), []);
+    Ok(())
+}
+
+#[test]
+fn a_free_body_included_inside_a_body_is_reported() {
+    let dir = std::env::temp_dir().join(format!("mjcf-check-include-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("ball.xml"),
+        r#"<mujoco><body name="ball"><freejoint/><geom size="0.1"/></body></mujoco>"#,
+    )
+    .unwrap();
+    let main = |parent: &str| {
+        format!(
+            r#"<mujoco><worldbody>{}<include file="ball.xml"/>{}</worldbody></mujoco>"#,
+            parent,
+            if parent.is_empty() { "" } else { "</body>" }
+        )
+    };
+    for (parent, refused) in [(r#"<body name="post"><geom size="1"/>"#, true), ("", false)] {
+        std::fs::write(dir.join("main.xml"), main(parent)).unwrap();
+        let m = Model::from_path(dir.join("main.xml")).unwrap();
+        let found: Vec<_> = m.check().into_iter().map(|p| (p.path, p.kind)).collect();
+        let expected = if refused {
+            vec![("ball".to_string(), ProblemKind::FreeJointNotTopLevel)]
+        } else {
+            vec![]
+        };
+        assert_eq!(found, expected, "{parent}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

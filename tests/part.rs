@@ -87,7 +87,7 @@ fn a_part_of_the_world_body_or_of_a_missing_body_is_a_typed_error() {
 }
 
 #[test]
-fn a_free_part_at_the_worlds_top_level_leaves_the_rope_it_hung_from_behind() {
+fn a_free_part_is_fine_at_the_top_level_and_reported_below_a_body() {
     // The box is free: at the world's top level it compiles.
     let scene = Model::from_xml_str(SCENE).unwrap();
     let part = scene.part("box").unwrap();
@@ -99,4 +99,17 @@ fn a_free_part_at_the_worlds_top_level_leaves_the_rope_it_hung_from_behind() {
     let world = Model::new("world");
     let (top, _) = world.attach(&world.worldbody(), &part.model).unwrap();
     assert!(top.check().is_empty(), "{:?}", top.check());
+    // Inside a body it is no longer at the top: check() says what MuJoCo refuses.
+    let mut table = Model::new("table");
+    let b = table.add_mut(&table.worldbody(), mjcf::element!("body", name = "b")).unwrap();
+    table.add_mut(&b, mjcf::element!("geom", size = [0.1])).unwrap();
+    let (below, _) = table.attach_in(&b, &part.model).unwrap();
+    let problems = below.check();
+    assert!(
+        problems.iter().any(|p| matches!(p.kind, mjcf::ProblemKind::FreeJointNotTopLevel)),
+        "{problems:?}"
+    );
+    // The remedy: welded, it compiles below a body.
+    let (welded, _) = table.attach_in(&b, &part.model.welded().unwrap()).unwrap();
+    assert!(welded.check().is_empty(), "{:?}", welded.check());
 }

@@ -1,8 +1,11 @@
 //! MuJoCo judges `Model::check`: over generated scenes and their mutants (a reference
 //! that names nothing, an array shorter than MuJoCo accepts, a moving body without
-//! mass, a free joint beside another joint, a key longer than the model), `check()`
-//! reports a problem of a kind MuJoCo refuses exactly when MuJoCo refuses the model.
-//! (`UncomposedKey` is no such kind: MuJoCo compiles the key, on the wrong joints.)
+//! mass, a free joint beside another joint, a key longer than the model, and the
+//! shapes composition makes: a model with a free body, a plane or a mocap body
+//! attached at a site inside a moving body, inside a static body or in the world,
+//! welded or not, each beside its accepted twin), `check()` reports a problem
+//! exactly when MuJoCo refuses the model. (`advice()` is no such thing: MuJoCo
+//! compiles what it points at.)
 
 mod support;
 
@@ -78,12 +81,138 @@ fn mutants(m: &Model) -> Vec<(String, Model)> {
     {
         out.push((format!("a key with {} positions for {nq}", nq + 1), v));
     }
+    out.extend(composed_mutants(m));
     out
 }
 
-/// The problems of kinds MuJoCo refuses.
+/// The problems `check()` finds: each one MuJoCo refuses.
 fn refusals(m: &Model) -> Vec<mjcf::Problem> {
-    m.check().into_iter().filter(|p| !matches!(p.kind, ProblemKind::UncomposedKey)).collect()
+    m.check()
+}
+
+/// A small model named `name` whose one top-level body holds `content` (and a geom).
+fn part(name: &str, body: mjcf::Element) -> Model {
+    let mut m = Model::new(name);
+    m.add_mut(&m.worldbody(), body).expect("a body in the worldbody");
+    m
+}
+
+/// The mutants composition makes of `m`: models attached at a site inside a moving
+/// body, inside a static body and in the world; welded and not.
+fn composed_mutants(m: &Model) -> Vec<(String, Model)> {
+    let free = part(
+        "mutant_ball",
+        element!("body", name = "ball")
+            .child(element!("freejoint"))
+            .child(element!("geom", size = [0.1])),
+    );
+    let free_by_class = Model::from_xml_str(
+        r#"<mujoco model="mutant_classy"><default><joint type="free"/></default>
+           <worldbody><frame><body name="b"><joint/><geom size="0.1"/></body></frame></worldbody></mujoco>"#,
+    )
+    .expect("the model reads");
+    let plane = part(
+        "mutant_floor",
+        element!("body", name = "floor")
+            .child(element!("geom", type = "plane", size = [1.0, 1.0, 0.1])),
+    );
+    let mocap = part(
+        "mutant_target",
+        element!("body", name = "target", mocap = "true").child(element!("geom", size = [0.1])),
+    );
+    let w = m.worldbody();
+    let mut out = Vec::new();
+    let moving = element!("body", name = "mutant_arm", pos = [0.0, 0.0, 5.0])
+        .child(element!("joint", name = "mutant_shoulder"))
+        .child(element!("geom", size = [0.1]))
+        .child(element!("site", name = "mutant_moving_site"));
+    let still = element!("body", name = "mutant_post", pos = [0.0, 0.0, 5.0])
+        .child(element!("geom", size = [0.1]))
+        .child(element!("site", name = "mutant_still_site"));
+    let world_site = element!("site", name = "mutant_world_site", pos = [0.0, 0.0, 5.0]);
+    let Ok((m, _)) = m.add(&w, moving) else { return out };
+    let Ok((m, _)) = m.add(&w, still) else { return out };
+    let Ok((m, _)) = m.add(&w, world_site) else { return out };
+    let at = |name: &str| m.find(mjcf::Namespace::Site, name).expect("the site was added");
+    let parts = [
+        ("a free body", &free),
+        ("a body free by its class", &free_by_class),
+        ("a plane", &plane),
+        ("a mocap body", &mocap),
+    ];
+    for (what, child) in parts {
+        for (place, site) in [
+            ("a moving body", "mutant_moving_site"),
+            ("a static body", "mutant_still_site"),
+            ("the world", "mutant_world_site"),
+        ] {
+            if let Ok((v, _)) = m.attach(&at(site), child) {
+                out.push((format!("{what} attached at a site of {place}"), v));
+            }
+            if let Ok((v, _)) = m.attach_welded(&at(site), child) {
+                out.push((format!("{what} attached welded at a site of {place}"), v));
+            }
+        }
+    }
+    // Attachment frames are bodies: a mocap flag or joints given to one.
+    let empty =
+        part("mutant_empty", element!("body", name = "e").child(element!("geom", size = [0.1])));
+    for (place, site) in
+        [("a moving body", "mutant_moving_site"), ("the world", "mutant_world_site")]
+    {
+        let Ok((v, a)) = m.attach(&at(site), &empty) else { continue };
+        if let Ok(v) = v.set_attr(a.frame(), "mocap", "true") {
+            out.push((format!("a mocap attachment frame at a site of {place}"), v));
+        }
+        let ball_hinge = v
+            .add(a.frame(), element!("joint", type = "ball"))
+            .and_then(|(v, _)| v.add(a.frame(), element!("joint")));
+        if let Ok((v, _)) = ball_hinge {
+            out.push((
+                format!("a ball then a hinge on an attachment frame at a site of {place}"),
+                v,
+            ));
+        }
+        if let Ok((v, _)) = v.add(a.frame(), element!("joint", type = "free")) {
+            out.push((format!("a free joint on an attachment frame at a site of {place}"), v));
+        }
+    }
+    // The same shapes written directly.
+    let plane_in =
+        |body: mjcf::Element| body.child(element!("geom", type = "plane", size = [1.0, 1.0, 0.1]));
+    let shapes = [
+        (
+            "a plane in a moving body",
+            plane_in(
+                element!("body", name = "mutant_p")
+                    .child(element!("joint"))
+                    .child(element!("geom", size = [0.1])),
+            ),
+        ),
+        ("a plane in a static body", plane_in(element!("body", name = "mutant_p"))),
+        (
+            "a free body in a body",
+            element!("body", name = "mutant_p").child(
+                element!("body").child(element!("freejoint")).child(element!("geom", size = [0.1])),
+            ),
+        ),
+        (
+            "a mocap body in a body",
+            element!("body", name = "mutant_p")
+                .child(element!("body", mocap = "true").child(element!("geom", size = [0.1]))),
+        ),
+        (
+            "a mocap body in the world",
+            element!("body", name = "mutant_p", mocap = "true")
+                .child(element!("geom", size = [0.1])),
+        ),
+    ];
+    for (what, body) in shapes {
+        if let Ok((v, _)) = m.add(&w, body) {
+            out.push((what.to_string(), v));
+        }
+    }
+    out
 }
 
 #[test]
@@ -108,6 +237,14 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
                     ProblemKind::DanglingReference { .. } => "dangling reference",
                     ProblemKind::ArrayTooShort { .. } => "array too short",
                     ProblemKind::MasslessMovingBody => "massless moving body",
+                    ProblemKind::FreeJointNotTopLevel => "free joint not at top level",
+                    ProblemKind::PlaneInMovingBody => "plane in a moving body",
+                    ProblemKind::MocapNotFixedChildOfWorld => {
+                        "mocap body not a fixed child of world"
+                    }
+                    ProblemKind::RotationAfterBall => "rotation after a ball joint",
+                    ProblemKind::TooManyDofs { .. } => "too many dofs",
+                    ProblemKind::KeyLength { .. } => "key too long",
                     _ => "other",
                 };
                 *by_kind.entry(kind).or_default() += 1;
@@ -130,4 +267,64 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
         "{}",
         disagreements[..disagreements.len().min(20)].join("\n")
     );
+}
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn models_attached_welded_inside_a_moving_body_compile_and_attached_plainly_are_refused() {
+    let mujoco = mujoco();
+    let arm = Model::from_xml_str(
+        r#"<mujoco model="arm"><worldbody><body name="link"><joint/><geom size="0.1"/>
+             <site name="tip"/></body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let tip = arm.find(mjcf::Namespace::Site, "tip").unwrap();
+    let ball = part(
+        "ball",
+        element!("body", name = "b")
+            .child(element!("freejoint"))
+            .child(element!("geom", size = [0.1])),
+    );
+    let target = part(
+        "target",
+        element!("body", name = "t", mocap = "true").child(element!("geom", size = [0.1])),
+    );
+    for child in [&ball, &target] {
+        let (plain, _) = arm.attach(&tip, child).unwrap();
+        assert!(refused(&mujoco, &plain).unwrap() && !plain.check().is_empty(), "{}", child.name());
+        let (welded, _) = arm.attach_welded(&tip, child).unwrap();
+        assert!(!refused(&mujoco, &welded).unwrap(), "{} welded", child.name());
+        assert!(welded.check().is_empty(), "{} welded", child.name());
+    }
+}
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn check_agrees_with_mujoco_on_free_bodies_attached_inside_frames_and_replicates() {
+    let mujoco = mujoco();
+    let arena = Model::from_xml_str(
+        r#"<mujoco model="arena"><worldbody>
+             <frame pos="1 0 0"><site name="in_frame"/></frame>
+             <replicate count="2" offset="1 0 0"><site name="in_replicate"/></replicate>
+             <body name="post"><frame><site name="in_body_frame"/></frame></body>
+           </worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let ball = part(
+        "ball",
+        element!("body", name = "b")
+            .child(element!("freejoint"))
+            .child(element!("geom", size = [0.1])),
+    );
+    let mut verdicts = Vec::new();
+    for site in ["in_frame", "in_replicate", "in_body_frame"] {
+        let at = arena.find(mjcf::Namespace::Site, site).unwrap();
+        let (scene, _) = arena.attach(&at, &ball).unwrap();
+        let refuses = refused(&mujoco, &scene).unwrap();
+        assert_eq!(!scene.check().is_empty(), refuses, "{site}: {:?}", scene.check());
+        verdicts.push((site, refuses));
+    }
+    // MuJoCo 4.0.0's verdicts: a world <frame> keeps the body top level; the writer
+    // writes an attachment frame inside a <replicate> or a body as a body.
+    assert_eq!(verdicts, [("in_frame", false), ("in_replicate", true), ("in_body_frame", true)]);
 }

@@ -5,6 +5,30 @@
 //! position-dependent thing (prefixes, merged settings, default-class names, auto
 //! names) is derived by the writer, so detaching is removing that node: the parent
 //! comes back exactly as it was before the attach.
+//!
+//! # What composition can make that MuJoCo refuses
+//!
+//! Attaching, adding and removing never turn a model MuJoCo refuses silently: for
+//! each such shape the edit refuses with a typed error that says what and how to
+//! fix it, or the edit is allowed (a user may attach first and fix after) and
+//! [`Model::check`] reports it, in MuJoCo's words, with the remedy:
+//!
+//! | shape | where decided | remedy |
+//! |---|---|---|
+//! | a model with free top-level bodies attached at a site inside a body (moving or not): below a body there is no top level | `check()`: `FreeJointNotTopLevel` | [`Model::attach_welded`], or a site of the world (the frame is then written as MuJoCo's `<frame>`, keeping the bodies top level) |
+//! | a `<freejoint>` added to an attachment frame not directly in the worldbody | `add` refuses: `ErrorKind::FreejointNotTopLevel` | attach at a site of the worldbody |
+//! | a `<joint type="free">` (or free by its class) added to a body or attachment frame below a body | `check()`: `FreeJointNotTopLevel` | remove it, or move the body to the world |
+//! | a model with mocap top-level bodies attached anywhere (the attachment frame is written as a body) | `check()`: `MocapNotFixedChildOfWorld` | [`Model::attach_welded`] (they become plain bodies fixed to the site's body) |
+//! | a model with a plane attached in or below a moving body, or a joint added above a plane | `check()`: `PlaneInMovingBody` | attach at a site of a static body or the world |
+//! | joints added to an attachment frame beyond 6 degrees of freedom, or a rotation after a ball joint | `check()`: `TooManyDofs`, `RotationAfterBall` (the frame is a body) | fewer joints, the ball joint last |
+//! | a joint added to an attachment frame without mass | `check()`: `MasslessMovingBody` | an `<inertial>` on the frame |
+//! | a key longer than the model (an attached model's key held to its own model with `merge_keyframes`, or a joint removed) | `check_with(&options)`: `KeyLength` | shorten the key |
+//! | a removed element still referred to | `check()`: `RemovedReference`, `MissingRequired` | [`Model::references_to`] before removing |
+//! | a global setting that disagrees between the models | `attach` refuses: `ErrorKind::AttributeConflict` | make the settings agree |
+//! | names: each attached model's names get a unique scope prefix | never a clash (`robot`, `robot_1`, ...) | — |
+//!
+//! What MuJoCo compiles but likely not as meant (an attached model's key written
+//! without `merge_keyframes`) is [`Model::advice`], not `check()`.
 
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
@@ -274,6 +298,69 @@ impl Model {
     /// As [`Model::attach`].
     pub fn attach_to_world(&self, child: &Model) -> Result<(Model, Attachment), EditError> {
         self.attach(&self.worldbody(), child)
+    }
+
+    /// [`Model::attach`] of `child` [`welded`](Model::welded): its top-level bodies
+    /// lose their free joints and their `mocap` flag, so they are fixed to the body
+    /// that holds the site instead of floating. MuJoCo accepts a free joint only on
+    /// a body whose parent is the world ("free joint can only be used on top level")
+    /// and a mocap body only as a fixed child of the world, so attaching a model with
+    /// free bodies at a site inside a body, or a model with mocap bodies anywhere
+    /// (the attachment frame is written as a body), is refused by MuJoCo and
+    /// reported by [`Model::check`]
+    /// ([`ProblemKind::FreeJointNotTopLevel`](crate::ProblemKind::FreeJointNotTopLevel),
+    /// [`ProblemKind::MocapNotFixedChildOfWorld`](crate::ProblemKind::MocapNotFixedChildOfWorld));
+    /// this is the remedy (a gripper on an arm, say).
+    ///
+    /// Time: as [`Model::attach`], plus [`Model::welded`].
+    ///
+    /// # Errors
+    /// As [`Model::attach`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mjcf::{Model, element};
+    /// let mut arm = Model::new("arm");
+    /// let link = arm.add_mut(&arm.worldbody(), element!("body", name = "link"))?;
+    /// arm.add_mut(&link, element!("joint", name = "shoulder"))?;
+    /// arm.add_mut(&link, element!("geom", size = [0.1]))?;
+    /// let tip = arm.add_mut(&link, element!("site", name = "tip"))?;
+    /// let mut ball = Model::new("ball");
+    /// let b = ball.add_mut(&ball.worldbody(), element!("body", name = "b"))?;
+    /// ball.add_mut(&b, element!("freejoint"))?;
+    /// ball.add_mut(&b, element!("geom", size = [0.1]))?;
+    /// assert!(!arm.attach(&tip, &ball)?.0.check().is_empty()); // MuJoCo refuses it
+    /// let (held, _) = arm.attach_welded(&tip, &ball)?;
+    /// assert!(held.check().is_empty());
+    /// # Ok::<(), mjcf::EditError>(())
+    /// ```
+    pub fn attach_welded(&self, at: &Loc, child: &Model) -> Result<(Model, Attachment), EditError> {
+        self.attach(at, &child.welded()?)
+    }
+
+    /// The model with its top-level bodies fixed (through `<frame>`s, `<replicate>`s
+    /// and attachments that keep them top level): their free joints removed and
+    /// their `mocap` flag cleared; what [`Model::attach_welded`] attaches. Every
+    /// other element stays, and references to a removed joint are cleared as
+    /// [`Model::remove`] clears them; a key keeps its values (the joint's 7 positions
+    /// included), which [`Model::check`] then reports as longer than the model.
+    ///
+    /// Time: O(N) for a composed model of N elements, plus one edit per joint or
+    /// mocap body.
+    ///
+    /// # Errors
+    /// As [`Model::remove`] and [`Model::clear_attr`] (not expected: every element
+    /// edited was just found).
+    pub fn welded(&self) -> Result<Model, EditError> {
+        let mut out = self.clone();
+        for (loc, mocap) in crate::model::check::top_level_floating(self) {
+            if mocap {
+                out.clear_attr_mut(&loc, "mocap")?;
+            } else {
+                out.remove_mut(&loc)?;
+            }
+        }
+        Ok(out)
     }
 
     /// Attaches `child` at `at`, an element of this model's own tree, in place;

@@ -1,4 +1,4 @@
-//! The shortest arrays MuJoCo accepts ([`ProblemKind::ArrayTooShort`]).
+//! The shortest arrays MuJoCo accepts ([`ProblemKind::ArrayTooShort`](crate::ProblemKind)).
 //!
 //! The reader accepts an array shorter than its schema length, as dm_control does
 //! (`pos="1 2"`), but MuJoCo refuses many ("attribute 'pos' does not have enough
@@ -15,10 +15,7 @@
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
-use crate::model::check::{Problem, ProblemKind};
-use crate::model::layout::{ClassesInForce, effective, from_classes};
-use crate::model::{Loc, Model, Step, Walk};
-use crate::schema::{AttrType, ElementKind, Role};
+use crate::schema::ElementKind;
 use crate::value::Value;
 
 const TABLE: &str = include_str!("../../schema/mujoco-4.0-array-minimums.txt");
@@ -59,7 +56,7 @@ pub(crate) fn minimum(kind: ElementKind, attr: usize) -> Option<usize> {
 
 /// The numbers MuJoCo needs in a geom's `size` for its type (a `fromto` gives the
 /// length), each above 0: MuJoCo refuses fewer ("size 2 must be positive").
-fn geom_size_needed(geom_type: &str, fromto: bool) -> usize {
+pub(crate) fn geom_size_needed(geom_type: &str, fromto: bool) -> usize {
     match geom_type {
         "sphere" => 1,
         "capsule" | "cylinder" => {
@@ -83,91 +80,14 @@ fn geom_size_needed(geom_type: &str, fromto: bool) -> usize {
 
 /// The mesh arrays whose length must be a multiple: MuJoCo refuses others ("vertex
 /// data must be a multiple of 3").
-const MULTIPLES: [(&str, &str, usize); 4] =
+pub(crate) const MULTIPLES: [(&str, &str, usize); 4] =
     [("mesh", "vertex", 3), ("mesh", "normal", 3), ("mesh", "face", 3), ("mesh", "texcoord", 2)];
 
-fn array_len(v: &Value) -> Option<usize> {
+pub(crate) fn array_len(v: &Value) -> Option<usize> {
     match v {
         Value::Floats(xs) => Some(xs.len()),
         Value::Ints(xs) => Some(xs.len()),
         _ => None,
-    }
-}
-
-impl Model {
-    /// The arrays of the composed model that MuJoCo refuses for their length: shorter
-    /// than MuJoCo reads (the table), a geom `size` with fewer numbers than its type
-    /// needs (counting those its classes give), mesh data not a multiple of 3 (or 2).
-    pub(crate) fn short_arrays(&self, problems: &mut Vec<Problem>) {
-        let name = self.name();
-        let mut walk = Walk::new(self);
-        let mut classes = ClassesInForce::default();
-        while let Some(step) = walk.next() {
-            let item = match step {
-                Step::Enter(item) => item,
-                Step::Leave(_) => {
-                    classes.leave();
-                    continue;
-                }
-            };
-            let node = item.node;
-            let kind = node.kind();
-            let inst = &walk.insts.list[item.inst];
-            let class = classes.enter(inst.model, item.inst, node);
-            let mut found_problems: Vec<ProblemKind> = Vec::new();
-            for (i, v) in node.attrs() {
-                let i = *i as usize;
-                let (Some(found), AttrType::Array { .. }) = (array_len(v), &kind.attr(i).ty) else {
-                    continue;
-                };
-                let attribute = kind.attr(i).name;
-                if let Some(minimum) = minimum(kind, i).filter(|m| found < *m) {
-                    found_problems.push(ProblemKind::ArrayTooShort { attribute, minimum, found });
-                }
-                if let Some((_, _, of)) =
-                    MULTIPLES.iter().find(|(t, a, _)| *t == kind.tag() && *a == attribute)
-                {
-                    if found % of != 0 {
-                        found_problems.push(ProblemKind::ArrayNotMultiple {
-                            attribute,
-                            of: *of,
-                            found,
-                        });
-                    }
-                }
-            }
-            if kind.is(Role::Geom) {
-                let m = inst.model;
-                let ty =
-                    effective(m, node, class, "type").and_then(Value::as_str).unwrap_or("sphere");
-                let needed = geom_size_needed(ty, effective(m, node, class, "fromto").is_some());
-                let own = kind.attr_index("size").and_then(|i| node.attr(i)).and_then(array_len);
-                let given = from_classes(m, kind, class, "size").and_then(array_len);
-                let found = own.unwrap_or(0).max(given.unwrap_or(0));
-                if found < needed && (own.is_some() || given.is_some()) {
-                    found_problems.push(ProblemKind::ArrayTooShort {
-                        attribute: "size",
-                        minimum: needed,
-                        found,
-                    });
-                }
-            }
-            if found_problems.is_empty() {
-                continue;
-            }
-            let loc = Loc::scoped(inst.frames.clone(), node.id(), name);
-            let path = self.element(&loc).and_then(|e| e.full_name()).unwrap_or_else(|| {
-                let scope = self.scope_path(&loc).unwrap_or_default();
-                if scope.is_empty() {
-                    kind.tag().to_string()
-                } else {
-                    format!("{scope}/{}", kind.tag())
-                }
-            });
-            for kind in found_problems {
-                problems.push(Problem { loc: loc.clone(), path: path.clone(), kind });
-            }
-        }
     }
 }
 

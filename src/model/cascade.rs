@@ -16,7 +16,7 @@
 use std::collections::HashSet;
 
 use crate::error::{EditError, ErrorKind};
-use crate::schema::{AttrType, Namespace};
+use crate::schema::Namespace;
 use crate::value::{Reference, Value};
 
 use super::cursor::{Step, Walk};
@@ -169,7 +169,8 @@ impl Model {
                 let i = *i as usize;
                 let hit = match v {
                     Value::Reference(Reference::Element(id)) => ids.contains(id),
-                    Value::Reference(Reference::Name(n)) => reference_namespace(node, i)
+                    Value::Reference(Reference::Name(n)) => node
+                        .reference_namespace(i)
                         .is_some_and(|ns| names.contains(&(ns, n.as_str()))),
                     _ => false,
                 };
@@ -203,17 +204,6 @@ fn required(m: &Model, loc: &Loc, attr: &str) -> bool {
         let kind = e.kind();
         kind.attr_index(attr).is_some_and(|i| kind.attr(i).required)
     })
-}
-
-/// The namespace a reference attribute `i` of `node` names into.
-fn reference_namespace(node: &Node, i: usize) -> Option<Namespace> {
-    match node.kind().attr(i).ty {
-        AttrType::Reference(target) => {
-            let other = target.depends_on().and_then(|k| node.attr(k));
-            target.namespace(other.map(|v| v.as_str().unwrap_or("")))
-        }
-        _ => None,
-    }
 }
 
 /// How a removal names an element: the name MuJoCo gives it; unnamed and without a

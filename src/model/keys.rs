@@ -23,7 +23,6 @@ use std::collections::HashMap;
 use smol_str::SmolStr;
 
 use crate::model::Model;
-use crate::model::check::{Problem, ProblemKind};
 use crate::model::layout::{JointType, Layout};
 use crate::model::pose::{self, Pose, floats};
 use crate::model::tree::Node;
@@ -155,68 +154,4 @@ pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
             MergedKey { name, fields, time }
         })
         .collect()
-}
-
-impl Model {
-    /// Keys with more values than MuJoCo takes (it refuses them: "invalid qpos size";
-    /// fewer it pads). Written with `merge_keyframes`, each model's key is held to its
-    /// own joints and actuators; without, every key to the composed model's.
-    pub(crate) fn key_lengths(
-        &self,
-        options: &crate::write_options::WriteOptions,
-        problems: &mut Vec<Problem>,
-    ) {
-        let layout = self.layout();
-        // Per instance (or for the composed model, under usize::MAX): qpos, qvel, act,
-        // ctrl, mocap bodies.
-        let mut sizes: HashMap<usize, [usize; 5]> = HashMap::new();
-        let all = usize::MAX;
-        let mut add = |inst: usize, k: usize, n: usize| {
-            let key = if options.merge_keyframes { inst } else { all };
-            sizes.entry(key).or_default()[k] += n;
-        };
-        for j in &layout.joints {
-            add(j.inst, 0, j.joint_type.nq());
-            add(j.inst, 1, j.joint_type.nv());
-        }
-        for a in &layout.actuators {
-            add(a.inst, 2, a.nact);
-            add(a.inst, 3, a.nctrl);
-        }
-        for b in &layout.mocap {
-            add(b.inst, 4, 1);
-        }
-        for (inst, key, loc) in &layout.keys {
-            let n = sizes
-                .get(if options.merge_keyframes { inst } else { &all })
-                .copied()
-                .unwrap_or_default();
-            let fields = [
-                ("qpos", n[0]),
-                ("qvel", n[1]),
-                ("act", n[2]),
-                ("ctrl", n[3]),
-                ("mpos", 3 * n[4]),
-                ("mquat", 4 * n[4]),
-            ];
-            let path =
-                || self.element(loc).and_then(|e| e.full_name()).unwrap_or_else(|| "key".into());
-            for (attribute, expected) in fields {
-                let Some(found) =
-                    floats(key, attribute).map(<[f64]>::len).filter(|f| *f > expected)
-                else {
-                    continue;
-                };
-                let kind = ProblemKind::KeyLength { attribute, expected, found };
-                problems.push(Problem { loc: loc.clone(), path: path(), kind });
-            }
-            if !options.merge_keyframes && *inst != 0 {
-                problems.push(Problem {
-                    loc: loc.clone(),
-                    path: path(),
-                    kind: ProblemKind::UncomposedKey,
-                });
-            }
-        }
-    }
 }

@@ -47,7 +47,7 @@ pub(crate) use build::{
     empty_node_with_id, name_from_file,
 };
 pub use cascade::{Referrers, Removal};
-pub use check::{Problem, ProblemKind};
+pub use check::{Advice, AdviceKind, Problem, ProblemKind};
 pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;

@@ -19,7 +19,7 @@ use crate::seq::Seq;
 use smol_str::SmolStr;
 
 pub(crate) use crate::id::ElementId;
-use crate::schema::ElementKind;
+use crate::schema::{AttrType, ElementKind, Namespace};
 use crate::value::Value;
 
 /// One attribute slot: the schema index of the attribute and its value.
@@ -79,6 +79,21 @@ pub(crate) struct Attached {
 }
 
 impl Node {
+    /// The namespace the reference attribute `i` names into (an attribute whose
+    /// namespace another attribute decides, such as a sensor's `objname` by its
+    /// `objtype`, asks it); `None` for an attribute that is not a reference.
+    ///
+    /// Time: O(1).
+    pub(crate) fn reference_namespace(&self, i: usize) -> Option<Namespace> {
+        match self.kind().attr(i).ty {
+            AttrType::Reference(target) => {
+                let other = target.depends_on().and_then(|k| self.attr(k));
+                target.namespace(other.map(|v| v.as_str().unwrap_or("")))
+            }
+            _ => None,
+        }
+    }
+
     pub(crate) fn new(
         id: ElementId,
         kind: ElementKind,

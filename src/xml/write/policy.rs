@@ -8,9 +8,8 @@
 //! drift apart.
 
 use crate::error::WriteError;
-use crate::model::layout::{self, JointType};
 use crate::model::naming::{self, RootClass};
-use crate::model::tree::{ElementId, Node};
+use crate::model::tree::Node;
 use crate::model::{Item, Model, settings};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget, Role};
 use crate::value::FileAsset;
@@ -405,63 +404,9 @@ pub(super) fn passes_world_on(worldbody: bool, parent_in_world: bool, tag: &str)
     worldbody || parent_in_world && tag == "frame"
 }
 
-/// DESIGN D10: whether an attachment frame in the world is written as MuJoCo's
-/// `<frame>` rather than a `<body>`: when the attached model has a body with a free
-/// joint at its world level, which MuJoCo accepts only on top-level bodies, and the
-/// frame itself neither moves nor has mass (no joints, no inertial) nor carries
-/// body-only attributes (`user`, `mocap`). Any other frame stays a body, as in the
-/// reference. The model's world level is its worldbody's children and, through them,
-/// the content of MuJoCo's `<frame>`s and `<replicate>`s and of attachment frames
-/// written as `<frame>` in turn; a joint is free by its own `type` or its classes'.
-pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
-    let Some(a) = frame.attached() else { return false };
-    if !frame.children().is_empty() {
-        return false;
-    }
-    let kind = frame.kind();
-    let body_only = ["user", "mocap"]
-        .iter()
-        .any(|n| kind.attr_index(n).is_some_and(|i| frame.attr(i).is_some()));
-    if body_only {
-        return false;
-    }
-    let Some(wb) = section_of(&a.model, "worldbody") else { return false };
-    let root_class = section_of(&a.model, "default").map(Node::id);
-    has_free_body_at_world_level(&a.model, wb, None, root_class)
-}
-
-/// Whether a child of `container` (at `model`'s world level; `childclass` the class
-/// its children inherit, if any) is a body with a free joint, or holds one at the world
-/// level (a MuJoCo `<frame>` or `<replicate>`, an attachment frame written as `<frame>`).
-fn has_free_body_at_world_level(
-    model: &Model,
-    container: &Node,
-    childclass: Option<ElementId>,
-    root_class: Option<ElementId>,
-) -> bool {
-    container.children().iter().any(|c| {
-        if c.attached().is_some() {
-            return frame_keeps_bodies_top_level(c);
-        }
-        let inherited = layout::childclass_of(c).or(childclass);
-        match c.kind().role() {
-            Some(Role::Body) => c.children().iter().any(|j| {
-                matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)) && {
-                    let class = layout::class_of(j).or(inherited).or(root_class);
-                    layout::joint_type(model, j, class) == JointType::Free
-                }
-            }),
-            Some(Role::Frame | Role::Replicate) => {
-                has_free_body_at_world_level(model, c, inherited, root_class)
-            }
-            _ => false,
-        }
-    })
-}
-
-fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
-    model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
-}
+/// Whether an attachment frame in the world is written as MuJoCo's `<frame>`: decided in
+/// the model, where `Model::check` reads it too.
+pub(crate) use crate::model::frame::frame_keeps_bodies_top_level;
 
 // ---------------------------------------------------------------------------------
 // Files.

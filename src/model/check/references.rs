@@ -1,0 +1,149 @@
+//! Rule *references resolve* ([`ProblemKind::DanglingReference`],
+//! [`ProblemKind::MissingRequired`], [`ProblemKind::RemovedReference`]).
+
+use std::collections::HashMap;
+
+use smol_str::SmolStr;
+
+use crate::schema::Namespace;
+use crate::suggest::Suggester;
+use crate::value::{Reference, Value};
+
+use super::ProblemKind;
+use super::walk::{Event, Rule};
+use crate::model::Model;
+use crate::model::tree::Node;
+
+/// Names ranked for suggestions, per model (walk instance) and namespace, each made
+/// once.
+pub(super) type Suggesters<'m> = HashMap<(usize, Namespace), Suggester<'m>>;
+
+/// The rule: each element's references, with suggestions ranked once per model and
+/// namespace.
+#[derive(Default)]
+pub(super) struct References<'m> {
+    suggesters: Suggesters<'m>,
+}
+
+impl<'m> Rule<'m> for References<'m> {
+    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+        out.extend(unresolved_references(e.model, e.inst, e.node, &mut self.suggesters));
+    }
+}
+
+/// Rule *references resolve*: each reference by name of `node` (of the model `m`,
+/// walk instance `inst`) names an element of its own model or a builtin name
+/// ([`ProblemKind::DanglingReference`], with the nearest names), and each resolved
+/// reference an element still there ([`ProblemKind::MissingRequired`] for a required
+/// attribute, [`ProblemKind::RemovedReference`] for an optional one).
+fn unresolved_references<'m>(
+    m: &'m Model,
+    inst: usize,
+    node: &Node,
+    suggesters: &mut Suggesters<'m>,
+) -> Vec<ProblemKind> {
+    let kind = node.kind();
+    let mut out = Vec::new();
+    for (i, v) in node.attrs() {
+        let i = *i as usize;
+        let spec = kind.attr(i);
+        match v {
+            Value::Reference(Reference::Name(n)) => {
+                let Some(ns) = node.reference_namespace(i) else { continue };
+                if super::naming::is_builtin_name(ns, n)
+                    || m.index.names.contains_key(&(ns, n.clone()))
+                {
+                    continue;
+                }
+                if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
+                    continue;
+                }
+                let ranked = suggesters.entry((inst, ns)).or_insert_with(|| {
+                    Suggester::new(
+                        m.index.names.keys().filter(|(k, _)| *k == ns).map(|(_, n)| n.as_str()),
+                    )
+                });
+                let suggestions = ranked.nearest(n, 3).into_iter().map(SmolStr::from).collect();
+                out.push(ProblemKind::DanglingReference {
+                    attribute: spec.name,
+                    name: n.clone(),
+                    namespace: ns,
+                    suggestions,
+                });
+            }
+            Value::Reference(Reference::Element(id)) if !m.index.contains(*id) => {
+                let attribute = spec.name;
+                out.push(if spec.required {
+                    ProblemKind::MissingRequired { attribute }
+                } else {
+                    ProblemKind::RemovedReference { attribute }
+                });
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Element;
+
+    /// The node of the element `name` of namespace `ns` in `m`.
+    fn node<'m>(m: &'m Model, ns: Namespace, name: &str) -> &'m Node {
+        let loc = m.find(ns, name).expect("the element exists");
+        m.node_by_id(loc.id()).expect("its node")
+    }
+
+    #[test]
+    fn references_by_name_resolve_in_their_model_or_are_dangling_with_suggestions() {
+        let mut m = Model::new("m");
+        let b = m.add_mut(&m.worldbody(), Element::new("body").attr("name", "b")).unwrap();
+        m.add_mut(&b, Element::new("joint").attr("name", "hinge")).unwrap();
+        m.add_mut(&m.actuator(), Element::new("motor").attr("name", "ok").attr("joint", "hinge"))
+            .unwrap();
+        m.add_mut(&m.actuator(), Element::new("motor").attr("name", "typo").attr("joint", "hinj"))
+            .unwrap();
+        let mut suggesters = Suggesters::new();
+        let ok = node(&m, Namespace::Actuator, "ok");
+        assert_eq!(unresolved_references(&m, 0, ok, &mut suggesters), []);
+        let typo = node(&m, Namespace::Actuator, "typo");
+        assert_eq!(
+            unresolved_references(&m, 0, typo, &mut suggesters),
+            [ProblemKind::DanglingReference {
+                attribute: "joint",
+                name: "hinj".into(),
+                namespace: Namespace::Joint,
+                suggestions: vec!["hinge".into()],
+            }]
+        );
+    }
+
+    #[test]
+    fn a_resolved_reference_to_a_removed_element_is_missing_or_removed_as_it_is_required() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <body name="a"><joint name="j"/><geom size="1"/></body>
+                 <body name="b"><geom size="1"/></body>
+               </worldbody>
+               <contact><exclude body1="a" body2="b"/></contact>
+               <actuator><motor name="mo" joint="j"/></actuator></mujoco>"#,
+        )
+        .unwrap();
+        let a = m.find(Namespace::Body, "a").unwrap();
+        let removed = m.remove(&a).unwrap();
+        let mut suggesters = Suggesters::new();
+        let motor = node(&removed, Namespace::Actuator, "mo");
+        assert_eq!(
+            unresolved_references(&removed, 0, motor, &mut suggesters),
+            [ProblemKind::RemovedReference { attribute: "joint" }]
+        );
+        let contact = removed.section("contact").unwrap();
+        let exclude = removed.node_by_id(contact.id()).unwrap().children().iter().next().unwrap();
+        assert_eq!(
+            unresolved_references(&removed, 0, exclude, &mut suggesters),
+            [ProblemKind::MissingRequired { attribute: "body1" }]
+        );
+    }
+}
