@@ -4,8 +4,8 @@ catalog message, each twin.xml compiles.
 
 Usage: tools/mujoco_refusal_pairs.py [mjcf-mujoco/refusals]   (the MuJoCo venv's python)
 
-A pair is the folder mjcf-mujoco/refusals/cases/CASE named in the catalog's `case`
-column: refused.xml, twin.xml and the files they read (an attached part). A message
+A pair is a folder mjcf-mujoco/refusals/cases/CASE named in the catalog's `case`
+column (a row may name several, separated by spaces): refused.xml, twin.xml and the files they read (an attached part). A message
 matches when its pieces between printf specifiers (`%s`, `%d`) appear in MuJoCo's
 error in order. Prints a FAIL line per wrong pair and `N pairs, M failed`; exits 1 if
 any failed. (mjcf-mujoco/tests/refusals.rs judges the same pairs through the binding.)
@@ -42,12 +42,13 @@ def main():
     with open(root / 'catalog.tsv', newline='') as f:
         rows = [r for r in csv.DictReader(f, delimiter='\t', quoting=csv.QUOTE_NONE) if r['case']]
     failed = 0
-    for r in rows:
-        case = root / 'cases' / r['case']
+    rows = [(r, c) for r in rows for c in r['case'].split()]
+    for r, name in rows:
+        case = root / 'cases' / name
         refused, twin = error_of(case / 'refused.xml'), error_of(case / 'twin.xml')
         if refused is None or not contains(refused, r['message']) or twin is not None:
             failed += 1
-            print(f"FAIL {r['case']}: refused: {refused!r}; twin: {twin!r}")
+            print(f"FAIL {name}: refused: {refused!r}; twin: {twin!r}")
     print(f'{len(rows)} pairs, {failed} failed')
     sys.exit(1 if failed else 0)
 

@@ -234,16 +234,56 @@ fn massless_moving_body(is_body: bool, joints: &BodyJoints, massive: bool) -> Op
     (is_body && joints.moves && !massive).then_some(ProblemKind::MasslessMovingBody)
 }
 
-/// Whether `node` gives the body it is in mass: an inertial with a mass above 0, or
-/// a geom (MuJoCo gives geoms a density) that does not set its mass to 0.
-fn gives_mass(node: &Node) -> bool {
+/// Whether `node` (of the model `m`) gives the body it is in mass: an inertial with a
+/// mass above 0, a geom (MuJoCo gives geoms a density) that does not set its mass to
+/// 0, or an `<attach>` whose part brings a body welded to it (attached with no joint)
+/// that has mass, its own or welded below it (a part that cannot be read on its own
+/// counts as giving mass: what it holds is unknown).
+fn gives_mass(m: &Model, node: &Node) -> bool {
     let kind = node.kind();
     let mass = || node.attr(kind.attr_index("mass").unwrap_or(0)).and_then(Value::as_float);
     match kind.role() {
         Some(Role::Inertial) => mass().is_some_and(|x| x > 0.0),
         Some(Role::Geom) => mass() != Some(0.0),
+        Some(Role::Attach) => attach_gives_mass(m, node),
         _ => false,
     }
+}
+
+/// [`gives_mass`] for an `<attach>`: the attached body (its `body`, else the part's
+/// worldbody, whose bodies it brings) has mass welded to it.
+fn attach_gives_mass(m: &Model, attach: &Node) -> bool {
+    let kind = attach.kind();
+    let attr = |name: &str| kind.attr_index(name).and_then(|i| attach.attr(i));
+    let Some(part) = attached_part(m, attr("model")) else { return true };
+    let top = match attr("body") {
+        Some(Value::Reference(Reference::Name(n))) => part.find(Namespace::Body, n),
+        Some(v) => v.as_str().and_then(|n| part.find(Namespace::Body, n)),
+        None => Some(part.worldbody()),
+    };
+    let Some(top) = top.and_then(|loc| part.node_by_id(loc.id())) else { return true };
+    if !top.kind().is(Role::Body) {
+        return welded_mass(&part, top);
+    }
+    // A body that moves on its own (a joint of its own) gives the frame no mass.
+    !moves(top) && (top.children().iter().any(|c| gives_mass(&part, c)) || welded_mass(&part, top))
+}
+
+/// Whether the body `b` has a joint (or a freejoint) of its own.
+fn moves(b: &Node) -> bool {
+    b.children().iter().any(|j| matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)))
+}
+
+/// Whether a body welded below `node` (a child body without joints, or one inside a
+/// frame, and so on down) has mass of its own.
+fn welded_mass(m: &Model, node: &Node) -> bool {
+    node.children().iter().any(|c| match c.kind().role() {
+        Some(Role::Body) if !moves(c) => {
+            c.children().iter().any(|g| gives_mass(m, g)) || welded_mass(m, c)
+        }
+        Some(Role::Frame) => c.children().iter().any(|g| gives_mass(m, g)) || welded_mass(m, c),
+        _ => false,
+    })
 }
 
 /// Names ranked for suggestions, per model (walk instance) and namespace, each made
@@ -277,6 +317,9 @@ fn unresolved_references<'m>(
                 if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
                     continue;
                 }
+                if named_by_expansion(m, ns, n) {
+                    continue;
+                }
                 let ranked = suggesters.entry((inst, ns)).or_insert_with(|| {
                     Suggester::new(
                         m.index.names.keys().filter(|(k, _)| *k == ns).map(|(_, n)| n.as_str()),
@@ -302,6 +345,109 @@ fn unresolved_references<'m>(
         }
     }
     out
+}
+
+/// Whether MuJoCo makes the name `name` of namespace `ns` when it expands an element
+/// of `m` that the model keeps as written: a copy of a `<replicate>` (an element `j`
+/// inside `<replicate count="3">` gives `j0`, `j1`, `j2`: its name, then for each
+/// replicate around it, innermost first, the replicate's `sep` and the copy's index
+/// padded with zeros to the digits of its count), or an element of a part that an
+/// `<attach>` of `m` brings in (the attach's non-empty `prefix`, then a name of the
+/// part's model file, found the same way; a part that cannot be read on its own, or
+/// one attached inside a replicate, is taken to hold any name with that prefix).
+///
+/// Time: O(N) for `m` of N elements, plus reading the part of an attach whose prefix
+/// `name` starts with (called only for a name found nowhere else).
+fn named_by_expansion(m: &Model, ns: Namespace, name: &str) -> bool {
+    let Some(root) = m.node_by_id(m.root().id()) else { return false };
+    let mut levels = Vec::new();
+    expansion_makes(m, root, ns, name, &mut levels)
+}
+
+/// [`named_by_expansion`] below `node`, with `levels` the (count, sep) of the
+/// replicates around it, outermost first.
+fn expansion_makes<'n>(
+    m: &Model,
+    node: &'n Node,
+    ns: Namespace,
+    name: &str,
+    levels: &mut Vec<(i64, &'n str)>,
+) -> bool {
+    let kind = node.kind();
+    let text = |attr: &str| kind.attr_index(attr).and_then(|i| node.attr(i));
+    match kind.role() {
+        Some(Role::Attach) => {
+            let prefix = text("prefix").and_then(Value::as_str).unwrap_or("");
+            if let Some(inner) = name.strip_prefix(prefix).filter(|_| !prefix.is_empty()) {
+                // Inside a replicate the part's names take suffixes too: not
+                // looked into.
+                if !levels.is_empty() {
+                    return true;
+                }
+                match attached_part(m, text("model")) {
+                    Some(part) => {
+                        if part.find(ns, inner).is_some() || named_by_expansion(&part, ns, inner) {
+                            return true;
+                        }
+                    }
+                    // A part that cannot be read here: its names are unknown.
+                    None => return true,
+                }
+            }
+        }
+        Some(Role::Replicate) => {
+            let count = text("count").and_then(Value::as_int).unwrap_or(0);
+            let sep = text("sep").and_then(Value::as_str).unwrap_or("");
+            levels.push((count, sep));
+            let found = node.children().iter().any(|c| expansion_makes(m, c, ns, name, levels));
+            levels.pop();
+            return found;
+        }
+        _ => {}
+    }
+    if !levels.is_empty()
+        && kind.namespace() == Some(ns)
+        && node.identifier().is_some_and(|base| is_replicated_name(name, base, levels))
+    {
+        return true;
+    }
+    node.children().iter().any(|c| expansion_makes(m, c, ns, name, levels))
+}
+
+/// The part an `<attach model="...">` of `m` brings in: its asset `<model>`'s file,
+/// read on its own; `None` when it cannot be read here (its own files are not at
+/// hand, say).
+fn attached_part(m: &Model, model: Option<&Value>) -> Option<Model> {
+    let asset = match model? {
+        Value::Reference(Reference::Name(n)) => m.node_by_id(m.find(Namespace::Model, n)?.id())?,
+        Value::Reference(Reference::Element(id)) => m.node_by_id(*id)?,
+        _ => return None,
+    };
+    let kind = asset.kind();
+    let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| asset.attr(i)) else {
+        return None;
+    };
+    Model::from_xml_str(std::str::from_utf8(file.contents()).ok()?).ok()
+}
+
+/// Whether `name` is the name of a copy of `base` made by the replicates `levels`
+/// (count, sep; outermost first): `base`, then each level's `sep` and index (padded
+/// with zeros to the digits of its count), innermost first, so the outermost last.
+fn is_replicated_name(name: &str, base: &str, levels: &[(i64, &str)]) -> bool {
+    let mut rest = name;
+    for (count, sep) in levels {
+        let digits = count.max(&1).to_string().len();
+        let Some(cut) = rest.len().checked_sub(digits) else { return false };
+        let Some(index) = rest.get(cut..) else { return false };
+        if !index.bytes().all(|b| b.is_ascii_digit())
+            || index.parse::<i64>().map_or(true, |i| i >= *count)
+        {
+            return false;
+        }
+        let Some(before) = rest[..cut].strip_suffix(sep) else { return false };
+        rest = before;
+    }
+    rest == base
 }
 
 /// How a problem names the element the walk entered as `item`: the name the writer
@@ -388,7 +534,7 @@ impl Model {
                             top.joints.add(joint_type(m, node, class));
                         }
                     }
-                    if gives_mass(node) {
+                    if gives_mass(m, node) {
                         if let Some(top) = open.last_mut() {
                             top.massive = true;
                         }
@@ -607,11 +753,11 @@ mod tests {
         .unwrap();
         let inertial =
             |body: &str| node(&m, Namespace::Body, body).children().iter().next().unwrap();
-        assert!(gives_mass(inertial("a")));
-        assert!(!gives_mass(inertial("b")));
-        assert!(gives_mass(node(&m, Namespace::Geom, "dense")));
-        assert!(!gives_mass(node(&m, Namespace::Geom, "weightless")));
-        assert!(!gives_mass(node(&m, Namespace::Site, "s")));
+        assert!(gives_mass(&m, inertial("a")));
+        assert!(!gives_mass(&m, inertial("b")));
+        assert!(gives_mass(&m, node(&m, Namespace::Geom, "dense")));
+        assert!(!gives_mass(&m, node(&m, Namespace::Geom, "weightless")));
+        assert!(!gives_mass(&m, node(&m, Namespace::Site, "s")));
     }
 
     #[test]
@@ -636,6 +782,41 @@ mod tests {
                 suggestions: vec!["hinge".into()],
             }]
         );
+    }
+
+    #[test]
+    fn a_replicated_name_is_the_base_then_each_level_s_sep_and_padded_index() {
+        assert!(is_replicated_name("j0", "j", &[(3, "")]));
+        assert!(is_replicated_name("j2", "j", &[(3, "")]));
+        assert!(!is_replicated_name("j3", "j", &[(3, "")]));
+        assert!(is_replicated_name("j07", "j", &[(10, "")]));
+        assert!(!is_replicated_name("j7", "j", &[(10, "")]));
+        assert!(is_replicated_name("j-1", "j", &[(2, "-")]));
+        // Nested: the inner index first, the outer last.
+        assert!(is_replicated_name("j12", "j", &[(3, ""), (2, "")]));
+        assert!(!is_replicated_name("j21", "j", &[(3, ""), (2, "")]));
+        assert!(!is_replicated_name("k0", "j", &[(3, "")]));
+    }
+
+    #[test]
+    fn references_to_replicated_copies_and_attached_parts_are_not_dangling() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <replicate count="3" offset="1 0 0">
+                   <body name="b"><joint name="j"/><geom size=".1"/></body>
+                 </replicate>
+               </worldbody>
+               <actuator><motor name="copy" joint="j2"/><motor name="base" joint="j"/>
+                 <motor name="beyond" joint="j3"/></actuator></mujoco>"#,
+        )
+        .unwrap();
+        let problems = |name: &str| {
+            let mut suggesters = Suggesters::new();
+            unresolved_references(&m, 0, node(&m, Namespace::Actuator, name), &mut suggesters).len()
+        };
+        assert_eq!(problems("copy"), 0);
+        assert_eq!(problems("base"), 0);
+        assert_eq!(problems("beyond"), 1);
     }
 
     #[test]
