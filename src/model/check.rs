@@ -433,7 +433,16 @@ fn attached_part(m: &Model, model: Option<&Value>) -> Option<Model> {
 /// Whether `name` is the name of a copy of `base` made by the replicates `levels`
 /// (count, sep; outermost first): `base`, then each level's `sep` and index (padded
 /// with zeros to the digits of its count), innermost first, so the outermost last.
+/// The names of the inner levels alone (`j05` for `j05-1` of a replicate of 10 inside
+/// one of 2 with `sep="-"`) compile too: MuJoCo copies what refers to them with the
+/// outer levels.
 fn is_replicated_name(name: &str, base: &str, levels: &[(i64, &str)]) -> bool {
+    (0..=levels.len()).any(|outer| strips_to(name, base, &levels[outer..]))
+}
+
+/// Whether `name` is `base` followed by the suffixes of `levels` (outermost first:
+/// its suffix is the last).
+fn strips_to(name: &str, base: &str, levels: &[(i64, &str)]) -> bool {
     let mut rest = name;
     for (count, sep) in levels {
         let digits = count.max(&1).to_string().len();
@@ -786,15 +795,22 @@ mod tests {
 
     #[test]
     fn a_replicated_name_is_the_base_then_each_level_s_sep_and_padded_index() {
+        // As MuJoCo 4.0.0 names them (checked with the wheel).
         assert!(is_replicated_name("j0", "j", &[(3, "")]));
         assert!(is_replicated_name("j2", "j", &[(3, "")]));
         assert!(!is_replicated_name("j3", "j", &[(3, "")]));
         assert!(is_replicated_name("j07", "j", &[(10, "")]));
         assert!(!is_replicated_name("j7", "j", &[(10, "")]));
         assert!(is_replicated_name("j-1", "j", &[(2, "-")]));
-        // Nested: the inner index first, the outer last.
-        assert!(is_replicated_name("j12", "j", &[(3, ""), (2, "")]));
-        assert!(!is_replicated_name("j21", "j", &[(3, ""), (2, "")]));
+        // Nested (outer 2 with sep "-", inner 10): the inner index first, the outer
+        // last; the inner levels alone name copies too.
+        let nested = [(2, "-"), (10, "")];
+        assert!(is_replicated_name("j09-1", "j", &nested));
+        assert!(is_replicated_name("j05", "j", &nested));
+        assert!(!is_replicated_name("j00-2", "j", &nested));
+        assert!(!is_replicated_name("j9-0", "j", &nested));
+        assert!(!is_replicated_name("j-1", "j", &nested));
+        assert!(!is_replicated_name("j0", "j", &nested));
         assert!(!is_replicated_name("k0", "j", &[(3, "")]));
     }
 
