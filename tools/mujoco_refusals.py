@@ -2,7 +2,7 @@
 """Lists MuJoCo's compiler and XML-reader refusals from a MuJoCo source checkout.
 
 Usage:
-  tools/mujoco_refusals.py MUJOCO_SRC [--lib LIBMUJOCO] [--catalog CATALOG_TSV]
+  tools/mujoco_refusals.py MUJOCO_SRC [--lib LIBMUJOCO [--lib-only]] [--catalog CATALOG_TSV]
 
 Finds every `throw mjCError(...)` (and `SetError(mjCError(...))`, the errors the
 spec API keeps for the reader to relay) in src/user/*.cc, every `throw mjXError(...)`
@@ -17,10 +17,19 @@ pinned 4.0.0 wheel's libmujoco.so): the `in_lib` column says whether the library
 holds it (a message of the source that the library lacks was reworded or added
 after that release; the library's wording decides).
 
+With --lib-only (and --lib), prints instead the strings of the library that read
+like refusals (a rule word such as "must be", "cannot", "invalid", "requires") and
+match no message of the source: messages of the release that the source checkout
+lacks (a checkout older than the release, or reworded). Library internals (qhull,
+PNG and zlib codecs, the unwinder, the engine's runtime checks, "Invalid model: X
+too large") are left out. They are candidates to review and add to the catalog as
+rows of file `libmujoco.so.4.0.0`.
+
 With --catalog, the classification columns of an existing catalog (class, note) are
 carried over to messages still present, new messages are marked `unclassified`, and
-catalog rows whose message is gone are reported on stderr: the way to redo the
-catalog for a new MuJoCo version.
+catalog rows whose message is gone are reported on stderr (rows of the library's
+own, whose file is not under src/, are kept): the way to redo the catalog for a new
+MuJoCo version.
 """
 
 import csv
@@ -179,6 +188,40 @@ def in_library(msg, strings):
     return 'yes' if all(any(p in s for s in strings) for p in pieces) else 'no'
 
 
+RULE = re.compile(r'(must be|cannot|not allowed|requires|require |invalid|unknown|not found|'
+                  r'too large|too small|must have|should be|is required|not supported|'
+                  r'unrecognized|repeated|mismatch|only|negative|positive)')
+INTERNAL = re.compile(
+    r'^(Invalid model|Invalid data|[Qq]hull|qh_|mjui_|mjb_|mjv|mjr_|mjc_|DW_EH|WARNING|libunwind|'
+    r'Format string|stl_decoder|obj_decoder|\(|%s: |XML Write)|chunk|PNG|zlib|palette|ICC|sRGB|'
+    r'encoder|inflating|CRC|ADLER|BTYPE|idat|filter strateg|window size|pHYs|gAMA|tIME|bKGD|cICP|'
+    r'tRNS|CFA|register|locale|island|nefc|nsim|Hessian|ccd|color conversion|colortype|'
+    r'grayscale|constant metric|pair type|unknown error code|sensor stage|stage, sensor|'
+    r'sensor id|actuator id|actuator index|object type %d|body %d|invalid tree|invalid index|'
+    r'state|srcsig|frustum|perspective and orthographic|shortcut|rownnz|sleep|ipc|IPC|RK4|'
+    r'integrator|solver|inverse dynamics|delays are not|problem size|vector length|'
+    r'fill-in|nonzeroes|cannot be saved|MJCF cannot|saved file|mjSpec-only|cannot be written|'
+    r'must be compiled to be saved|attribute ignored|full dimensional|warning type|times must be')
+
+
+def library_only(strings, rows):
+    """The library's refusal-like strings that no message of `rows` matches."""
+    pieces = set()
+    for _, _, msg in rows:
+        for p in re.split(r'%[-0-9.]*[sdfgiu]', msg.removeprefix('Schema violation: ')):
+            if len(p.strip()) >= 6:
+                pieces.add(p.strip())
+    out, seen = [], set()
+    for s in strings:
+        s = s.strip()
+        if s in seen or not 8 < len(s) < 200 or ' ' not in s:
+            continue
+        seen.add(s)
+        if RULE.search(s) and not INTERNAL.search(s) and not any(p in s or s in p for p in pieces):
+            out.append(s)
+    return out
+
+
 def main():
     args = sys.argv[1:]
     if not args or args[0].startswith('-'):
@@ -191,6 +234,12 @@ def main():
     if lib:
         out = subprocess.run(['strings', '-n', '6', lib], capture_output=True, text=True)
         strings = out.stdout.splitlines()
+    if '--lib-only' in args:
+        if strings is None:
+            sys.exit('--lib-only needs --lib')
+        for s in library_only(strings, rows):
+            print(s)
+        return
     known = {}
     if catalog:
         with open(catalog, newline='') as f:
@@ -221,9 +270,17 @@ def main():
             present.add((rel, msg))
             row += [k['class'], k['note'], k['case']] if k else ['unclassified', '', '']
         w.writerow(row)
-    for k in known:
-        if k not in present:
-            print(f'gone: {k[0]}: {k[1]}', file=sys.stderr)
+    for k, r in known.items():
+        if k in present:
+            continue
+        if not k[0].startswith('src/'):
+            # A row of the library's own (found with --lib-only): kept as it is.
+            row = [r['file'], r['line'], r['message']]
+            if strings is not None:
+                row.append(in_library(r['message'], strings))
+            w.writerow(row + [r['class'], r['note'], r['case']])
+            continue
+        print(f'gone: {k[0]}: {k[1]}', file=sys.stderr)
 
 
 if __name__ == '__main__':

@@ -94,7 +94,9 @@ fn kind_message(kind: &ProblemKind) -> &'static [&'static str] {
 /// MuJoCo's messages each kind of the reader's [`ErrorKind`] stands for.
 fn read_error_message(kind: &ErrorKind) -> &'static [&'static str] {
     match kind {
-        ErrorKind::InvalidChild { .. } => &["unrecognized element", "World body cannot have"],
+        ErrorKind::InvalidChild { .. } => {
+            &["unrecognized element", "World body cannot have", "cannot be a direct child"]
+        }
         ErrorKind::UnknownAttribute { .. } => {
             &["unrecognized attribute", "World body cannot have attributes"]
         }
@@ -128,14 +130,14 @@ fn crate_objections(path: &Path) -> Vec<(String, Vec<&'static str>)> {
 }
 
 /// The pairs "known" when this was written: the floor, which can only go up.
-const KNOWN_FLOOR: usize = 64;
+const KNOWN_FLOOR: usize = 65;
 
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]
 fn every_refusal_pair_is_judged_by_mujoco_and_measures_the_crate() {
     let mujoco = mujoco();
     let pairs = pairs();
-    assert!(pairs.len() >= 160, "{} pairs", pairs.len());
+    assert!(pairs.len() >= 300, "{} pairs", pairs.len());
     let (mut known, mut other, mut silent) = (Vec::new(), Vec::new(), Vec::new());
     let (mut misjudged, mut false_alarms) = (Vec::new(), Vec::new());
     for (message, case) in &pairs {
