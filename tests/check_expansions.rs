@@ -86,6 +86,12 @@ fn references_into_an_attached_part_resolve_by_its_prefix_and_names() {
     );
     let found = dangling(&problems("att-bad", &[("main.xml", &bad), ("part.xml", PART)]));
     assert_eq!(found, ["p-x", "q-s"]);
+    // An empty prefix (MuJoCo 4.0.0 compiles it, with a warning): the part's names
+    // as they are.
+    let bare = host(r#"<actuator><motor joint="j"/><motor joint="x"/></actuator>"#)
+        .replace(r#"prefix="p-""#, r#"prefix="""#);
+    let found = dangling(&problems("att-bare", &[("main.xml", &bare), ("part.xml", PART)]));
+    assert_eq!(found, ["x"]);
 }
 
 fn mover(part: &str) -> [(&'static str, String); 2] {
@@ -132,4 +138,17 @@ fn a_replicate_s_childclass_is_read_and_written() {
     let bad = Model::from_xml_str(&text.replace(r#"childclass="c""#, r#"childclass="nope""#));
     let dangles = bad.map(|m| dangling(&m.check().into_iter().map(|p| p.kind).collect::<Vec<_>>()));
     assert_eq!(dangles.ok(), Some(vec!["nope".to_string()]));
+}
+
+#[test]
+fn an_empty_attach_prefix_is_read_and_written() {
+    // MuJoCo 4.0.0 compiles `prefix=""` (and refuses the attribute's absence).
+    let main = host("").replace(r#"prefix="p-""#, r#"prefix="""#);
+    let dir = folder("att-empty", &[("main.xml", &main), ("part.xml", PART)]);
+    let m = Model::from_path(dir.join("main.xml")).unwrap();
+    assert!(m.to_xml_string().unwrap().contains(r#"prefix="""#));
+    let missing = main.replace(r#" prefix="""#, "");
+    std::fs::write(dir.join("main.xml"), missing).unwrap();
+    assert!(Model::from_path(dir.join("main.xml")).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -137,7 +137,7 @@ fn crate_objections(path: &Path) -> Vec<(String, Vec<&'static str>)> {
 }
 
 /// The pairs "known" when this was written: the floor, which can only go up.
-const KNOWN_FLOOR: usize = 66;
+const KNOWN_FLOOR: usize = 67;
 
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]

@@ -352,9 +352,10 @@ fn unresolved_references<'m>(
 /// inside `<replicate count="3">` gives `j0`, `j1`, `j2`: its name, then for each
 /// replicate around it, innermost first, the replicate's `sep` and the copy's index
 /// padded with zeros to the digits of its count), or an element of a part that an
-/// `<attach>` of `m` brings in (the attach's non-empty `prefix`, then a name of the
-/// part's model file, found the same way; a part that cannot be read on its own, or
-/// one attached inside a replicate, is taken to hold any name with that prefix).
+/// `<attach>` of `m` brings in (the attach's `prefix`, which may be empty, then a name
+/// of the part's model file, found the same way; a part that cannot be read on its
+/// own, or one attached inside a replicate, is taken to hold any name with that
+/// prefix).
 ///
 /// Time: O(N) for `m` of N elements, plus reading the part of an attach whose prefix
 /// `name` starts with (called only for a name found nowhere else).
@@ -378,7 +379,7 @@ fn expansion_makes<'n>(
     match kind.role() {
         Some(Role::Attach) => {
             let prefix = text("prefix").and_then(Value::as_str).unwrap_or("");
-            if let Some(inner) = name.strip_prefix(prefix).filter(|_| !prefix.is_empty()) {
+            if let Some(inner) = name.strip_prefix(prefix) {
                 // Inside a replicate the part's names take suffixes too: not
                 // looked into.
                 if !levels.is_empty() {
