@@ -296,7 +296,11 @@ impl ValueCtx<'_> {
             error,
         };
         if let Some(text) = input.text() {
+            // An empty required name prefix (`<attach prefix="">`) is given, as MuJoCo
+            // reads it: the part's names are taken as they are.
+            let empty_prefix = spec.required && matches!(spec.ty, AttrType::NamePrefix);
             let clears = text.is_empty()
+                && !empty_prefix
                 && matches!(
                     spec.ty,
                     AttrType::Identifier

@@ -24,6 +24,7 @@ use super::{Loc, Model};
 mod advice;
 mod arrays;
 mod dofs;
+mod expansion;
 mod free_joint;
 pub(crate) use free_joint::top_level_floating;
 mod key_length;

@@ -58,6 +58,9 @@ fn unresolved_references<'m>(
                 if ns == Namespace::AttachmentFrame || m.find(ns, n).is_some() {
                     continue;
                 }
+                if super::expansion::named_by_expansion(m, ns, n) {
+                    continue;
+                }
                 let ranked = suggesters.entry((inst, ns)).or_insert_with(|| {
                     Suggester::new(
                         m.index.names.keys().filter(|(k, _)| *k == ns).map(|(_, n)| n.as_str()),
@@ -145,5 +148,26 @@ mod tests {
             unresolved_references(&removed, 0, exclude, &mut suggesters),
             [ProblemKind::MissingRequired { attribute: "body1" }]
         );
+    }
+
+    #[test]
+    fn references_to_replicated_copies_and_attached_parts_are_not_dangling() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><worldbody>
+                 <replicate count="3" offset="1 0 0">
+                   <body name="b"><joint name="j"/><geom size=".1"/></body>
+                 </replicate>
+               </worldbody>
+               <actuator><motor name="copy" joint="j2"/><motor name="base" joint="j"/>
+                 <motor name="beyond" joint="j3"/></actuator></mujoco>"#,
+        )
+        .unwrap();
+        let problems = |name: &str| {
+            let mut suggesters = Suggesters::new();
+            unresolved_references(&m, 0, node(&m, Namespace::Actuator, name), &mut suggesters).len()
+        };
+        assert_eq!(problems("copy"), 0);
+        assert_eq!(problems("base"), 0);
+        assert_eq!(problems("beyond"), 1);
     }
 }
