@@ -67,9 +67,7 @@ pub(crate) fn placed_frame_attrs(
     }
     // The class in force: the site's own, else the nearest `childclass` above it, else
     // the model's root class.
-    let class = super::layout::class_of(site).or_else(|| {
-        (0..path.len()).rev().find_map(|n| super::layout::childclass_of(model.node_at(&path[..n])?))
-    });
+    let class = super::layout::class_of(site).or_else(|| nearest_childclass(model, path));
     let class = class
         .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id));
     if own("pos").is_none() {
@@ -87,6 +85,22 @@ pub(crate) fn placed_frame_attrs(
     }
     attrs.sort_by_key(|(i, _)| *i);
     attrs
+}
+
+/// The `childclass` nearest above the element at `path` (its ancestors', the root's
+/// included, not its own), found in one walk down the path: O(depth), where looking
+/// up each ancestor by its path from the root was O(depth²).
+fn nearest_childclass(model: &super::Model, path: &[usize]) -> Option<crate::model::tree::ElementId> {
+    let mut nearest = None;
+    let mut node = &model.root;
+    for &i in path {
+        nearest = super::layout::childclass_of(node).or(nearest);
+        match node.children().get(i) {
+            Some(child) => node = child,
+            None => break,
+        }
+    }
+    nearest
 }
 
 /// The attributes that orient a site or a frame.

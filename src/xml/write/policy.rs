@@ -413,48 +413,75 @@ pub(super) fn passes_world_on(worldbody: bool, parent_in_world: bool, tag: &str)
 /// reference. The model's world level is its worldbody's children and, through them,
 /// the content of MuJoCo's `<frame>`s and `<replicate>`s and of attachment frames
 /// written as `<frame>` in turn; a joint is free by its own `type` or its classes'.
+///
+/// Iterative (one list of containers still to look at), so attachments and MuJoCo
+/// `<frame>`s nested to any depth are followed without recursion.
 pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
-    let Some(a) = frame.attached() else { return false };
+    let mut todo: Vec<WorldLevel<'_>> = Vec::new();
+    push_world_level(frame, &mut todo);
+    while let Some(level) = todo.pop() {
+        for c in level.container.children().iter() {
+            if c.attached().is_some() {
+                push_world_level(c, &mut todo);
+                continue;
+            }
+            let inherited = layout::childclass_of(c).or(level.childclass);
+            match c.kind().role() {
+                Some(Role::Body) if has_free_joint(level.model, c, inherited, level.root_class) => {
+                    return true;
+                }
+                Some(Role::Frame | Role::Replicate) => {
+                    todo.push(WorldLevel { container: c, childclass: inherited, ..level });
+                }
+                _ => {}
+            }
+        }
+    }
+    false
+}
+
+/// An element at a model's world level whose children are at that level too (its
+/// worldbody, a MuJoCo `<frame>` or `<replicate>` there): `childclass` is the class
+/// its children inherit, if any.
+#[derive(Clone, Copy)]
+struct WorldLevel<'a> {
+    model: &'a Model,
+    container: &'a Node,
+    childclass: Option<ElementId>,
+    root_class: Option<ElementId>,
+}
+
+/// Adds the world level of `frame`'s model to `todo` if `frame` is an attachment frame
+/// that can be written as `<frame>` (empty, without body-only attributes).
+fn push_world_level<'a>(frame: &'a Node, todo: &mut Vec<WorldLevel<'a>>) {
+    let Some(a) = frame.attached() else { return };
     if !frame.children().is_empty() {
-        return false;
+        return;
     }
     let kind = frame.kind();
     let body_only = ["user", "mocap"]
         .iter()
         .any(|n| kind.attr_index(n).is_some_and(|i| frame.attr(i).is_some()));
     if body_only {
-        return false;
+        return;
     }
-    let Some(wb) = section_of(&a.model, "worldbody") else { return false };
+    let Some(wb) = section_of(&a.model, "worldbody") else { return };
     let root_class = section_of(&a.model, "default").map(Node::id);
-    has_free_body_at_world_level(&a.model, wb, None, root_class)
+    todo.push(WorldLevel { model: &a.model, container: wb, childclass: None, root_class });
 }
 
-/// Whether a child of `container` (at `model`'s world level; `childclass` the class
-/// its children inherit, if any) is a body with a free joint, or holds one at the world
-/// level (a MuJoCo `<frame>` or `<replicate>`, an attachment frame written as `<frame>`).
-fn has_free_body_at_world_level(
+/// Whether `body` (its children inheriting class `inherited`) has a free joint, by
+/// the joint's own `type` or its classes'.
+fn has_free_joint(
     model: &Model,
-    container: &Node,
-    childclass: Option<ElementId>,
+    body: &Node,
+    inherited: Option<ElementId>,
     root_class: Option<ElementId>,
 ) -> bool {
-    container.children().iter().any(|c| {
-        if c.attached().is_some() {
-            return frame_keeps_bodies_top_level(c);
-        }
-        let inherited = layout::childclass_of(c).or(childclass);
-        match c.kind().role() {
-            Some(Role::Body) => c.children().iter().any(|j| {
-                matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)) && {
-                    let class = layout::class_of(j).or(inherited).or(root_class);
-                    layout::joint_type(model, j, class) == JointType::Free
-                }
-            }),
-            Some(Role::Frame | Role::Replicate) => {
-                has_free_body_at_world_level(model, c, inherited, root_class)
-            }
-            _ => false,
+    body.children().iter().any(|j| {
+        matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)) && {
+            let class = layout::class_of(j).or(inherited).or(root_class);
+            layout::joint_type(model, j, class) == JointType::Free
         }
     })
 }
