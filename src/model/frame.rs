@@ -90,7 +90,10 @@ pub(crate) fn placed_frame_attrs(
 /// The `childclass` nearest above the element at `path` (its ancestors', the root's
 /// included, not its own), found in one walk down the path: O(depth), where looking
 /// up each ancestor by its path from the root was O(depth²).
-fn nearest_childclass(model: &super::Model, path: &[usize]) -> Option<crate::model::tree::ElementId> {
+fn nearest_childclass(
+    model: &super::Model,
+    path: &[usize],
+) -> Option<crate::model::tree::ElementId> {
     let mut nearest = None;
     let mut node = &model.root;
     for &i in path {

@@ -486,7 +486,12 @@ impl Model {
         let mut frames: Vec<ElementId> = Vec::new();
         let mut rest = identifier;
         loop {
-            if let Some(id) = own(m, rest) {
+            // A literal name with a `/` is looked for only where the model holds one
+            // starting with the same segment: hashing the whole rest at each level
+            // was quadratic in the levels of a scoped name.
+            let literal =
+                index::slashed_segment(rest).is_none_or(|s| m.index.slashed.contains_key(s));
+            if let Some(id) = literal.then(|| own(m, rest)).flatten() {
                 return Ok(Ok(self.scoped_loc(&frames, id)));
             }
             let Some((scope, tail)) = rest.split_once('/') else { break };

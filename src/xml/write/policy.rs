@@ -7,6 +7,8 @@
 //! by `xml::read` through these very functions, so a rule and its inverse cannot
 //! drift apart.
 
+use std::collections::HashMap;
+
 use crate::error::WriteError;
 use crate::model::layout::{self, JointType};
 use crate::model::naming::{self, RootClass};
@@ -389,9 +391,13 @@ pub(super) fn kind_facts(kind: ElementKind) -> &'static KindFacts {
 /// world (`parent_in_world`) and [`frame_keeps_bodies_top_level`] (DESIGN D10); any
 /// other element with its own tag. The reader reads either as an element of that
 /// tag (a body with a literal name, DESIGN D13; a `<frame>`, D12).
-pub(super) fn written_tag(node: &Node, parent_in_world: bool) -> &'static str {
+pub(super) fn written_tag(
+    node: &Node,
+    parent_in_world: bool,
+    frames: &mut FrameTags,
+) -> &'static str {
     match node.attached() {
-        Some(_) if parent_in_world && frame_keeps_bodies_top_level(node) => "frame",
+        Some(_) if parent_in_world && frames.keeps_bodies_top_level(node) => "frame",
         Some(_) => "body",
         None => node.kind().tag(),
     }
@@ -414,30 +420,101 @@ pub(super) fn passes_world_on(worldbody: bool, parent_in_world: bool, tag: &str)
 /// the content of MuJoCo's `<frame>`s and `<replicate>`s and of attachment frames
 /// written as `<frame>` in turn; a joint is free by its own `type` or its classes'.
 ///
-/// Iterative (one list of containers still to look at), so attachments and MuJoCo
-/// `<frame>`s nested to any depth are followed without recursion.
+/// A one-off answer; a writer asks [`FrameTags::keeps_bodies_top_level`], which keeps
+/// the answers.
 pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
-    let mut todo: Vec<WorldLevel<'_>> = Vec::new();
-    push_world_level(frame, &mut todo);
-    while let Some(level) = todo.pop() {
-        for c in level.container.children().iter() {
-            if c.attached().is_some() {
-                push_world_level(c, &mut todo);
-                continue;
-            }
-            let inherited = layout::childclass_of(c).or(level.childclass);
-            match c.kind().role() {
-                Some(Role::Body) if has_free_joint(level.model, c, inherited, level.root_class) => {
-                    return true;
+    FrameTags::default().keeps_bodies_top_level(frame)
+}
+
+/// The answers of [`frame_keeps_bodies_top_level`] given so far, per frame node (by
+/// address: nodes never change, and they outlive one write that borrows them). An
+/// answer follows the attached model's world level into the attachments there,
+/// nested to any depth; kept, each frame's world level is looked at once per write,
+/// where asking each frame of a chain of nested attachments anew went down the whole
+/// chain from each (quadratic in the levels).
+#[derive(Default)]
+pub(crate) struct FrameTags(HashMap<*const (), bool>);
+
+/// A frame whose answer waits on those of the attachment frames at its model's world
+/// level (`nested`, those not asked yet).
+struct Waiting<'a> {
+    frame: *const (),
+    nested: Vec<&'a Node>,
+}
+
+impl FrameTags {
+    /// [`frame_keeps_bodies_top_level`] of `frame`, each nested frame's answer kept
+    /// too. Iterative (frames waiting on their nested frames, on a list), so
+    /// attachments nested to any depth are followed without recursion.
+    pub(crate) fn keeps_bodies_top_level(&mut self, frame: &Node) -> bool {
+        let mut waiting: Vec<Waiting<'_>> = Vec::new();
+        let mut answer = self.start(frame, &mut waiting);
+        loop {
+            if let Some(found) = answer {
+                if waiting.is_empty() {
+                    return found;
                 }
-                Some(Role::Frame | Role::Replicate) => {
-                    todo.push(WorldLevel { container: c, childclass: inherited, ..level });
+                if found {
+                    // The frame waiting on this one holds a free body through it.
+                    if let Some(w) = waiting.pop() {
+                        self.0.insert(w.frame, true);
+                    }
+                    continue;
                 }
-                _ => {}
             }
+            let Some(w) = waiting.last_mut() else { return false };
+            answer = match w.nested.pop() {
+                Some(next) => self.start(next, &mut waiting),
+                None => {
+                    // No nested frame holds one either.
+                    let frame = w.frame;
+                    waiting.pop();
+                    self.0.insert(frame, false);
+                    Some(false)
+                }
+            };
         }
     }
-    false
+
+    /// The answer for `frame` if it is known or found at its own model's world level;
+    /// else `None`, and the frame waits on the attachment frames there.
+    fn start<'a>(&mut self, frame: &'a Node, waiting: &mut Vec<Waiting<'a>>) -> Option<bool> {
+        let key = frame.as_ptr();
+        if let Some(&known) = self.0.get(&key) {
+            return Some(known);
+        }
+        let mut todo: Vec<WorldLevel<'_>> = Vec::new();
+        push_world_level(frame, &mut todo);
+        let mut nested = Vec::new();
+        while let Some(level) = todo.pop() {
+            for c in level.container.children().iter() {
+                if c.attached().is_some() {
+                    nested.push(c);
+                    continue;
+                }
+                let inherited = layout::childclass_of(c).or(level.childclass);
+                match c.kind().role() {
+                    Some(Role::Body)
+                        if has_free_joint(level.model, c, inherited, level.root_class) =>
+                    {
+                        self.0.insert(key, true);
+                        return Some(true);
+                    }
+                    Some(Role::Frame | Role::Replicate) => {
+                        todo.push(WorldLevel { container: c, childclass: inherited, ..level });
+                    }
+                    _ => {}
+                }
+            }
+        }
+        if nested.is_empty() {
+            self.0.insert(key, false);
+            return Some(false);
+        }
+        nested.reverse();
+        waiting.push(Waiting { frame: key, nested });
+        None
+    }
 }
 
 /// An element at a model's world level whose children are at that level too (its
