@@ -92,7 +92,7 @@ pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
     Attachment, Attrs, Element, ElementRef, Event, JointType, Layout, LayoutActuator, LayoutJoint,
-    LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind, ScopeRef,
+    LayoutMocap, Loc, MAX_LAYOUT_ENTRIES, Model, Preorder, Problem, ProblemKind, ScopeRef,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

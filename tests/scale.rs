@@ -125,7 +125,7 @@ fn a_site_20_000_attachments_deep_is_found_named_and_attached_at_in_linear_time(
     assert_eq!(view.scope(), scoped.strip_suffix("/s").unwrap());
     let siblings: Vec<_> =
         view.parent().unwrap().children().filter_map(|c| c.full_name()).collect();
-    assert_eq!(siblings, [scoped.clone()]);
+    assert_eq!(siblings, std::slice::from_ref(&scoped));
     let (placed, a) = m.attach(&site, &Model::new("robot")).unwrap();
     assert_eq!(placed.floats(a.frame(), "pos").unwrap(), [1.0, 2.0, 3.0]);
     let frame = placed.get(a.frame()).unwrap().full_name().unwrap();

@@ -22,6 +22,7 @@ use std::collections::HashMap;
 
 use smol_str::SmolStr;
 
+use crate::error::{ErrorKind, WriteError};
 use crate::model::Model;
 use crate::model::check::{Problem, ProblemKind};
 use crate::model::layout::{JointType, Layout};
@@ -109,9 +110,42 @@ fn compose_fields(
     [("qpos", qpos), ("qvel", qvel), ("act", act), ("mpos", mpos), ("mquat", mquat), ("ctrl", ctrl)]
 }
 
-/// The composed keys of `model` (see the module documentation).
-pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
-    let layout = model.layout();
+/// The most values one field of a composed key holds (`qpos` of a million free
+/// joints): the writer refuses longer ones, whose sizes come from `<replicate>`
+/// counts or an `actdim`, before making them.
+pub(crate) const MAX_KEY_VALUES: usize = 7 * crate::model::layout::MAX_LAYOUT_ENTRIES;
+
+/// The composed keys of `model` (see the module documentation); none, with nothing
+/// laid out, when the model has no key.
+///
+/// # Errors
+/// [`WriteError::TooLarge`] if a field of the composed keys would hold more than
+/// [`MAX_KEY_VALUES`] values, or the layout more than
+/// [`MAX_LAYOUT_ENTRIES`](crate::model::layout::MAX_LAYOUT_ENTRIES) joints and
+/// mocap bodies; checked before any is made.
+pub(crate) fn merged_keys(model: &Model) -> Result<Vec<MergedKey>, WriteError> {
+    let sizes = model.layout_sizes();
+    if sizes.keys.is_empty() {
+        return Ok(Vec::new());
+    }
+    let total = |k: usize| sizes.per_inst.values().fold(0usize, |s, n| s.saturating_add(n[k]));
+    for (what, size) in [
+        ("composed keys' qpos", total(0)),
+        ("composed keys' qvel", total(1)),
+        ("composed keys' act", total(2)),
+        ("composed keys' ctrl", total(3)),
+        ("composed keys' mquat", total(4).saturating_mul(4)),
+    ] {
+        if size > MAX_KEY_VALUES {
+            return Err(WriteError::TooLarge { what, size, limit: MAX_KEY_VALUES });
+        }
+    }
+    let layout = model.layout().map_err(|e| match e.kind() {
+        ErrorKind::TooLarge { what, size, limit } => {
+            WriteError::TooLarge { what, size: *size, limit: *limit }
+        }
+        other => WriteError::Conflict(other.to_string()),
+    })?;
     // Key names in order of first appearance; the parent's unnamed keys by position.
     let mut order: Vec<Option<SmolStr>> = Vec::new();
     let mut by_name: Vec<HashMap<usize, &Node>> = Vec::new();
@@ -134,7 +168,7 @@ pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
         };
         by_name[i].entry(*inst).or_insert(key);
     }
-    order
+    let keys = order
         .into_iter()
         .zip(by_name)
         .map(|(name, keys)| {
@@ -154,7 +188,8 @@ pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
                 .and_then(Value::as_float);
             MergedKey { name, fields, time }
         })
-        .collect()
+        .collect();
+    Ok(keys)
 }
 
 impl Model {
@@ -166,26 +201,23 @@ impl Model {
         options: &crate::write_options::WriteOptions,
         problems: &mut Vec<Problem>,
     ) {
-        let layout = self.layout();
+        // The sizes are counted, not listed: `<replicate>` counts of any size cost
+        // nothing here.
+        let layout = self.layout_sizes();
         // Per instance (or for the composed model, under usize::MAX): qpos, qvel, act,
         // ctrl, mocap bodies.
-        let mut sizes: HashMap<usize, [usize; 5]> = HashMap::new();
         let all = usize::MAX;
-        let mut add = |inst: usize, k: usize, n: usize| {
-            let key = if options.merge_keyframes { inst } else { all };
-            sizes.entry(key).or_default()[k] += n;
+        let sizes: HashMap<usize, [usize; 5]> = if options.merge_keyframes {
+            layout.per_inst.clone()
+        } else {
+            let mut sum = [0usize; 5];
+            for n in layout.per_inst.values() {
+                for (s, n) in sum.iter_mut().zip(n) {
+                    *s = s.saturating_add(*n);
+                }
+            }
+            HashMap::from([(all, sum)])
         };
-        for j in &layout.joints {
-            add(j.inst, 0, j.joint_type.nq());
-            add(j.inst, 1, j.joint_type.nv());
-        }
-        for a in &layout.actuators {
-            add(a.inst, 2, a.nact);
-            add(a.inst, 3, a.nctrl);
-        }
-        for b in &layout.mocap {
-            add(b.inst, 4, 1);
-        }
         for (inst, key, loc) in &layout.keys {
             let n = sizes
                 .get(if options.merge_keyframes { inst } else { &all })
@@ -196,8 +228,8 @@ impl Model {
                 ("qvel", n[1]),
                 ("act", n[2]),
                 ("ctrl", n[3]),
-                ("mpos", 3 * n[4]),
-                ("mquat", 4 * n[4]),
+                ("mpos", n[4].saturating_mul(3)),
+                ("mquat", n[4].saturating_mul(4)),
             ];
             let path =
                 || self.element(loc).and_then(|e| e.full_name()).unwrap_or_else(|| "key".into());

@@ -49,7 +49,7 @@ pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;
 pub(crate) use index::{Entry, Index, MergedCache, ReadIndex, slashed_segment};
-pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap};
+pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap, MAX_LAYOUT_ENTRIES};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 

@@ -466,7 +466,7 @@ impl<'a> Writer<'a> {
     /// Writes the composed keys in place of the keyframe section
     /// ([`policy::merges_keys`]).
     fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
-        let keys = crate::model::keys::merged_keys(insts.list[0].model);
+        let keys = crate::model::keys::merged_keys(insts.list[0].model)?;
         if keys.is_empty() {
             return Ok(());
         }
