@@ -583,12 +583,12 @@ fn layout_joint(
     LayoutJoint { loc, joint_type, qpos: 0, dof: 0, inst, own_qpos: 0, own_dof: 0, qpos0 }
 }
 
-/// The copies a `<replicate>` makes: its `count`, 1 if it has none.
+/// The copies a `<replicate>` makes: its `count` (none below 1, as MuJoCo 4.0.0
+/// compiles `count="0"` and `count="-1"`), 1 if it has none.
 fn replicate_count(node: &Node) -> usize {
     node.attr(node.kind().attr_index("count").unwrap_or(usize::MAX))
         .and_then(Value::as_int)
-        .and_then(|c| usize::try_from(c).ok())
-        .unwrap_or(1)
+        .map_or(1, |c| usize::try_from(c).unwrap_or(0))
 }
 
 /// The joints and mocap bodies each record lists with its copies and its
@@ -795,5 +795,17 @@ mod tests {
         assert_eq!(x, [0.0, 1.0, 2.0]);
         assert_eq!(layout.joints.iter().map(|j| j.qpos).collect::<Vec<_>>(), [0, 7, 14]);
         assert_eq!((layout.nq, layout.nv), (21, 18));
+    }
+
+    /// MuJoCo 4.0.0 compiles `count="0"` and `count="-1"` to no copy (`nq` 0).
+    #[test]
+    fn a_replicate_count_below_1_makes_no_copy() {
+        for count in ["0", "-1"] {
+            let m = read(&format!(
+                r#"<mujoco><worldbody><replicate count="{count}">
+                     <body><joint/><geom size="1"/></body></replicate></worldbody></mujoco>"#
+            ));
+            assert_eq!(m.layout().unwrap().nq, 0, "{count}");
+        }
     }
 }
