@@ -46,7 +46,7 @@ fn part<'k>(
     at: usize,
     len: usize,
 ) -> Option<&'k [f64]> {
-    floats(keys.get(&inst)?, field)?.get(at..at + len)
+    floats(keys.get(&inst)?, field)?.get(at..at.checked_add(len)?)
 }
 
 /// The composed values of each field for one key name (`keys`: the key of that name

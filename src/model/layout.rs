@@ -30,9 +30,10 @@ use crate::schema::{ElementKind, Role};
 use crate::value::{Reference, Value};
 
 /// The most joints and mocap bodies (each `<replicate>` copy counted) that
-/// [`Model::layout`] lists one by one: a million, a hundred times the joints of the
-/// largest models MuJoCo's own collections hold, and about 200 MB of layout. MuJoCo
-/// itself stops at its sizes' `int` (2,147,483,647).
+/// [`Model::layout`] lists one by one: a million (each listed joint takes on the
+/// order of a hundred bytes, so a full layout stays within a few hundred megabytes).
+/// MuJoCo itself has no bound of its own below its sizes' `int` (2,147,483,647),
+/// where it refuses a `count` ("number is too large").
 pub const MAX_LAYOUT_ENTRIES: usize = 1_000_000;
 
 /// A joint's type, as MuJoCo compiles it (the element's own `type`, else its default
