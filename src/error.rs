@@ -201,6 +201,18 @@ pub enum ErrorKind {
     /// An element nested deeper than the reader allows.
     #[error("elements nested deeper than {0} levels")]
     TooDeep(usize),
+    /// A size counted from the model's values (`<replicate>` counts, nested ones
+    /// multiplied) that is past what the crate lists one by one: `what` is counted
+    /// (`size`, saturated at `usize::MAX`), `limit` is the most it lists.
+    #[error("{what}: {size} is more than the {limit} this crate lists one by one")]
+    TooLarge {
+        /// What was counted.
+        what: &'static str,
+        /// Its size.
+        size: usize,
+        /// The most allowed.
+        limit: usize,
+    },
     /// `include_copy` with override found a same-named element under another parent.
     #[error("{namespace} '{}' is already a child of another element", cut(.name))]
     CopyConflict {
@@ -595,6 +607,19 @@ pub enum WriteError {
         attribute: &'static str,
         /// The character.
         character: char,
+    },
+    /// A size to write counted from the model's values (the composed keys of
+    /// [`WriteOptions::merge_keyframes`](crate::WriteOptions) over `<replicate>`
+    /// copies, an `actdim`) past what the writer writes: `what` is counted (`size`,
+    /// saturated at `usize::MAX`), `limit` is the most it writes.
+    #[error("{what}: {size} is more than the {limit} the writer writes")]
+    TooLarge {
+        /// What was counted.
+        what: &'static str,
+        /// Its size.
+        size: usize,
+        /// The most allowed.
+        limit: usize,
     },
     /// Two different files that would be written under one name, which is possible
     /// only when files are named without their hash (`filename_with_hash: false`), or

@@ -93,8 +93,8 @@ pub use crate::id::ElementId;
 pub use crate::model::diff::Change;
 pub use crate::model::{
     Advice, AdviceKind, Attachment, Attrs, Element, ElementRef, Event, JointType, Layout,
-    LayoutActuator, LayoutJoint, LayoutMocap, Loc, Model, Preorder, Problem, ProblemKind,
-    Referrers, Removal, ScopeRef,
+    LayoutActuator, LayoutJoint, LayoutMocap, Loc, MAX_LAYOUT_ENTRIES, Model, Preorder, Problem,
+    ProblemKind, Referrers, Removal, ScopeRef,
 };
 pub use crate::schema::{
     ArrayType, AttrSpec, AttrType, ElementKind, ElementSpec, Merge, Multiplicity, Namespace,

@@ -5,7 +5,10 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use mjcf::{Element, ErrorKind, Model, Namespace, ReadOptions, Value};
+use mjcf::{
+    Element, ErrorKind, MAX_LAYOUT_ENTRIES, Model, Namespace, ProblemKind, ReadOptions, Value,
+    WriteError, WriteOptions,
+};
 
 /// A fresh empty folder under the system's temp folder.
 fn temp_dir(tag: &str) -> PathBuf {
@@ -422,6 +425,46 @@ fn attachments_nested_1000_deep_write_and_drop_without_overflow() {
     drop(m);
 }
 
+/// Whether an attachment frame in the world is written as MuJoCo's `<frame>` (its
+/// model has a free body at its world level) is found by following the attached
+/// model's MuJoCo `<frame>`s and its own attachments at that level: without
+/// recursion, so 100,000 nested `<frame>`s in an attached model's worldbody, and
+/// 5,000 nested attachments over a free body, write (each overflowed the stack).
+/// Each frame's answer is kept for the write: asking each frame of the chain anew
+/// went down the rest of the chain from each (56 s for the 5,000 levels in a debug
+/// build; about 2 s now, most of it the names, each holding the whole scope path).
+#[test]
+fn frames_and_attachments_nested_at_the_world_level_write_without_overflow() {
+    let depth = 100_000;
+    let mut text = String::from(r#"<mujoco model="deep"><worldbody>"#);
+    text.push_str(&"<frame>".repeat(depth));
+    text.push_str(r#"<body name="free"><freejoint/><geom size="1"/></body>"#);
+    text.push_str(&"</frame>".repeat(depth));
+    text.push_str("</worldbody></mujoco>");
+    let deep = Model::from_xml_str(&text).unwrap();
+    let (outer, _) = Model::new("outer").attach_to_world(&deep).unwrap();
+    let out = outer.to_xml_string().unwrap();
+    assert!(out.contains(r#"<frame name="deep/">"#), "written as a frame: its body is free");
+    assert_eq!(out.matches("<frame").count(), depth + 1);
+    drop((outer, deep));
+
+    // One-letter scopes keep the names (the whole scope path each) short.
+    let levels = 5_000;
+    let mut m = Model::from_xml_str(
+        r#"<mujoco model="b"><worldbody><body name="free"><freejoint/><geom size="1"/></body></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    for _ in 0..levels {
+        m = Model::new("m").attach_to_world(&m).unwrap().0;
+    }
+    let out = m.to_xml_string().unwrap();
+    // Every level's frame is written as a frame, the body under them all.
+    assert_eq!(out.matches("<frame name=").count(), levels);
+    let free = format!("{}b/free", "m/".repeat(levels - 1));
+    assert!(out.contains(&format!(r#"<body name="{free}">"#)));
+    drop(m);
+}
+
 #[test]
 fn a_million_siblings_read_write_and_edit() {
     let n = 1_000_000;
@@ -794,4 +837,161 @@ fn error_messages_cut_every_huge_name_at_200_characters() {
     check("file name clash", x.assets(&plain).unwrap_err().to_string());
     let dir = temp_dir("long-names");
     check("export name", m.export(&dir, &n, &plain).unwrap_err().to_string());
+}
+
+// ---- counts -------------------------------------------------------------------------------
+
+/// The model of `body` (a worldbody's content) with `extra` sections after it.
+fn counted(body: &str, extra: &str) -> Model {
+    Model::from_xml_str(&format!(
+        r#"<mujoco model="counted"><worldbody>{body}</worldbody>{extra}</mujoco>"#
+    ))
+    .unwrap()
+}
+
+const KEY: &str = r#"<keyframe><key name="k" qpos="0.5"/></keyframe>"#;
+
+fn merged() -> WriteOptions {
+    WriteOptions { merge_keyframes: true, ..WriteOptions::default() }
+}
+
+/// What every model with huge counts does without listing the copies: it writes,
+/// reads back, checks (`problems` the kinds expected), is walked, and is attached
+/// and written again inside another model.
+fn handles_without_copies(m: &Model, problems: usize) {
+    let out = m.to_xml_string().unwrap();
+    assert_eq!(Model::from_xml_str(&out).unwrap().to_xml_string().unwrap(), out);
+    assert_eq!(m.check().len(), problems, "{:?}", m.check());
+    assert!(m.walk().count() < 1000, "{}", m.walk().count());
+    let (outer, _) = Model::new("outer").attach_to_world(m).unwrap();
+    assert!(outer.to_xml_string().unwrap().contains("counted/"));
+    assert!(outer.walk().count() < 1000, "{}", outer.walk().count());
+}
+
+/// The layout's refusal: its count, saturated, and its limit.
+fn too_large(m: &Model) -> usize {
+    match m.layout().unwrap_err().kind() {
+        ErrorKind::TooLarge { size, limit, .. } => {
+            assert_eq!(*limit, MAX_LAYOUT_ENTRIES);
+            *size
+        }
+        other => panic!("{other}"),
+    }
+}
+
+/// The merged write's refusal: what it counted.
+fn too_large_to_merge(m: &Model) -> (&'static str, usize) {
+    match m.to_xml_string_with(&merged()).unwrap_err() {
+        WriteError::TooLarge { what, size, .. } => (what, size),
+        other => panic!("{other}"),
+    }
+}
+
+/// A `<replicate count="1000000000">` (MuJoCo 4.0's, read as written) aborted the
+/// process: the layout made every copy's transform first (56 GB). Copies holding no
+/// joint and no mocap body are not made at all: the layout is empty, and keys merge.
+#[test]
+fn a_billion_copies_of_bodies_without_joints_are_never_made() {
+    let m = counted(
+        r#"<replicate count="1000000000" offset="1 0 0"><body><geom size="1"/></body></replicate>
+           <body name="b"><joint name="j"/><geom size="1"/></body>"#,
+        KEY,
+    );
+    handles_without_copies(&m, 0);
+    let layout = m.layout().unwrap();
+    assert_eq!((layout.joints.len(), layout.nq), (1, 1));
+    let out = m.to_xml_string_with(&merged()).unwrap();
+    assert!(out.contains(r#"<key name="k" qpos="0.5"/>"#), "{out}");
+}
+
+/// A billion copies of a joint: read, written, checked (the key's length against the
+/// counted size, no copy made), walked and attached; the layout, which would list
+/// each copy, is refused with its count, and so is a merged write (its keys would
+/// hold a billion values), but not one without keys.
+#[test]
+fn a_billion_copies_of_a_joint_are_counted_and_listing_them_is_refused() {
+    let body = r#"<replicate count="1000000000"><body><joint/><geom size="1"/></body></replicate>"#;
+    let m = counted(body, KEY);
+    handles_without_copies(&m, 0);
+    assert_eq!(too_large(&m), 1_000_000_000);
+    assert_eq!(too_large_to_merge(&m), ("composed keys' qpos", 1_000_000_000));
+    assert!(counted(body, "").to_xml_string_with(&merged()).is_ok());
+}
+
+/// Nested replicates multiply: 100,000 × 100,000 copies of a joint are counted as
+/// 10^10; 10^9 cubed copies of a free joint (7 · 10^27 positions) saturate, and a
+/// key longer than the counted size is still reported without overflow.
+#[test]
+fn nested_replicates_multiply_their_counts_without_overflow() {
+    let m = counted(
+        r#"<replicate count="100000"><replicate count="100000">
+             <body><joint/><geom size="1"/></body></replicate></replicate>"#,
+        KEY,
+    );
+    handles_without_copies(&m, 0);
+    assert_eq!(too_large(&m), 10_000_000_000);
+    assert_eq!(too_large_to_merge(&m), ("composed keys' qpos", 10_000_000_000));
+    let cubed = counted(
+        r#"<replicate count="1000000000"><replicate count="1000000000"><replicate count="1000000000">
+             <body mocap="true"><geom size="1"/></body>
+             <body><freejoint/><geom size="1"/></body></replicate></replicate></replicate>"#,
+        KEY,
+    );
+    handles_without_copies(&cubed, 0);
+    assert_eq!(too_large(&cubed), usize::MAX);
+    assert_eq!(too_large_to_merge(&cubed), ("composed keys' qpos", usize::MAX));
+}
+
+/// `nuser_jnt` (and the other `nuser_*` of `<size>`), `<flexcomp>` and `<composite>`
+/// counts are kept as written and never expanded: models with huge ones read, write,
+/// check, lay out (the generated elements listed as not expanded) and merge keys.
+#[test]
+fn huge_user_sizes_and_flexcomp_and_composite_counts_are_never_expanded() {
+    let size =
+        r#"<size nuser_jnt="1000000000000" nuser_body="1000000000000" nuser_geom="2000000000"/>"#;
+    let m = counted(r#"<body name="b"><joint/><geom size="1"/></body>"#, &format!("{size}{KEY}"));
+    handles_without_copies(&m, 0);
+    assert_eq!(m.layout().unwrap().nq, 1);
+    assert!(m.to_xml_string_with(&merged()).unwrap().contains(r#"nuser_jnt="1000000000000""#));
+    let generated = counted(
+        r#"<flexcomp name="f" type="grid" count="1000000000 1000000000 1000000000" spacing="1 1 1" dim="3"/>
+           <body name="c"><composite type="cable" count="1000000000 1 1"><geom type="capsule" size="0.1"/></composite></body>"#,
+        KEY,
+    );
+    let layout = generated.layout().unwrap();
+    assert_eq!((layout.nq, layout.unexpanded.len()), (0, 2));
+    assert!(generated.to_xml_string_with(&merged()).is_ok());
+    assert!(
+        generated.to_xml_string().unwrap().contains(r#"count="1000000000 1000000000 1000000000""#)
+    );
+}
+
+/// A key with a million values for a model of one joint is reported by `check`
+/// (its length against the model's) and merged to the model's one value; an
+/// `actdim` of 10^12 is counted (checked, laid out as a number) and a merged key
+/// that would hold that many activations is refused before any is made.
+#[test]
+fn huge_keys_and_activation_counts_are_checked_and_bounded() {
+    let values = vec!["0"; 1_000_000].join(" ");
+    let m = counted(
+        r#"<body name="b"><joint name="j"/><geom size="1"/></body>"#,
+        &format!(r#"<keyframe><key name="k" qpos="{values}"/></keyframe>"#),
+    );
+    let problems = m.check();
+    assert!(
+        matches!(
+            problems.as_slice(),
+            [p] if matches!(p.kind, ProblemKind::KeyLength { attribute: "qpos", expected: 1, found: 1_000_000 })
+        ),
+        "{problems:?}"
+    );
+    assert!(m.to_xml_string_with(&merged()).unwrap().contains(r#"<key name="k" qpos="0"/>"#));
+    let actuator =
+        r#"<actuator><general joint="j" dyntype="user" actdim="1000000000000"/></actuator>"#;
+    let body = r#"<body name="b"><joint name="j"/><geom size="1"/></body>"#;
+    let m = counted(body, &format!("{actuator}{KEY}"));
+    handles_without_copies(&m, 0);
+    assert_eq!(m.layout().unwrap().na, 1_000_000_000_000);
+    assert_eq!(too_large_to_merge(&m), ("composed keys' act", 1_000_000_000_000));
+    assert!(counted(body, actuator).to_xml_string_with(&merged()).is_ok());
 }

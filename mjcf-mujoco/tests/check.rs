@@ -74,7 +74,7 @@ fn mutants(m: &Model) -> Vec<(String, Model)> {
     if let Ok((v, _)) = m.add(&w, body) {
         out.push(("a free joint beside another joint".into(), v));
     }
-    let nq = m.layout().nq;
+    let nq = m.layout().unwrap().nq;
     let keys = m.section("keyframe").unwrap();
     if let Ok((v, _)) =
         m.add(&keys, element!("key", name = "mutant_long", qpos = vec![0.0; nq + 1]))

@@ -157,7 +157,7 @@ fn judge_keys(mujoco: &MuJoCo, label: &str, model: &Model, tally: &mut Tally) {
             .iter()
             .filter_map(|k| child.get(k).ok()?.identifier().map(str::to_string))
             .collect();
-        let layout = child.layout();
+        let layout = child.layout().unwrap();
         let bases: Vec<mjcf::Loc> = layout
             .joints
             .iter()
@@ -293,7 +293,7 @@ fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tall
 }
 
 fn judge_layout(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tally) {
-    let layout = model.layout();
+    let layout = model.layout().unwrap();
     if !layout.unexpanded.is_empty() {
         tally.unexpanded += 1;
         return;
@@ -387,7 +387,7 @@ fn with_home_keys(m: &Model, seed: usize) -> Model {
     for (n, scope) in m.scope_paths().iter().enumerate() {
         let child = m.attached(scope.as_str()).unwrap();
         let mut qpos = Vec::new();
-        for (j, joint) in child.layout().joints.iter().enumerate() {
+        for (j, joint) in child.layout().unwrap().joints.iter().enumerate() {
             let t = (seed + n + j) as f64;
             match joint.joint_type {
                 mjcf::JointType::Free => {

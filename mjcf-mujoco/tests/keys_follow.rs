@@ -55,7 +55,7 @@ fn with_key(m: &Model) -> Option<Model> {
                 .child(element!("geom", size = [0.05])),
         );
     m.add_mut(&m.worldbody(), arm).ok()?;
-    let layout = m.layout();
+    let layout = m.layout().ok()?;
     let mut qpos = Vec::new();
     for (k, j) in layout.joints.iter().filter(|j| j.is_own()).enumerate() {
         let t = 0.05 + 0.01 * k as f64;
@@ -77,6 +77,7 @@ fn with_key(m: &Model) -> Option<Model> {
 /// Every own joint, by locator.
 fn own_joints(m: &Model) -> HashMap<Loc, (String, JointType)> {
     m.layout()
+        .unwrap()
         .joints
         .iter()
         .filter(|j| j.is_own())

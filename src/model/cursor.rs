@@ -180,14 +180,28 @@ impl<'a> Insts<'a> {
         })
     }
 
-    /// The instance of the model attached along `frames` from instance 0.
+    /// The instance of the model attached along `frames` from instance 0. Only that
+    /// instance is made: the models between are passed through, each appending its
+    /// scope to one prefix, so this is linear in the levels (an instance per level,
+    /// each copying its parent's frame list and prefix, was quadratic).
     pub(crate) fn along(&mut self, frames: &[ElementId]) -> Option<usize> {
-        let mut i = 0;
-        for f in frames {
-            let node = self.list[i].model.node_by_id(*f)?;
-            i = self.attached(i, node)?;
+        let Some((last, outer)) = frames.split_last() else { return Some(0) };
+        if outer.is_empty() {
+            let node = self.list[0].model.node_by_id(*last)?;
+            return self.attached(0, node);
         }
-        Some(i)
+        let mut model = self.list[0].model;
+        let mut names = self.list[0].names.clone();
+        for f in outer {
+            let a = model.node_by_id(*f)?.attached()?;
+            names.descend(&a.scope, &a.model, in_replicate(model, *f));
+            model = &a.model;
+        }
+        let frame = model.node_by_id(*last)?;
+        let a = frame.attached()?;
+        names.descend(&a.scope, &a.model, in_replicate(model, *last));
+        self.list.push(Inst::new(&a.model, Arc::from(frames), Some(frame), names));
+        Some(self.list.len() - 1)
     }
 
     /// Every instance attached under `inst`, depth first in attach order.

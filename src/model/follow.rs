@@ -122,7 +122,10 @@ impl Model {
         if keys.is_empty() {
             return after;
         }
-        let (before_layout, after_layout) = (self.layout(), after.layout());
+        // A layout too large to list (`<replicate>` counts) is not followed.
+        let (Ok(before_layout), Ok(after_layout)) = (self.layout(), after.layout()) else {
+            return after;
+        };
         let (Some(old), Some(new)) = (slots(&before_layout), slots(&after_layout)) else {
             return after;
         };

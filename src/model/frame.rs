@@ -2,6 +2,8 @@
 //! attributes can be set later, which children it takes, and whether it is written
 //! as MuJoCo's `<frame>` (keeping its model's free bodies top level).
 
+use std::collections::HashMap;
+
 use crate::error::ErrorKind;
 use crate::schema::{ElementKind, Role};
 
@@ -70,9 +72,7 @@ pub(crate) fn placed_frame_attrs(
     }
     // The class in force: the site's own, else the nearest `childclass` above it, else
     // the model's root class.
-    let class = super::layout::class_of(site).or_else(|| {
-        (0..path.len()).rev().find_map(|n| super::layout::childclass_of(model.node_at(&path[..n])?))
-    });
+    let class = super::layout::class_of(site).or_else(|| nearest_childclass(model, path));
     let class = class
         .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id));
     if own("pos").is_none() {
@@ -90,6 +90,25 @@ pub(crate) fn placed_frame_attrs(
     }
     attrs.sort_by_key(|(i, _)| *i);
     attrs
+}
+
+/// The `childclass` nearest above the element at `path` (its ancestors', the root's
+/// included, not its own), found in one walk down the path: O(depth), where looking
+/// up each ancestor by its path from the root was O(depth²).
+fn nearest_childclass(
+    model: &super::Model,
+    path: &[usize],
+) -> Option<crate::model::tree::ElementId> {
+    let mut nearest = None;
+    let mut node = &model.root;
+    for &i in path {
+        nearest = super::layout::childclass_of(node).or(nearest);
+        match node.children().get(i) {
+            Some(child) => node = child,
+            None => break,
+        }
+    }
+    nearest
 }
 
 /// The attributes that orient a site or a frame.
@@ -157,48 +176,146 @@ pub(crate) fn check_frame_child(
 /// reference. The model's world level is its worldbody's children and, through them,
 /// the content of MuJoCo's `<frame>`s and `<replicate>`s and of attachment frames
 /// written as `<frame>` in turn; a joint is free by its own `type` or its classes'.
+///
+/// A one-off answer; a writer asks [`FrameTags::keeps_bodies_top_level`], which keeps
+/// the answers.
 pub(crate) fn frame_keeps_bodies_top_level(frame: &Node) -> bool {
-    let Some(a) = frame.attached() else { return false };
+    FrameTags::default().keeps_bodies_top_level(frame)
+}
+
+/// The answers of [`frame_keeps_bodies_top_level`] given so far, per frame node (by
+/// address: nodes never change, and they outlive one write that borrows them). An
+/// answer follows the attached model's world level into the attachments there,
+/// nested to any depth; kept, each frame's world level is looked at once per write,
+/// where asking each frame of a chain of nested attachments anew went down the whole
+/// chain from each (quadratic in the levels).
+#[derive(Default)]
+pub(crate) struct FrameTags(HashMap<*const (), bool>);
+
+/// A frame whose answer waits on those of the attachment frames at its model's world
+/// level (`nested`, those not asked yet).
+struct Waiting<'a> {
+    frame: *const (),
+    nested: Vec<&'a Node>,
+}
+
+impl FrameTags {
+    /// [`frame_keeps_bodies_top_level`] of `frame`, each nested frame's answer kept
+    /// too. Iterative (frames waiting on their nested frames, on a list), so
+    /// attachments nested to any depth are followed without recursion.
+    pub(crate) fn keeps_bodies_top_level(&mut self, frame: &Node) -> bool {
+        let mut waiting: Vec<Waiting<'_>> = Vec::new();
+        let mut answer = self.start(frame, &mut waiting);
+        loop {
+            if let Some(found) = answer {
+                if waiting.is_empty() {
+                    return found;
+                }
+                if found {
+                    // The frame waiting on this one holds a free body through it.
+                    if let Some(w) = waiting.pop() {
+                        self.0.insert(w.frame, true);
+                    }
+                    continue;
+                }
+            }
+            let Some(w) = waiting.last_mut() else { return false };
+            answer = match w.nested.pop() {
+                Some(next) => self.start(next, &mut waiting),
+                None => {
+                    // No nested frame holds one either.
+                    let frame = w.frame;
+                    waiting.pop();
+                    self.0.insert(frame, false);
+                    Some(false)
+                }
+            };
+        }
+    }
+
+    /// The answer for `frame` if it is known or found at its own model's world level;
+    /// else `None`, and the frame waits on the attachment frames there.
+    fn start<'a>(&mut self, frame: &'a Node, waiting: &mut Vec<Waiting<'a>>) -> Option<bool> {
+        let key = frame.as_ptr();
+        if let Some(&known) = self.0.get(&key) {
+            return Some(known);
+        }
+        let mut todo: Vec<WorldLevel<'_>> = Vec::new();
+        push_world_level(frame, &mut todo);
+        let mut nested = Vec::new();
+        while let Some(level) = todo.pop() {
+            for c in level.container.children().iter() {
+                if c.attached().is_some() {
+                    nested.push(c);
+                    continue;
+                }
+                let inherited = layout::childclass_of(c).or(level.childclass);
+                match c.kind().role() {
+                    Some(Role::Body)
+                        if has_free_joint(level.model, c, inherited, level.root_class) =>
+                    {
+                        self.0.insert(key, true);
+                        return Some(true);
+                    }
+                    Some(Role::Frame | Role::Replicate) => {
+                        todo.push(WorldLevel { container: c, childclass: inherited, ..level });
+                    }
+                    _ => {}
+                }
+            }
+        }
+        if nested.is_empty() {
+            self.0.insert(key, false);
+            return Some(false);
+        }
+        nested.reverse();
+        waiting.push(Waiting { frame: key, nested });
+        None
+    }
+}
+
+/// An element at a model's world level whose children are at that level too (its
+/// worldbody, a MuJoCo `<frame>` or `<replicate>` there): `childclass` is the class
+/// its children inherit, if any.
+#[derive(Clone, Copy)]
+struct WorldLevel<'a> {
+    model: &'a Model,
+    container: &'a Node,
+    childclass: Option<ElementId>,
+    root_class: Option<ElementId>,
+}
+
+/// Adds the world level of `frame`'s model to `todo` if `frame` is an attachment frame
+/// that can be written as `<frame>` (empty, without body-only attributes).
+fn push_world_level<'a>(frame: &'a Node, todo: &mut Vec<WorldLevel<'a>>) {
+    let Some(a) = frame.attached() else { return };
     if !frame.children().is_empty() {
-        return false;
+        return;
     }
     let kind = frame.kind();
     let body_only = ["user", "mocap"]
         .iter()
         .any(|n| kind.attr_index(n).is_some_and(|i| frame.attr(i).is_some()));
     if body_only {
-        return false;
+        return;
     }
-    let Some(wb) = section_of(&a.model, "worldbody") else { return false };
+    let Some(wb) = section_of(&a.model, "worldbody") else { return };
     let root_class = section_of(&a.model, "default").map(Node::id);
-    has_free_body_at_world_level(&a.model, wb, None, root_class)
+    todo.push(WorldLevel { model: &a.model, container: wb, childclass: None, root_class });
 }
 
-/// Whether a child of `container` (at `model`'s world level; `childclass` the class
-/// its children inherit, if any) is a body with a free joint, or holds one at the world
-/// level (a MuJoCo `<frame>` or `<replicate>`, an attachment frame written as `<frame>`).
-fn has_free_body_at_world_level(
+/// Whether `body` (its children inheriting class `inherited`) has a free joint, by
+/// the joint's own `type` or its classes'.
+fn has_free_joint(
     model: &Model,
-    container: &Node,
-    childclass: Option<ElementId>,
+    body: &Node,
+    inherited: Option<ElementId>,
     root_class: Option<ElementId>,
 ) -> bool {
-    container.children().iter().any(|c| {
-        if c.attached().is_some() {
-            return frame_keeps_bodies_top_level(c);
-        }
-        let inherited = layout::childclass_of(c).or(childclass);
-        match c.kind().role() {
-            Some(Role::Body) => c.children().iter().any(|j| {
-                matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)) && {
-                    let class = layout::class_of(j).or(inherited).or(root_class);
-                    layout::joint_type(model, j, class) == JointType::Free
-                }
-            }),
-            Some(Role::Frame | Role::Replicate) => {
-                has_free_body_at_world_level(model, c, inherited, root_class)
-            }
-            _ => false,
+    body.children().iter().any(|j| {
+        matches!(j.kind().role(), Some(Role::Joint | Role::Freejoint)) && {
+            let class = layout::class_of(j).or(inherited).or(root_class);
+            layout::joint_type(model, j, class) == JointType::Free
         }
     })
 }

@@ -22,6 +22,7 @@ use std::collections::HashMap;
 
 use smol_str::SmolStr;
 
+use crate::error::{ErrorKind, WriteError};
 use crate::model::Model;
 use crate::model::layout::{JointType, Layout};
 use crate::model::pose::{self, Pose, floats};
@@ -44,7 +45,7 @@ fn part<'k>(
     at: usize,
     len: usize,
 ) -> Option<&'k [f64]> {
-    floats(keys.get(&inst)?, field)?.get(at..at + len)
+    floats(keys.get(&inst)?, field)?.get(at..at.checked_add(len)?)
 }
 
 /// The composed values of each field for one key name (`keys`: the key of that name
@@ -108,9 +109,42 @@ fn compose_fields(
     [("qpos", qpos), ("qvel", qvel), ("act", act), ("mpos", mpos), ("mquat", mquat), ("ctrl", ctrl)]
 }
 
-/// The composed keys of `model` (see the module documentation).
-pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
-    let layout = model.layout();
+/// The most values one field of a composed key holds (`qpos` of a million free
+/// joints): the writer refuses longer ones, whose sizes come from `<replicate>`
+/// counts or an `actdim`, before making them.
+pub(crate) const MAX_KEY_VALUES: usize = 7 * crate::model::layout::MAX_LAYOUT_ENTRIES;
+
+/// The composed keys of `model` (see the module documentation); none, with nothing
+/// laid out, when the model has no key.
+///
+/// # Errors
+/// [`WriteError::TooLarge`] if a field of the composed keys would hold more than
+/// [`MAX_KEY_VALUES`] values, or the layout more than
+/// [`MAX_LAYOUT_ENTRIES`](crate::model::layout::MAX_LAYOUT_ENTRIES) joints and
+/// mocap bodies; checked before any is made.
+pub(crate) fn merged_keys(model: &Model) -> Result<Vec<MergedKey>, WriteError> {
+    let sizes = model.layout_sizes();
+    if sizes.keys.is_empty() {
+        return Ok(Vec::new());
+    }
+    let total = |k: usize| sizes.per_inst.values().fold(0usize, |s, n| s.saturating_add(n[k]));
+    for (what, size) in [
+        ("composed keys' qpos", total(0)),
+        ("composed keys' qvel", total(1)),
+        ("composed keys' act", total(2)),
+        ("composed keys' ctrl", total(3)),
+        ("composed keys' mquat", total(4).saturating_mul(4)),
+    ] {
+        if size > MAX_KEY_VALUES {
+            return Err(WriteError::TooLarge { what, size, limit: MAX_KEY_VALUES });
+        }
+    }
+    let layout = model.layout().map_err(|e| match e.kind() {
+        ErrorKind::TooLarge { what, size, limit } => {
+            WriteError::TooLarge { what, size: *size, limit: *limit }
+        }
+        other => WriteError::Conflict(other.to_string()),
+    })?;
     // Key names in order of first appearance; the parent's unnamed keys by position.
     let mut order: Vec<Option<SmolStr>> = Vec::new();
     let mut by_name: Vec<HashMap<usize, &Node>> = Vec::new();
@@ -133,7 +167,7 @@ pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
         };
         by_name[i].entry(*inst).or_insert(key);
     }
-    order
+    let keys = order
         .into_iter()
         .zip(by_name)
         .map(|(name, keys)| {
@@ -153,5 +187,6 @@ pub(crate) fn merged_keys(model: &Model) -> Vec<MergedKey> {
                 .and_then(Value::as_float);
             MergedKey { name, fields, time }
         })
-        .collect()
+        .collect();
+    Ok(keys)
 }

@@ -13,14 +13,28 @@
 //! inside out). Elements that make joints MuJoCo's compiler generates (`<attach>` of
 //! an asset model, `<composite>`, `<flexcomp>`) are not expanded: they are listed in
 //! [`Layout::unexpanded`], and the layout is exact only where that list is empty.
+//!
+//! A `<replicate>`'s copies are counted before any is listed (nested counts
+//! multiplied, saturating): copies holding no joint and no mocap body are never
+//! listed, and a layout listing more than [`MAX_LAYOUT_ENTRIES`] joints and mocap
+//! bodies is refused. The sizes alone ([`Model::layout_sizes`], what
+//! [`Model::check`] needs) are counted, never listed, whatever the counts.
 
 use std::collections::HashMap;
 
+use crate::error::{EditError, ErrorKind};
 use crate::model::pose::{self, Angles, IDENTITY, Pose};
 use crate::model::tree::{ElementId, Node};
 use crate::model::{Loc, Model, Step, Walk, settings};
 use crate::schema::{ElementKind, Role};
 use crate::value::{Reference, Value};
+
+/// The most joints and mocap bodies (each `<replicate>` copy counted) that
+/// [`Model::layout`] lists one by one: a million (each listed joint takes on the
+/// order of a hundred bytes, so a full layout stays within a few hundred megabytes).
+/// MuJoCo itself has no bound of its own below its sizes' `int` (2,147,483,647),
+/// where it refuses a `count` ("number is too large").
+pub const MAX_LAYOUT_ENTRIES: usize = 1_000_000;
 
 /// A joint's type, as MuJoCo compiles it (the element's own `type`, else its default
 /// classes', else a hinge).
@@ -364,7 +378,13 @@ impl Model {
     ///
     /// Time: O(N) for a composed model of N elements (O(N · c) where classes c deep
     /// are followed for joint types and actuator settings), plus the copies a
-    /// `<replicate>` makes.
+    /// `<replicate>` makes of joints and mocap bodies (copies without any are not
+    /// made).
+    ///
+    /// # Errors
+    /// [`ErrorKind::TooLarge`] if the layout would list more than
+    /// [`MAX_LAYOUT_ENTRIES`] joints and mocap bodies (`<replicate>` copies
+    /// counted); nothing is listed before the count.
     ///
     /// # Examples
     /// ```
@@ -376,17 +396,68 @@ impl Model {
     /// let mut arena = Model::new("arena");
     /// let a = arena.attach_mut(&arena.worldbody(), &robot)?;
     /// arena.add_mut(a.frame(), element!("freejoint"))?;
-    /// let layout = arena.layout();
+    /// let layout = arena.layout()?;
     /// let joints: Vec<_> = layout.joints.iter().map(|j| (j.joint_type, j.qpos, j.dof)).collect();
     /// assert_eq!(joints, [(JointType::Free, 0, 0), (JointType::Ball, 7, 6), (JointType::Hinge, 11, 9)]);
     /// assert_eq!((layout.nq, layout.nv), (12, 10));
     /// # Ok::<(), mjcf::Error>(())
     /// ```
-    pub fn layout(&self) -> Layout<'_> {
+    pub fn layout(&self) -> Result<Layout<'_>, EditError> {
         let gathered = gather(self);
-        let (joints, mocap) = in_mujoco_order(&gathered.recs);
-        numbered(gathered, joints, mocap)
+        let (joints, mocap) = in_mujoco_order(&gathered.recs).map_err(|size| {
+            let what = "joints and mocap bodies with their <replicate> copies";
+            EditError::new(
+                ErrorKind::TooLarge { what, size, limit: MAX_LAYOUT_ENTRIES },
+                String::new(),
+            )
+        })?;
+        Ok(numbered(gathered, joints, mocap))
     }
+
+    /// The sizes of the layout without listing it: per instance of the composition
+    /// (0 for this model, then attached models in walk order) its positions,
+    /// velocities, activations, controls and mocap bodies, each `<replicate>` copy
+    /// counted (saturating at `usize::MAX`); and the keys. Never refused.
+    ///
+    /// Time: O(N) for a composed model of N elements (as [`Model::layout`], without
+    /// the copies).
+    pub(crate) fn layout_sizes(&self) -> LayoutSizes<'_> {
+        let gathered = gather(self);
+        let mut per_inst: HashMap<usize, [usize; 5]> = HashMap::new();
+        let mut add = |inst: usize, k: usize, n: usize| {
+            let slot = &mut per_inst.entry(inst).or_default()[k];
+            *slot = slot.saturating_add(n);
+        };
+        // Each record once, with the number of copies it is made in.
+        let mut todo = vec![(0, 1usize)];
+        while let Some((r, copies)) = todo.pop() {
+            let rec = &gathered.recs[r];
+            for (j, _) in &rec.joints {
+                add(j.inst, 0, j.joint_type.nq().saturating_mul(copies));
+                add(j.inst, 1, j.joint_type.nv().saturating_mul(copies));
+            }
+            if let Some(b) = &rec.mocap {
+                add(b.inst, 4, copies);
+            }
+            todo.extend(rec.children.iter().map(|c| match *c {
+                Child::Body(c) => (c, copies),
+                Child::Repeat { rec, count, .. } => (rec, copies.saturating_mul(count)),
+            }));
+        }
+        for a in &gathered.actuators {
+            add(a.inst, 2, a.nact);
+            add(a.inst, 3, a.nctrl);
+        }
+        LayoutSizes { per_inst, keys: gathered.keys }
+    }
+}
+
+/// What [`Model::layout_sizes`] counts.
+pub(crate) struct LayoutSizes<'a> {
+    /// Per instance: positions, velocities, activations, controls, mocap bodies.
+    pub(crate) per_inst: HashMap<usize, [usize; 5]>,
+    /// The keys, with the instance each belongs to, in document order.
+    pub(crate) keys: Vec<(usize, &'a Node, Loc)>,
 }
 
 /// What the walk of the composed model gathers, before MuJoCo's order is applied.
@@ -524,18 +595,40 @@ fn layout_joint(
     LayoutJoint { loc, joint_type, qpos: 0, dof: 0, inst, own_qpos: 0, own_dof: 0, qpos0 }
 }
 
-/// The copies a `<replicate>` makes: its `count`, 1 if it has none.
+/// The copies a `<replicate>` makes: its `count` (none below 1, as MuJoCo 4.0.0
+/// compiles `count="0"` and `count="-1"`), 1 if it has none.
 fn replicate_count(node: &Node) -> usize {
     node.attr(node.kind().attr_index("count").unwrap_or(usize::MAX))
         .and_then(Value::as_int)
-        .and_then(|c| usize::try_from(c).ok())
-        .unwrap_or(1)
+        .map_or(1, |c| usize::try_from(c).unwrap_or(0))
+}
+
+/// The joints and mocap bodies each record lists with its copies and its
+/// children's (saturating): records are made parent first, so children come later.
+fn entries(recs: &[BodyRec]) -> Vec<usize> {
+    let mut n = vec![0usize; recs.len()];
+    for (r, rec) in recs.iter().enumerate().rev() {
+        let own = rec.joints.len().saturating_add(usize::from(rec.mocap.is_some()));
+        n[r] = rec.children.iter().fold(own, |sum, c| {
+            sum.saturating_add(match *c {
+                Child::Body(c) => n[c],
+                Child::Repeat { rec, count, .. } => n[rec].saturating_mul(count),
+            })
+        });
+    }
+    n
 }
 
 /// The joints and mocap bodies in MuJoCo's order: bodies depth first, each body's
 /// joints before its children's; a replicate's content once per copy, moved (a free
-/// joint's default position and a mocap body's pose with it).
-fn in_mujoco_order(recs: &[BodyRec]) -> (Vec<LayoutJoint>, Vec<LayoutMocap>) {
+/// joint's default position and a mocap body's pose with it). Copies of content
+/// without joints or mocap bodies are not made; past [`MAX_LAYOUT_ENTRIES`], the
+/// count (nothing is listed).
+fn in_mujoco_order(recs: &[BodyRec]) -> Result<(Vec<LayoutJoint>, Vec<LayoutMocap>), usize> {
+    let n = entries(recs);
+    if n[0] > MAX_LAYOUT_ENTRIES {
+        return Err(n[0]);
+    }
     let (mut joints, mut mocap) = (Vec::new(), Vec::new());
     let mut todo = vec![(0, IDENTITY)];
     while let Some((r, moved)) = todo.pop() {
@@ -554,7 +647,10 @@ fn in_mujoco_order(recs: &[BodyRec]) -> (Vec<LayoutJoint>, Vec<LayoutMocap>) {
         for child in recs[r].children.iter().rev() {
             match *child {
                 Child::Body(c) => todo.push((c, moved)),
+                // Content listing nothing is not copied.
+                Child::Repeat { rec, .. } if n[rec] == 0 => {}
                 Child::Repeat { rec, count, at, step } => {
+                    // At most MAX_LAYOUT_ENTRIES copies: each lists something.
                     let back = pose::inverse(at);
                     let mut shifts = Vec::with_capacity(count);
                     let mut shift = IDENTITY;
@@ -569,7 +665,7 @@ fn in_mujoco_order(recs: &[BodyRec]) -> (Vec<LayoutJoint>, Vec<LayoutMocap>) {
             }
         }
     }
-    (joints, mocap)
+    Ok((joints, mocap))
 }
 
 /// The layout with its addresses: each joint's, actuator's and mocap body's in the
@@ -606,8 +702,13 @@ fn numbered<'a>(
     for mut a in gathered.actuators {
         let counts = own.entry(a.inst).or_default();
         (a.ctrl, a.act, a.own_ctrl, a.own_act) = (out.nu, out.na, counts[2], counts[3]);
-        (out.nu, out.na, counts[2], counts[3]) =
-            (out.nu + a.nctrl, out.na + a.nact, counts[2] + a.nctrl, counts[3] + a.nact);
+        // An `actdim` can be any number: saturating.
+        (out.nu, out.na, counts[2], counts[3]) = (
+            out.nu.saturating_add(a.nctrl),
+            out.na.saturating_add(a.nact),
+            counts[2].saturating_add(a.nctrl),
+            counts[3].saturating_add(a.nact),
+        );
         out.actuators.push(a);
     }
     for (i, mut b) in mocap.into_iter().enumerate() {
@@ -630,7 +731,7 @@ mod tests {
 
     /// The names of the layout's joints, in its order.
     fn joint_names(m: &Model) -> Vec<String> {
-        let layout = m.layout();
+        let layout = m.layout().unwrap();
         layout
             .joints
             .iter()
@@ -660,7 +761,7 @@ mod tests {
         );
         let qpos0 = |name: &str| {
             let loc = m.find(Namespace::Joint, name).unwrap();
-            let layout = m.layout();
+            let layout = m.layout().unwrap();
             layout.joints.iter().find(|j| j.loc == loc).unwrap().qpos0.clone()
         };
         assert_eq!(qpos0("free"), [1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0]);
@@ -681,7 +782,7 @@ mod tests {
                      <joint name="s" type="slide" ref="0.5"/><joint name="hc" class="c"/>
                      <geom size="1"/></body></worldbody></mujoco>"#
             ));
-            m.layout().joints.iter().flat_map(|j| j.qpos0.clone()).collect::<Vec<f64>>()
+            m.layout().unwrap().joints.iter().flat_map(|j| j.qpos0.clone()).collect::<Vec<f64>>()
         };
         let degrees = [90f64.to_radians(), 0.5, 30f64.to_radians()];
         assert_eq!(qpos0(""), degrees);
@@ -701,10 +802,22 @@ mod tests {
         let replicate = m.find(Namespace::Body, "r").unwrap();
         let node = m.node_by_id(m.element(&replicate).unwrap().parent().unwrap().loc().id());
         assert_eq!(node.map(replicate_count), Some(3));
-        let layout = m.layout();
+        let layout = m.layout().unwrap();
         let x: Vec<f64> = layout.joints.iter().map(|j| j.qpos0[0]).collect();
         assert_eq!(x, [0.0, 1.0, 2.0]);
         assert_eq!(layout.joints.iter().map(|j| j.qpos).collect::<Vec<_>>(), [0, 7, 14]);
         assert_eq!((layout.nq, layout.nv), (21, 18));
+    }
+
+    /// MuJoCo 4.0.0 compiles `count="0"` and `count="-1"` to no copy (`nq` 0).
+    #[test]
+    fn a_replicate_count_below_1_makes_no_copy() {
+        for count in ["0", "-1"] {
+            let m = read(&format!(
+                r#"<mujoco><worldbody><replicate count="{count}">
+                     <body><joint/><geom size="1"/></body></replicate></worldbody></mujoco>"#
+            ));
+            assert_eq!(m.layout().unwrap().nq, 0, "{count}");
+        }
     }
 }

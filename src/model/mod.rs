@@ -52,7 +52,7 @@ pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;
 pub(crate) use index::{Entry, Index, MergedCache, ReadIndex, slashed_segment};
-pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap};
+pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap, MAX_LAYOUT_ENTRIES};
 pub(crate) use scope::not_attached as scope_not_attached;
 pub use scope::{Attachment, ScopeRef};
 
@@ -489,7 +489,12 @@ impl Model {
         let mut frames: Vec<ElementId> = Vec::new();
         let mut rest = identifier;
         loop {
-            if let Some(id) = own(m, rest) {
+            // A literal name with a `/` is looked for only where the model holds one
+            // starting with the same segment: hashing the whole rest at each level
+            // was quadratic in the levels of a scoped name.
+            let literal =
+                index::slashed_segment(rest).is_none_or(|s| m.index.slashed.contains_key(s));
+            if let Some(id) = literal.then(|| own(m, rest)).flatten() {
                 return Ok(Ok(self.scoped_loc(&frames, id)));
             }
             let Some((scope, tail)) = rest.split_once('/') else { break };

@@ -100,20 +100,26 @@ impl InstNames {
     /// The naming state of `model`, attached as `scope` under this instance, at a
     /// frame that lies inside a `<replicate>` (`in_replicate`) or not.
     pub(crate) fn attached(&self, scope: &str, model: &Model, in_replicate: bool) -> InstNames {
-        let mut prefix = String::with_capacity(self.prefix.len() + scope.len() + 1);
-        prefix.push_str(&self.prefix);
-        prefix.push_str(scope);
-        prefix.push('/');
-        InstNames {
-            prefix_clean: crate::value::is_clean(prefix.as_bytes()),
-            prefix,
-            in_replicate: self.in_replicate || in_replicate,
-            root_class: match root_default(model).and_then(Node::identifier) {
-                Some(n) if !n.is_empty() => RootClass::Own,
-                _ => RootClass::Slash,
-            },
-            literal_auto_clash: model.index.has_slashed_segment(""),
-        }
+        let mut names = self.clone();
+        names.descend(scope, model, in_replicate);
+        names
+    }
+
+    /// [`InstNames::attached`] in place: this naming state becomes that of `model`,
+    /// attached as `scope` under it. The prefix grows by the scope only, so following
+    /// a chain of attachments this way is linear in the prefix's final length.
+    pub(crate) fn descend(&mut self, scope: &str, model: &Model, in_replicate: bool) {
+        self.prefix.push_str(scope);
+        self.prefix.push('/');
+        // Cleanness is byte by byte: the parent's, then the new scope's (`/` is
+        // clean), without scanning the whole prefix again at every level.
+        self.prefix_clean = self.prefix_clean && crate::value::is_clean(scope.as_bytes());
+        self.in_replicate = self.in_replicate || in_replicate;
+        self.root_class = match root_default(model).and_then(Node::identifier) {
+            Some(n) if !n.is_empty() => RootClass::Own,
+            _ => RootClass::Slash,
+        };
+        self.literal_auto_clash = model.index.has_slashed_segment("");
     }
 
     /// Whether this instance is the outermost model.

@@ -158,6 +158,7 @@ impl Model {
             pending: None,
             in_wrapper: false,
             entries: HashMap::with_hasher(IdHash),
+            frame_tags: policy::FrameTags::default(),
         };
         w.run(Walk::new(self).pruned(policy::is_silent), true)?;
         if let Some((tag, attribute, character)) = w.text.bad_char {
@@ -230,6 +231,8 @@ struct Writer<'a> {
     /// attached model's elements are looked up again for each attachment of it
     /// (the same shared map), and a class is looked up twice (is it there, its name).
     entries: HashMap<ElementId, (&'a ElemMap<Entry>, Option<&'a Entry>), IdHash>,
+    /// Which attachment frames in the world are written as `<frame>`, as asked.
+    frame_tags: policy::FrameTags,
 }
 
 impl<'a> Writer<'a> {
@@ -330,7 +333,7 @@ impl<'a> Writer<'a> {
             node.attached().is_none() && self.sets_childclass(insts, inst, node)
         });
         let parent_in_world = parent.is_some_and(|(_, d)| d.world_below);
-        let tag = policy::written_tag(node, parent_in_world);
+        let tag = policy::written_tag(node, parent_in_world, &mut self.frame_tags);
         let worldbody = section && node.kind().is(Role::Worldbody);
         Decisions {
             presence,
@@ -463,7 +466,7 @@ impl<'a> Writer<'a> {
     /// Writes the composed keys in place of the keyframe section
     /// ([`policy::merges_keys`]).
     fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
-        let keys = crate::model::keys::merged_keys(insts.list[0].model);
+        let keys = crate::model::keys::merged_keys(insts.list[0].model)?;
         if keys.is_empty() {
             return Ok(());
         }

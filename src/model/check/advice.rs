@@ -78,8 +78,8 @@ impl Model {
         if options.merge_keyframes {
             return Vec::new();
         }
-        let layout = self.layout();
-        // The layout lists each key once.
+        // The sizes (counted, never listed: any `<replicate>` count) list each key once.
+        let layout = self.layout_sizes();
         let mut out: Vec<Advice> = Vec::new();
         for (inst, _, loc) in &layout.keys {
             if *inst == 0 {

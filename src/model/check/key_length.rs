@@ -28,25 +28,20 @@ impl<'m> KeyLength<'m> {
         KeyLength { model, merge: options.merge_keyframes, sizes: None }
     }
 
-    /// The sizes of `model`'s layout, per instance with `merge`, else for the whole.
+    /// The sizes of `model`'s layout, per instance with `merge`, else for the whole:
+    /// counted, not listed, so `<replicate>` counts of any size cost nothing here.
     fn sizes(model: &Model, merge: bool) -> HashMap<usize, [usize; 5]> {
-        let layout = model.layout();
-        let mut sizes: HashMap<usize, [usize; 5]> = HashMap::new();
-        let mut add = |inst: usize, k: usize, n: usize| {
-            sizes.entry(if merge { inst } else { usize::MAX }).or_default()[k] += n;
-        };
-        for j in &layout.joints {
-            add(j.inst, 0, j.joint_type.nq());
-            add(j.inst, 1, j.joint_type.nv());
+        let layout = model.layout_sizes();
+        if merge {
+            return layout.per_inst;
         }
-        for a in &layout.actuators {
-            add(a.inst, 2, a.nact);
-            add(a.inst, 3, a.nctrl);
+        let mut sum = [0usize; 5];
+        for n in layout.per_inst.values() {
+            for (s, n) in sum.iter_mut().zip(n) {
+                *s = s.saturating_add(*n);
+            }
         }
-        for b in &layout.mocap {
-            add(b.inst, 4, 1);
-        }
-        sizes
+        HashMap::from([(usize::MAX, sum)])
     }
 }
 
@@ -64,8 +59,8 @@ impl<'m> Rule<'m> for KeyLength<'m> {
             ("qvel", n[1]),
             ("act", n[2]),
             ("ctrl", n[3]),
-            ("mpos", 3 * n[4]),
-            ("mquat", 4 * n[4]),
+            ("mpos", n[4].saturating_mul(3)),
+            ("mquat", n[4].saturating_mul(4)),
         ];
         for (attribute, expected) in fields {
             if let Some(found) =

@@ -381,6 +381,7 @@ fn build(
     settings::check(&built).ok()?;
     // Each frame is written as the file had it: its tag, and its joints' names.
     let walk = Walk::new(&built);
+    let mut frame_tags = crate::xml::FrameTags::default();
     for c in candidates {
         let Some(frame) = built.node_by_id(c.id) else {
             refused.push(c.id);
@@ -390,7 +391,7 @@ fn build(
             let parent = built.index.parent(c.id).and_then(|p| built.node_by_id(p));
             parent.is_some_and(|p| p.kind().is(Role::Worldbody))
         };
-        if (parent_world && crate::xml::frame_keeps_bodies_top_level(frame)) != c.as_frame {
+        if (parent_world && frame_tags.keeps_bodies_top_level(frame)) != c.as_frame {
             refused.push(c.id);
             continue;
         }

@@ -388,9 +388,13 @@ pub(super) fn kind_facts(kind: ElementKind) -> &'static KindFacts {
 /// world (`parent_in_world`) and [`frame_keeps_bodies_top_level`] (DESIGN D10); any
 /// other element with its own tag. The reader reads either as an element of that
 /// tag (a body with a literal name, DESIGN D13; a `<frame>`, D12).
-pub(super) fn written_tag(node: &Node, parent_in_world: bool) -> &'static str {
+pub(super) fn written_tag(
+    node: &Node,
+    parent_in_world: bool,
+    frames: &mut FrameTags,
+) -> &'static str {
     match node.attached() {
-        Some(_) if parent_in_world && frame_keeps_bodies_top_level(node) => "frame",
+        Some(_) if parent_in_world && frames.keeps_bodies_top_level(node) => "frame",
         Some(_) => "body",
         None => node.kind().tag(),
     }
@@ -404,9 +408,9 @@ pub(super) fn passes_world_on(worldbody: bool, parent_in_world: bool, tag: &str)
     worldbody || parent_in_world && tag == "frame"
 }
 
-/// Whether an attachment frame in the world is written as MuJoCo's `<frame>`: decided in
-/// the model, where `Model::check` reads it too.
-pub(crate) use crate::model::frame::frame_keeps_bodies_top_level;
+/// Whether an attachment frame in the world is written as MuJoCo's `<frame>` (and the
+/// answers a writer keeps): decided in the model, where `Model::check` reads it too.
+pub(crate) use crate::model::frame::{FrameTags, frame_keeps_bodies_top_level};
 
 // ---------------------------------------------------------------------------------
 // Files.
