@@ -6,7 +6,7 @@
 
 use mjcf::{ErrorKind, Model, Namespace};
 
-const SCENE: &str = include_str!("part_scene.xml");
+const SCENE: &str = include_str!("../examples/models/gripper_scene.xml");
 
 fn names(m: &Model, ns: Namespace) -> Vec<String> {
     let mut out: Vec<String> = m

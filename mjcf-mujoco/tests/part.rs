@@ -13,7 +13,7 @@ use mjcf::{Model, Namespace};
 use mjcf_mujoco::{Compiled, ObjKind};
 use support::mujoco;
 
-const SCENE: &str = include_str!("../../tests/part_scene.xml");
+const SCENE: &str = include_str!("../../examples/models/gripper_scene.xml");
 
 /// `width` numbers of the array `field` for the element `name` of `kind`.
 fn row(c: &Compiled, kind: ObjKind, name: &str, field: &str, width: usize) -> Vec<f64> {
