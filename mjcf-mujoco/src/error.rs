@@ -54,6 +54,11 @@ pub enum Error {
         /// MuJoCo's message.
         message: String,
     },
+    /// MuJoCo warned while stepping, with
+    /// [`Physics::set_warnings_as_errors`](crate::Physics::set_warnings_as_errors) on
+    /// (the steps were taken; the data is usable).
+    #[error("MuJoCo warned while stepping: {0}")]
+    Warned(crate::physics::Warnings),
     /// The simulation data met a fatal error in an earlier call and has not been reset.
     #[error("the simulation data is unusable after a fatal MuJoCo error; reset it first")]
     Poisoned,

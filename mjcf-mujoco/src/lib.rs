@@ -20,7 +20,8 @@
 //! let compiled = mujoco.compile(&model)?; // in memory: no file is written
 //! let mut physics = Physics::new(&compiled)?;
 //! let ball = physics.bind(&ball)?;
-//! physics.step(500)?;
+//! let warnings = physics.step(500)?; // each names its joint or actuator, if any
+//! assert!(warnings.is_empty(), "{warnings}");
 //! println!("the ball is at {:?}", physics.get(&ball, "xpos")?);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -36,8 +37,10 @@
 //! A fatal error on a thread MuJoCo started itself (none is started by this crate)
 //! prints the message and aborts. Loading the library replaces MuJoCo's process-wide
 //! log handler: warnings are collected per call ([`Compiled::messages`],
-//! [`Physics::step`]'s warnings), nothing is printed, and no `MUJOCO_LOG.TXT` is
-//! written.
+//! [`Physics::step`]'s warnings, which a caller cannot drop unread without a compiler
+//! warning, each naming the joint or actuator it is about with its scope;
+//! [`Physics::set_warnings_as_errors`] makes them errors), nothing is printed, and no
+//! `MUJOCO_LOG.TXT` is written.
 //!
 //! # Threads
 //! [`MuJoCo`] and [`Compiled`] are `Send + Sync` (a compiled model is only read while
@@ -60,7 +63,7 @@ pub use crate::error::{BindError, CompileError, Error, ErrorElement};
 pub use crate::guard::Message;
 pub use crate::library::MuJoCo;
 pub use crate::model::{Compiled, Sizes};
-pub use crate::physics::{Physics, Warning, WarningKind};
+pub use crate::physics::{Physics, Warning, WarningElement, WarningKind, Warnings};
 
 /// The MuJoCo version the bindings were made for, the only one loaded.
 pub const MUJOCO_VERSION: &str = "4.0.0";

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use mjcf::Loc;
 
-use crate::bind::{self, Bound, Place, Slot};
+use crate::bind::{self, Bound, ObjKind, Place, Slot};
 use crate::error::{BindError, Error};
 use crate::fields::Scalar;
 use crate::guard::{self, Message};
@@ -24,6 +24,8 @@ pub struct Physics {
     /// Set by a fatal error inside MuJoCo, cleared by a reset.
     poisoned: bool,
     messages: Vec<Message>,
+    /// [`Physics::set_warnings_as_errors`].
+    warnings_as_errors: bool,
 }
 
 // SAFETY: the `mjData` is owned by this value alone; MuJoCo keeps no reference to it
@@ -88,11 +90,80 @@ pub struct Warning {
     /// MuJoCo's text (`mju_warningText`) for the last one, such as
     /// `Nan, Inf or huge value in QACC at DOF 3. The simulation is unstable.`.
     pub text: String,
+    /// The element the last one is about, where MuJoCo says (a degree of freedom or
+    /// position: its joint; a control: its actuator); `None` for too many contacts or
+    /// constraints.
+    pub element: Option<WarningElement>,
+}
+
+/// The element a [`Warning`] is about.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct WarningElement {
+    /// Its kind ([`ObjKind::Joint`] or [`ObjKind::Actuator`]).
+    pub kind: ObjKind,
+    /// Its MuJoCo id.
+    pub id: usize,
+    /// Its full name as MuJoCo has it (`robot_1/knee`; `None` if unnamed).
+    pub name: Option<String>,
+    /// The scope it belongs to: its name up to the last `/` (`robot_1`), empty for
+    /// the outermost model's own elements.
+    pub scope: String,
 }
 
 impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} (x{})", self.text, self.count)
+        write!(f, "{} (x{})", self.text, self.count)?;
+        if let Some(e) = &self.element {
+            let what = if e.kind == ObjKind::Actuator { "actuator" } else { "joint" };
+            match (&e.name, e.scope.is_empty()) {
+                (Some(n), true) => write!(f, " [{what} '{n}']")?,
+                (Some(n), false) => write!(f, " [{what} '{n}' of scope '{}']", e.scope)?,
+                (None, _) => write!(f, " [unnamed {what} {}]", e.id)?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The warnings of one [`Physics::step`]: empty when it ran clean. Dropping them
+/// unread is a compiler warning (a simulation that went unstable says so only here).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[must_use = "MuJoCo's warnings (a diverging simulation, too many contacts) are only reported here"]
+pub struct Warnings(pub Vec<Warning>);
+
+impl std::ops::Deref for Warnings {
+    type Target = [Warning];
+    fn deref(&self) -> &[Warning] {
+        &self.0
+    }
+}
+
+impl IntoIterator for Warnings {
+    type Item = Warning;
+    type IntoIter = std::vec::IntoIter<Warning>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.0.into_iter()
+    }
+}
+
+impl<'a> IntoIterator for &'a Warnings {
+    type Item = &'a Warning;
+    type IntoIter = std::slice::Iter<'a, Warning>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.0.iter()
+    }
+}
+
+impl std::fmt::Display for Warnings {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, w) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str("; ")?;
+            }
+            write!(f, "{w}")?;
+        }
+        Ok(())
     }
 }
 
@@ -117,7 +188,13 @@ impl Physics {
             call: "Physics::new",
             message: "mj_makeData returned no data".into(),
         })?;
-        Ok(Physics { model: model.clone(), data, poisoned: false, messages })
+        Ok(Physics {
+            model: model.clone(),
+            data,
+            poisoned: false,
+            messages,
+            warnings_as_errors: false,
+        })
     }
 
     /// The compiled model.
@@ -208,14 +285,16 @@ impl Physics {
     }
 
     /// Advances the simulation by `n` time steps (`mj_step` `n` times) and returns the
-    /// warnings MuJoCo raised during them (empty when it ran clean).
+    /// warnings MuJoCo raised during them (empty when it ran clean), each naming the
+    /// element it is about where MuJoCo says ([`Warning::element`]).
     ///
     /// Time: n MuJoCo steps.
     ///
     /// # Errors
     /// [`Error::Poisoned`]; [`Error::Fatal`] from inside MuJoCo (the data is then
-    /// poisoned until reset).
-    pub fn step(&mut self, n: usize) -> Result<Vec<Warning>, Error> {
+    /// poisoned until reset); with [`Physics::set_warnings_as_errors`],
+    /// [`Error::Warned`] when MuJoCo warned (the steps were taken).
+    pub fn step(&mut self, n: usize) -> Result<Warnings, Error> {
         self.check()?;
         let before = self.counts();
         let f = self.model.inner.mujoco.lib.fns.step;
@@ -223,7 +302,47 @@ impl Physics {
         // SAFETY: valid model and data of that model.
         self.guarded("Physics::step", |m, d| unsafe { guard::mjr_step(f, m, d, n) })?;
         let after = self.counts();
-        Ok(self.warnings_between(&before, &after))
+        let warnings = Warnings(self.warnings_between(&before, &after));
+        if self.warnings_as_errors && !warnings.is_empty() {
+            return Err(Error::Warned(warnings));
+        }
+        Ok(warnings)
+    }
+
+    /// Makes [`Physics::step`] return [`Error::Warned`] when MuJoCo warns (for
+    /// properties such as "every generated scene simulates"); off by default.
+    ///
+    /// Time: O(1).
+    pub fn set_warnings_as_errors(&mut self, yes: bool) {
+        self.warnings_as_errors = yes;
+    }
+
+    /// The element MuJoCo's warning `kind` with `info` is about.
+    fn warning_element(&self, kind: WarningKind, info: usize) -> Option<WarningElement> {
+        let model = &self.model;
+        let ints = |name: &str| model.ints(name).ok();
+        let (obj, id) = match kind {
+            // A position index: the joint whose positions hold it.
+            WarningKind::BadQpos => {
+                let adr = ints("jnt_qposadr")?;
+                let joint =
+                    adr.iter().rposition(|&a| usize::try_from(a).is_ok_and(|a| a <= info))?;
+                (ObjKind::Joint, joint)
+            }
+            // A degree of freedom: its joint.
+            WarningKind::BadQvel | WarningKind::BadQacc | WarningKind::Inertia => {
+                let joint = *ints("dof_jntid")?.get(info)?;
+                (ObjKind::Joint, usize::try_from(joint).ok()?)
+            }
+            WarningKind::BadCtrl => (ObjKind::Actuator, info),
+            _ => return None,
+        };
+        if id >= model.count(obj) {
+            return None;
+        }
+        let name = model.name(obj, id).filter(|n| !n.is_empty()).map(str::to_string);
+        let scope = name.as_deref().and_then(|n| n.rsplit_once('/')).map_or("", |(s, _)| s);
+        Some(WarningElement { kind: obj, id, scope: scope.to_string(), name })
     }
 
     fn counts(&self) -> [u32; 7] {
@@ -247,7 +366,9 @@ impl Physics {
                         CStr::from_ptr(p).to_string_lossy().into_owned()
                     }
                 };
-                Warning { kind: WARNING_KINDS[i], count: after[i].wrapping_sub(before[i]), text }
+                let kind = WARNING_KINDS[i];
+                let element = self.warning_element(kind, info);
+                Warning { kind, count: after[i].wrapping_sub(before[i]), text, element }
             })
             .collect()
     }

@@ -290,14 +290,14 @@ fn bound_fields_read_and_write_data_and_model() {
     assert_eq!(p.get(&tip, "xpos").unwrap(), [0.6, 0.0, 0.1]);
     assert_eq!(p.get(&xs, "sensordata").unwrap(), [0.5]);
     p.get_mut(&push, "ctrl").unwrap()[0] = 1.0;
-    p.step(100).unwrap();
+    assert!(p.step(100).unwrap().is_empty());
     assert!(p.get(&x, "qvel").unwrap()[0] > 0.0);
     // A model field written without recompiling: more damping, less speed.
     let fast = p.get(&x, "qvel").unwrap()[0];
     p.reset_to_key("moved").unwrap();
     p.get_mut(&x, "damping").unwrap()[0] = 50.0;
     p.get_mut(&push, "ctrl").unwrap()[0] = 1.0;
-    p.step(100).unwrap();
+    assert!(p.step(100).unwrap().is_empty());
     let slow = p.get(&x, "qvel").unwrap()[0];
     assert!(slow < fast / 2.0, "{slow} vs {fast}");
     // The compiled model shared with `compiled` was copied, not changed.
@@ -323,7 +323,7 @@ fn one_compiled_model_serves_simulations_on_many_threads() {
                 s.spawn(move || {
                     let mut p = Physics::new(compiled).unwrap();
                     let b = p.bind(ball).unwrap();
-                    p.step(50 * (i + 1)).unwrap();
+                    assert!(p.step(50 * (i + 1)).unwrap().is_empty());
                     p.get(&b, "xpos").unwrap()[2]
                 })
             })
