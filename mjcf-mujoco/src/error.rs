@@ -8,9 +8,10 @@ use std::path::PathBuf;
 pub enum Error {
     /// No MuJoCo library was found where [`MuJoCo::load`](crate::MuJoCo::load) looked.
     #[error(
-        "MuJoCo's library was not found ({tried}): install MuJoCo {expected} \
-         (`pip install mujoco=={expected}` ships it as mujoco/libmujoco.so.{expected} in \
-         site-packages) and set MUJOCO_LIB to that file, or pass its path to MuJoCo::load_from",
+        "MuJoCo's library was not found ({tried}): install MuJoCo {expected} and point \
+         MUJOCO_LIB at its library, in a shell: `pip install mujoco=={expected}` then \
+         `export MUJOCO_LIB=$(python3 -c 'import os, mujoco; print(os.path.join(os.path.dirname(mujoco.__file__), \"libmujoco.so.{expected}\"))')` \
+         (or pass the file's path to MuJoCo::load_from)",
         expected = crate::MUJOCO_VERSION
     )]
     NotFound {

@@ -37,6 +37,9 @@ fn a_missing_library_says_what_to_install() {
     let e = Error::NotFound { tried: "MUJOCO_LIB is not set".into() };
     let text = e.to_string();
     assert!(text.contains("pip install mujoco==4.0.0") && text.contains("MUJOCO_LIB"), "{text}");
+    // The command that sets it, ready to paste into a shell.
+    assert!(text.contains("export MUJOCO_LIB=$(python3 -c "), "{text}");
+    assert!(text.contains(r#"mujoco.__file__), "libmujoco.so.4.0.0"))')"#), "{text}");
 }
 
 #[test]
