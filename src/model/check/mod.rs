@@ -28,6 +28,7 @@ mod expansion;
 mod free_joint;
 pub(crate) use free_joint::top_level_floating;
 mod key_length;
+mod limits;
 mod massless;
 mod mocap;
 mod plane;
@@ -50,6 +51,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(plane::PlaneInMovingBody),
         Box::new(key_length::KeyLength::new(model, options)),
         Box::new(arrays::ArrayLengths),
+        Box::new(limits::Limits::new(model)),
     ]
 }
 
@@ -138,6 +140,29 @@ pub enum ProblemKind {
     /// anywhere makes it unless its frame is written as MuJoCo's `<frame>`; attach it
     /// with [`Model::attach_welded`], which makes them plain bodies.
     MocapNotFixedChildOfWorld,
+    /// A limited range that is not one: a joint's, tendon's or actuator's low end not
+    /// below its high end, or a limited ball joint's low end not 0 (its own or its
+    /// classes' values; see the `limits` rule for when a range is limited). MuJoCo
+    /// refuses it with `mujoco`'s words ("range[0] should be smaller than range[1] in
+    /// joint", "invalid control range for actuator", ...).
+    InvalidRange {
+        /// The range attribute (`range`, `ctrlrange`, `actuatorfrcrange`, ...).
+        attribute: &'static str,
+        /// Its two numbers.
+        range: [f64; 2],
+        /// MuJoCo 4.0.0's message.
+        mujoco: &'static str,
+    },
+    /// A range given without its `limited` while the compiler's `autolimits` is off:
+    /// MuJoCo refuses it ("joint has `range` but not `limited`").
+    RangeWithoutLimited {
+        /// What has it, as MuJoCo says: `joint`, `tendon` or `actuator`.
+        element: &'static str,
+        /// The range attribute.
+        attribute: &'static str,
+        /// The attribute that would say whether it is a limit.
+        limited: &'static str,
+    },
     /// An array shorter than MuJoCo accepts (`pos="1 2"`: MuJoCo refuses it, "does not
     /// have enough data"); the minimums are MuJoCo's, probed from MuJoCo 4.0.0.
     ArrayTooShort {
@@ -210,6 +235,20 @@ impl fmt::Display for Problem {
                 "{}: a plane in a body that moves or is below a moving body (MuJoCo: \
                  \"plane only allowed in static bodies\"); put the plane in the world or a \
                  body without joints above it, or use a box",
+                self.path
+            ),
+            ProblemKind::InvalidRange { attribute, range: [lo, hi], mujoco } => write!(
+                f,
+                "{}: limited '{attribute}' is {lo} {hi}, not a range MuJoCo takes (MuJoCo: \"{mujoco}\"); \
+                 give a low end below the high end (0 for a ball joint's), or make it unlimited",
+                self.path
+            ),
+            ProblemKind::RangeWithoutLimited { element, attribute, limited } => write!(
+                f,
+                "{}: '{attribute}' is given without '{limited}' while the compiler's autolimits is \
+                 off (MuJoCo: \"{element} has `{attribute}` but not `{limited}`. set the \
+                 autolimits=\"true\" compiler option, specify `{limited}` explicitly (\"true\" or \
+                 \"false\"), or remove the `{attribute}` attribute.\")",
                 self.path
             ),
             ProblemKind::MocapNotFixedChildOfWorld => write!(
