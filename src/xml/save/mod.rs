@@ -520,6 +520,7 @@ impl Saver<'_> {
             return Ok(text.to_string());
         }
         let root = &self.src.records[file.root as usize];
+        let nl = newline(text);
         let mut out = String::with_capacity(text.len() + 64);
         out.push_str(&text[..root.start as usize]);
         let mut stack = vec![Item::Record(file.root)];
@@ -530,10 +531,10 @@ impl Saver<'_> {
                 }
                 Item::Str(s) => out.push_str(&s),
                 Item::Record(r) => {
-                    let items = self.expand(r)?;
+                    let items = self.expand(r, nl)?;
                     stack.extend(items.into_iter().rev());
                 }
-                Item::New(node, indent) => self.write_new(&node, &indent, &mut out)?,
+                Item::New(node, indent) => self.write_new(&node, nl, &indent, &mut out)?,
             }
         }
         out.push_str(&text[root.end_end as usize..]);
@@ -549,22 +550,23 @@ impl Saver<'_> {
     }
 
     /// The items of the record `r`: its text as read if its element is clean, else
-    /// its start tag (rewritten), its children and its end tag.
-    fn expand(&self, r: u32) -> Result<Vec<Item>, SaveError> {
+    /// its start tag (rewritten), its children and its end tag; `nl`: the line break
+    /// new lines take (the file's, [`newline`]).
+    fn expand(&self, r: u32, nl: &str) -> Result<Vec<Item>, SaveError> {
         let rec = &self.src.records[r as usize];
         let whole = Item::Text(rec.file, rec.start, rec.end_end);
         if rec.kind == RecordKind::Include || self.clean(rec.id) {
             return Ok(vec![whole]);
         }
         let Some(node) = self.model.node_by_id(rec.id) else { return Ok(Vec::new()) };
-        let children = self.children(r, node)?;
+        let children = self.children(r, node, nl)?;
         let open = rec.self_closing() && !children.is_empty();
         let mut items = vec![Item::Str(self.start_tag(r, node, open)?)];
         let text = self.src.text_of(r);
         if open {
             items.extend(children);
             let name = Tag::parse(&text[rec.start as usize..rec.start_end as usize]).tag_name();
-            items.push(Item::Str(format!("\n{}</{name}>", indent_of(text, rec.start))));
+            items.push(Item::Str(format!("{nl}{}</{name}>", indent_of(text, rec.start))));
         } else if !rec.self_closing() {
             items.extend(children);
             // What follows the last child, and the end tag.
@@ -576,8 +578,9 @@ impl Saver<'_> {
     }
 
     /// The children of record `r` (of the element `node`) in the model's order: each
-    /// child read with the text before it, and the new ones.
-    fn children(&self, r: u32, node: &Node) -> Result<Vec<Item>, SaveError> {
+    /// child read with the text before it, and the new ones (on lines ending with `nl`
+    /// where the text before the children gives no line break).
+    fn children(&self, r: u32, node: &Node, nl: &str) -> Result<Vec<Item>, SaveError> {
         let rec = &self.src.records[r as usize];
         let id = rec.id;
         let pos: HashMap<ElementId, usize> =
@@ -624,7 +627,7 @@ impl Saver<'_> {
         }
         if self.src.primary(id) == Some(r) {
             let text = self.src.text_of(r);
-            let ws = ws.unwrap_or_else(|| format!("\n{}  ", indent_of(text, rec.start)));
+            let ws = ws.unwrap_or_else(|| format!("{nl}{}  ", indent_of(text, rec.start)));
             for (at, c) in node.children().iter().enumerate() {
                 if self.at_home(c.id(), id) || blank(c) {
                     continue;
@@ -726,14 +729,21 @@ impl Saver<'_> {
         t.tokens.iter().any(|k| attr_of(kind, t.name_of(k)) == Some(i))
     }
 
-    /// Writes `node` (and its children) in full, indented by `indent`.
-    fn write_new(&self, node: &Node, indent: &str, out: &mut String) -> Result<(), SaveError> {
+    /// Writes `node` (and its children) in full, indented by `indent`, its lines ending
+    /// with `nl`.
+    fn write_new(
+        &self,
+        node: &Node,
+        nl: &str,
+        indent: &str,
+        out: &mut String,
+    ) -> Result<(), SaveError> {
         // (node, depth, closing): an explicit stack, so nesting depth costs no stack.
         let mut stack: Vec<(&Node, usize, bool)> = vec![(node, 0, false)];
         let mut first = true;
         while let Some((n, depth, closing)) = stack.pop() {
             if !first {
-                out.push('\n');
+                out.push_str(nl);
                 out.push_str(indent);
                 (0..depth).for_each(|_| out.push_str("  "));
             }
@@ -768,25 +778,41 @@ impl Saver<'_> {
 }
 
 /// The whitespace on the line of `at` before it (`""` if anything else is there).
+/// Lines end at `\n`, `\r\n` or a `\r` alone, as XML ends them.
 fn indent_of(text: &str, at: u32) -> &str {
     let before = &text[..at as usize];
-    let line = before.rfind('\n').map_or(before, |i| &before[i + 1..]);
+    let line = before.rfind(['\n', '\r']).map_or(before, |i| &before[i + 1..]);
     if line.chars().all(|c| c == ' ' || c == '\t') { line } else { "" }
 }
 
 /// The line break and indentation ending `lead` (the text before a child), if it
-/// ends with whitespace after its last line break; `lead` itself if it is all
-/// whitespace on one line.
+/// ends with whitespace after its last line break (`\n`, `\r\n` or `\r`, kept as
+/// written); `lead` itself if it is all whitespace on one line.
 fn line_break(lead: &str) -> Option<String> {
-    let tail = lead.rfind('\n').map_or(lead, |i| &lead[i..]);
-    let tail = tail.strip_prefix('\n').map_or(tail, |t| t.trim_start_matches('\r'));
-    if !tail.chars().all(|c| c == ' ' || c == '\t') {
+    let at = lead.rfind(['\n', '\r']);
+    let indent = at.map_or(lead, |i| &lead[i + 1..]);
+    if !indent.chars().all(|c| c == ' ' || c == '\t') {
         return None;
     }
-    Some(match lead.rfind('\n') {
-        Some(i) => lead[i..].to_string(),
-        None => tail.to_string(),
-    })
+    let from = match at {
+        Some(i) if lead[..i].ends_with('\r') && lead[i..].starts_with('\n') => i - 1,
+        Some(i) => i,
+        None => 0,
+    };
+    Some(lead[from..].to_string())
+}
+
+/// The line break of `text`: its first one (`\n`, `\r\n` or `\r`), or `\n` if it
+/// has none.
+///
+/// Time: O(length of the first line).
+fn newline(text: &str) -> &'static str {
+    let b = text.as_bytes();
+    match b.iter().position(|&c| c == b'\n' || c == b'\r') {
+        Some(i) if b[i] == b'\r' && b.get(i + 1) == Some(&b'\n') => "\r\n",
+        Some(i) if b[i] == b'\r' => "\r",
+        _ => "\n",
+    }
 }
 
 /// Whether the node is an empty singleton, holding only empty singletons (every
