@@ -1,4 +1,4 @@
-//! Regression tests for what the fuzz targets in `fuzz/` (`read_xml`, `ops`; see
+//! Regression tests for what the fuzz targets in `fuzz/` (`read_xml`, `ops`, `lossless`; see
 //! `fuzz/README.md`) found: each test is the minimized reproducer of one finding,
 //! written against the public API, asserting the outcome the documentation (or
 //! MuJoCo, where the crate follows it) promises.
