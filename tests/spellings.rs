@@ -116,7 +116,7 @@ fn check(case: &Case) {
         write(&dir, "model.xml", text);
         let read = Model::from_path(&path).unwrap();
         let edited = edit(&read);
-        assert_eq!(edited.save().unwrap(), [path.clone()], "{what}");
+        assert_eq!(edited.save().unwrap(), std::slice::from_ref(&path), "{what}");
         assert_eq!(std::fs::read_to_string(&path).unwrap(), want, "{what} saved to {path:?}");
         let back = Model::from_path(&path).unwrap();
         assert_eq!(back.to_xml_string().unwrap(), edited.to_xml_string().unwrap(), "{what}");

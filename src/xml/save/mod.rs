@@ -12,12 +12,14 @@
 //! - children: those read keep their text and the whitespace and comments before
 //!   them, in the model's order; a removed child goes with the whitespace and
 //!   comments before it (comments stay with what they annotate); a new child is
-//!   written under the element's first tag, indented like its siblings, in the plain
-//!   writer's attribute style without the plain writer's additions (no `class="/"`,
+//!   written under the element's first tag, indented like its siblings (its lines
+//!   ending with the file's first line break), in the plain writer's attribute style without the plain writer's additions (no `class="/"`,
 //!   no automatic names, files named as `stem.ext`); a child moved from elsewhere
 //!   keeps its text; empty singletons are not written;
 //! - nothing is renamed, compiler folders and file attributes stay as written, and
-//!   whatever lies outside the root (declaration, comments, DOCTYPE) stays.
+//!   whatever lies outside the root (byte-order mark, declaration, comments, DOCTYPE)
+//!   stays. The spans of the tags are byte offsets into the whole text as read, a
+//!   byte-order mark included (`xml::read` reads through one place that counts it).
 //!
 //! A model with attachments saves as a scene (`scene`): its own files written
 //! against the text they were read from, each attached model in files of its own.
@@ -150,7 +152,8 @@ impl Model {
     /// time). What is kept: an element no edit touched is written byte for byte; an
     /// edited element keeps its untouched attributes' text, quoting and order, with
     /// changed values in place, new ones appended and removed ones gone with their
-    /// spacing; a new element is indented like its siblings; a removed element goes
+    /// spacing; a new element is indented like its siblings, on lines ending as the
+    /// file's do (`\n`, `\r\n` or `\r`); a removed element goes
     /// with the comments directly before it; nothing is renamed, no class or
     /// automatic name is added, file attributes and compiler folders stay as written.
     /// An edit inside an included file is saved into that file. A confined model
