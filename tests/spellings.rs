@@ -8,26 +8,11 @@
 //! expected texts are the input with the edited tag replaced by hand, so they do not
 //! depend on the offsets the reader records.
 
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use mjcf::{Element, Model, Namespace, ReadOptions, attrs};
 
-/// A fresh folder under the system's temp folder.
-fn temp_dir(tag: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let n = N.fetch_add(1, Ordering::Relaxed);
-    let p = std::env::temp_dir().join(format!("mjcf-spellings-{}-{tag}-{n}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&p);
-    std::fs::create_dir_all(&p).unwrap();
-    p
-}
-
-fn write(dir: &Path, rel: &str, text: &str) {
-    let p = dir.join(rel);
-    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
-    std::fs::write(p, text).unwrap();
-}
+#[path = "support/dirs.rs"]
+mod dirs;
+use dirs::{temp_dir, write};
 
 /// A model text with one geom to edit, under the worldbody.
 struct Case {
