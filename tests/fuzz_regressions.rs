@@ -328,3 +328,32 @@ fn ops_class_reference_named_main_is_written_as_the_root_class() {
     assert!(composed.contains(r#"childclass="inc/""#), "{composed}");
     assert!(!composed.contains("inc/main"), "{composed}");
 }
+
+// ---------------------------------------------------------------------------------
+// Found by the `lossless` target (issue 28).
+
+/// `lossless`: a root `<default>` holding a class `/` beside an attached model's root
+/// class `robot/` (a composed model written out: `/` is a class of that name), the
+/// class `robot/` removed and the model saved. The saved `<default><default
+/// class="/"/></default>` read as the root class written in its wrapper (the reader
+/// folds a lone class `/` into the root class), another model. The root `<default>` is
+/// now written `class="main"` when what it holds would fold, as the plain writer
+/// writes it, and saved text reads back as the edited model.
+#[test]
+fn lossless_a_lone_class_slash_left_by_a_removal_does_not_fold_into_the_root_class() {
+    let text = "<mujoco model=\"arena\">\n  <default>\n    <default class=\"/\">\n      <geom size=\"1\"/>\n    </default>\n    <default class=\"robot/\"/>\n  </default>\n  <worldbody>\n    <geom class=\"/\" size=\"2\"/>\n  </worldbody>\n</mujoco>\n";
+    let m = Model::from_xml_str(text).unwrap();
+    let robot = m.find(Namespace::Default, "robot/").unwrap();
+    let m = m.remove(&robot).unwrap();
+    let saved = m.to_source_files().unwrap()[0].text.clone();
+    assert_eq!(
+        saved,
+        text.replace("  <default>\n", "  <default class=\"main\">\n")
+            .replace("\n    <default class=\"robot/\"/>", "")
+    );
+    let back = read(&saved);
+    assert_eq!(write(&back), write(&m), "{saved}");
+    assert!(back.find(Namespace::Default, "/").is_some(), "{saved}");
+    // Saved again from what was read back: the same text.
+    assert_eq!(back.to_source_files().unwrap()[0].text, saved);
+}

@@ -34,9 +34,10 @@ use std::path::{Component, Path, PathBuf};
 use crate::error::WriteError;
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
-use crate::schema::{AttrType, ElementKind, Multiplicity};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{FloatStyle, Reference, Value};
 use crate::xml::source::{NO_RECORD, RecordKind, Source};
+use crate::xml::write::policy::{self, DefaultChild};
 use tag::Tag;
 
 /// Why a model cannot be saved losslessly.
@@ -684,8 +685,10 @@ impl Saver<'_> {
         let read = self.read.node_by_id(rec.id);
         let unchanged = read.is_some_and(|n| std::ptr::eq(n.attrs(), node.attrs()))
             && !self.dirty.contains(&rec.id);
+        // A root `<default>` the reader would fold into the root class says `main`.
+        let main = self.folds(r, node).then(|| ("class", "main".to_string()));
         if rec.kind == RecordKind::FileRoot || unchanged {
-            return Ok(tag.rewrite(&[], &[], &[], open));
+            return Ok(tag.rewrite(&[], &[], main.as_slice(), open));
         }
         let kind = node.kind();
         let mut indices: Vec<usize> = node.attrs().iter().map(|(i, _)| *i as usize).collect();
@@ -719,7 +722,35 @@ impl Saver<'_> {
                 _ => {}
             }
         }
+        append.extend(main);
         Ok(tag.rewrite(&set, &remove, &append, open))
+    }
+
+    /// Whether the record `r` is a file's root `<default>` (the root class's outer
+    /// tag, `node`) without attributes whose content, as written, the reader would
+    /// fold into the root class (one class named `/`: `policy::folds_into_root_class`),
+    /// reading another model: a class `/` left alone by an edit where it stood beside
+    /// other classes (a composed model written out). Such a tag is written
+    /// `class="main"`, as the plain writer writes it (a wrapper with an attribute is
+    /// never folded).
+    fn folds(&self, r: u32, node: &Node) -> bool {
+        let rec = &self.src.records[r as usize];
+        let p = rec.parent;
+        let at_root = p != NO_RECORD && self.src.records[p as usize].parent == NO_RECORD;
+        if !at_root || rec.kind != RecordKind::Element || !node.attrs().is_empty() {
+            return false;
+        }
+        if Some(rec.id) != root_class(self.model) {
+            return false;
+        }
+        let written = node.children().iter().filter(|c| !blank(c)).map(|c| {
+            if c.kind().is(Role::DefaultClass) {
+                DefaultChild::Class(c.identifier())
+            } else {
+                DefaultChild::Setting
+            }
+        });
+        policy::folds_into_root_class(false, written)
     }
 
     /// Whether the record `q` (an element's own tag) gives the attribute `i`.
