@@ -21,7 +21,8 @@
 //! between it and the tag before it; for an addition, the parent's content after its
 //! last child (its whole tag if it was `<x/>`); and for a removal or a change of an
 //! identifier, every start tag with an attribute value equal to a name removed or
-//! changed (the references to it).
+//! changed (the references to it), and for a default class the root `<default>`'s
+//! start tag (written `class="main"` when a class `/` is left alone in it).
 
 #![no_main]
 
@@ -205,6 +206,14 @@ fn targets(tags: &[Tag]) -> Vec<usize> {
         .collect()
 }
 
+/// For an edit of a default class (`t`), the start tags of the root `<default>`s: a
+/// class `/` left alone there makes the saver write `class="main"` on it (else the
+/// reader would fold the class into the root class).
+fn root_defaults<'t>(tags: &'t [Tag], t: &Tag) -> impl Iterator<Item = (usize, usize)> + 't {
+    let class = t.tag == "default";
+    tags.iter().filter(move |u| class && u.tag == "default" && u.depth == 1).map(|u| (u.start, u.start_end))
+}
+
 /// The start tags naming any of `names` (the references to them).
 fn referrers<'t>(tags: &'t [Tag], names: &[String]) -> impl Iterator<Item = (usize, usize)> + 't {
     let names = names.to_vec();
@@ -238,6 +247,7 @@ fn apply(m: &Model, edit: &Edit, tags: &[Tag], targets: &[usize]) -> Option<(Mod
                 .filter_map(|u| u.ident.clone())
                 .collect();
             let mut regions: Vec<(usize, usize)> = referrers(tags, &inside).collect();
+            regions.extend(root_defaults(tags, t));
             regions.push((t.lead, t.end_end));
             Some((next, regions))
         }
@@ -272,6 +282,7 @@ fn attr_regions(tags: &[Tag], t: &Tag, attr: &str) -> Option<Vec<(usize, usize)>
     let key = if t.tag == "default" { "class" } else { "name" };
     if attr == key {
         regions.extend(referrers(tags, &[t.ident.clone()?]));
+        regions.extend(root_defaults(tags, t));
     }
     Some(regions)
 }
