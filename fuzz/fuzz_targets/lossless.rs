@@ -21,8 +21,10 @@
 //! between it and the tag before it; for an addition, the parent's content after its
 //! last child (its whole tag if it was `<x/>`); and for a removal or a change of an
 //! identifier, every start tag with an attribute value equal to a name removed or
-//! changed (the references to it), and for a default class the root `<default>`'s
-//! start tag (written `class="main"` when a class `/` is left alone in it).
+//! changed (the references to it), for a default class the root `<default>`'s
+//! start tag (written `class="main"` when a class `/` is left alone in it), and for
+//! a section of the root given in several tags (a root `<default class=…>` given
+//! twice) its other tags (their start tags; for a removal, the whole of them).
 
 #![no_main]
 
@@ -214,6 +216,17 @@ fn root_defaults<'t>(tags: &'t [Tag], t: &Tag) -> impl Iterator<Item = (usize, u
     tags.iter().filter(move |u| class && u.tag == "default" && u.depth == 1).map(|u| (u.start, u.start_end))
 }
 
+/// For an edit of a section of the root (`t`, such as a root `<default>` with a
+/// `class`), the other tags of that section: a section given twice is one element
+/// (removing it empties every tag of it; a value is set where it wins), as
+/// `(start, end_end)` when `whole`, else their start tags.
+fn same_section<'t>(tags: &'t [Tag], t: &'t Tag, whole: bool) -> impl Iterator<Item = (usize, usize)> + 't {
+    let at_root = t.depth == 1;
+    tags.iter()
+        .filter(move |u| at_root && u.depth == 1 && u.tag == t.tag)
+        .map(move |u| (u.start, if whole { u.end_end } else { u.start_end }))
+}
+
 /// The start tags naming any of `names` (the references to them).
 fn referrers<'t>(tags: &'t [Tag], names: &[String]) -> impl Iterator<Item = (usize, usize)> + 't {
     let names = names.to_vec();
@@ -248,6 +261,7 @@ fn apply(m: &Model, edit: &Edit, tags: &[Tag], targets: &[usize]) -> Option<(Mod
                 .collect();
             let mut regions: Vec<(usize, usize)> = referrers(tags, &inside).collect();
             regions.extend(root_defaults(tags, t));
+            regions.extend(same_section(tags, t, true));
             regions.push((t.lead, t.end_end));
             Some((next, regions))
         }
@@ -279,6 +293,7 @@ fn apply(m: &Model, edit: &Edit, tags: &[Tag], targets: &[usize]) -> Option<(Mod
 /// and for its identifier the references to it.
 fn attr_regions(tags: &[Tag], t: &Tag, attr: &str) -> Option<Vec<(usize, usize)>> {
     let mut regions = vec![(t.start, t.start_end)];
+    regions.extend(same_section(tags, t, false));
     let key = if t.tag == "default" { "class" } else { "name" };
     if attr == key {
         regions.extend(referrers(tags, &[t.ident.clone()?]));
