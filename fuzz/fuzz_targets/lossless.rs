@@ -253,10 +253,13 @@ fn apply(m: &Model, edit: &Edit, tags: &[Tag], targets: &[usize]) -> Option<(Mod
         Edit::Remove { target } if !targets.is_empty() => {
             let (t, loc) = pick(*target)?;
             let next = m.remove(&loc).ok()?;
-            // Every name inside it goes with it.
+            // Every name inside it (inside every tag of it, for a section of the root
+            // given in several tags) goes with it.
+            let spans: Vec<(usize, usize)> =
+                same_section(tags, t, true).chain([(t.start, t.end_end)]).collect();
             let inside: Vec<String> = tags
                 .iter()
-                .filter(|u| u.start >= t.start && u.end_end <= t.end_end)
+                .filter(|u| spans.iter().any(|&(a, b)| u.start >= a && u.end_end <= b))
                 .filter_map(|u| u.ident.clone())
                 .collect();
             let mut regions: Vec<(usize, usize)> = referrers(tags, &inside).collect();
