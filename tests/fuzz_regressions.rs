@@ -357,3 +357,18 @@ fn lossless_a_lone_class_slash_left_by_a_removal_does_not_fold_into_the_root_cla
     // Saved again from what was read back: the same text.
     assert_eq!(back.to_source_files().unwrap()[0].text, saved);
 }
+
+/// `lossless`: `<body name="b "pos="…">` (the reader takes attributes written
+/// without whitespace between them), its name cleared and saved: the name went with
+/// the whitespace before it, and `<bodypos="…">` did not read back. The whitespace
+/// stays when the next attribute follows without any.
+#[test]
+fn lossless_a_removed_attribute_glued_to_the_next_keeps_the_tag_readable() {
+    let text = "<mujoco>\n  <worldbody>\n    <body name=\"b \"pos=\"0 0 1\">\n      <geom size=\"1\"/>\n    </body>\n  </worldbody>\n</mujoco>\n";
+    let m = Model::from_xml_str(text).unwrap();
+    let b = m.find(Namespace::Body, "b ").unwrap();
+    let m = m.clear_attr(&b, "name").unwrap();
+    let saved = m.to_source_files().unwrap()[0].text.clone();
+    assert_eq!(saved, text.replace("<body name=\"b \"pos=", "<body pos="));
+    assert_eq!(write(&read(&saved)), write(&m));
+}
