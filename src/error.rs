@@ -435,6 +435,7 @@ impl TextPos {
     /// The position of byte offset `offset` in `text`. Lines end as XML ends them
     /// (XML 1.0 §2.11): at `\n`, `\r\n` or a `\r` alone, each one line break, so a
     /// place in a file gets one position whichever of the three its lines end with.
+    /// A byte-order mark starting the text is no column (editors do not show it).
     ///
     /// Time: O(offset).
     pub(crate) fn of_offset(text: &str, offset: usize) -> TextPos {
@@ -447,7 +448,8 @@ impl TextPos {
         if offset > 0 && bytes[offset - 1] == b'\r' && bytes.get(offset) == Some(&b'\n') {
             offset -= 1;
         }
-        let (mut line, mut line_start) = (1usize, 0usize);
+        let bom = if text.starts_with('\u{feff}') { '\u{feff}'.len_utf8().min(offset) } else { 0 };
+        let (mut line, mut line_start) = (1usize, bom);
         for (i, b) in bytes[..offset].iter().enumerate() {
             // A `\r` followed by `\n` (even past `offset`) is not a break itself: the
             // `\n` is.
@@ -737,6 +739,20 @@ mod tests {
         assert_eq!(TextPos::of_offset(&texts[1], 9), TextPos { line: 1, column: 9 });
         for t in &texts {
             assert_eq!(TextPos::of_offset(t, t.len()), TextPos { line: 5, column: 11 });
+        }
+    }
+
+    /// A byte-order mark is no column: every place after it has the position it has
+    /// in the text without it.
+    #[test]
+    fn positions_after_a_byte_order_mark_are_those_without_it() {
+        let t = "<mujoco>\r\n  <bogus/>\né";
+        let marked = format!("\u{feff}{t}");
+        for (i, _) in t.char_indices().chain([(t.len(), ' ')]) {
+            assert_eq!(TextPos::of_offset(&marked, i + 3), TextPos::of_offset(t, i), "{i}");
+        }
+        for inside in 0..3 {
+            assert_eq!(TextPos::of_offset(&marked, inside), TextPos { line: 1, column: 1 });
         }
     }
 

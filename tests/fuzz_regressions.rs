@@ -1,4 +1,4 @@
-//! Regression tests for what the fuzz targets in `fuzz/` (`read_xml`, `ops`; see
+//! Regression tests for what the fuzz targets in `fuzz/` (`read_xml`, `ops`, `lossless`; see
 //! `fuzz/README.md`) found: each test is the minimized reproducer of one finding,
 //! written against the public API, asserting the outcome the documentation (or
 //! MuJoCo, where the crate follows it) promises.
@@ -327,4 +327,48 @@ fn ops_class_reference_named_main_is_written_as_the_root_class() {
     let composed = write(&arena);
     assert!(composed.contains(r#"childclass="inc/""#), "{composed}");
     assert!(!composed.contains("inc/main"), "{composed}");
+}
+
+// ---------------------------------------------------------------------------------
+// Found by the `lossless` target (issue 28).
+
+/// `lossless`: a root `<default>` holding a class `/` beside an attached model's root
+/// class `robot/` (a composed model written out: `/` is a class of that name), the
+/// class `robot/` removed and the model saved. The saved `<default><default
+/// class="/"/></default>` read as the root class written in its wrapper (the reader
+/// folds a lone class `/` into the root class), another model. The root `<default>` is
+/// now written `class="main"` when what it holds would fold, as the plain writer
+/// writes it, and saved text reads back as the edited model.
+#[test]
+fn lossless_a_lone_class_slash_left_by_a_removal_does_not_fold_into_the_root_class() {
+    let text = "<mujoco model=\"arena\">\n  <default>\n    <default class=\"/\">\n      <geom size=\"1\"/>\n    </default>\n    <default class=\"robot/\"/>\n  </default>\n  <worldbody>\n    <geom class=\"/\" size=\"2\"/>\n  </worldbody>\n</mujoco>\n";
+    let m = Model::from_xml_str(text).unwrap();
+    let robot = m.find(Namespace::Default, "robot/").unwrap();
+    let m = m.remove(&robot).unwrap();
+    let saved = m.to_source_files().unwrap()[0].text.clone();
+    assert_eq!(
+        saved,
+        text.replace("  <default>\n", "  <default class=\"main\">\n")
+            .replace("\n    <default class=\"robot/\"/>", "")
+    );
+    let back = read(&saved);
+    assert_eq!(write(&back), write(&m), "{saved}");
+    assert!(back.find(Namespace::Default, "/").is_some(), "{saved}");
+    // Saved again from what was read back: the same text.
+    assert_eq!(back.to_source_files().unwrap()[0].text, saved);
+}
+
+/// `lossless`: `<body name="b "pos="…">` (the reader takes attributes written
+/// without whitespace between them), its name cleared and saved: the name went with
+/// the whitespace before it, and `<bodypos="…">` did not read back. The whitespace
+/// stays when the next attribute follows without any.
+#[test]
+fn lossless_a_removed_attribute_glued_to_the_next_keeps_the_tag_readable() {
+    let text = "<mujoco>\n  <worldbody>\n    <body name=\"b \"pos=\"0 0 1\">\n      <geom size=\"1\"/>\n    </body>\n  </worldbody>\n</mujoco>\n";
+    let m = Model::from_xml_str(text).unwrap();
+    let b = m.find(Namespace::Body, "b ").unwrap();
+    let m = m.clear_attr(&b, "name").unwrap();
+    let saved = m.to_source_files().unwrap()[0].text.clone();
+    assert_eq!(saved, text.replace("<body name=\"b \"pos=", "<body pos="));
+    assert_eq!(write(&read(&saved)), write(&m));
 }

@@ -7,18 +7,9 @@ use std::path::{Path, PathBuf};
 
 use mjcf::{Attrs, Element, Model, Namespace, SaveError};
 
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("mjcf-lossless-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, rel: &str, text: &str) {
-    let p = dir.join(rel);
-    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
-    std::fs::write(p, text).unwrap();
-}
+#[path = "support/dirs.rs"]
+mod dirs;
+use dirs::{temp_dir, write};
 
 /// The model files the conformance cases load (`"op": "load"`), by case folder.
 fn conformance_inputs() -> Vec<PathBuf> {

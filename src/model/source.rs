@@ -53,8 +53,9 @@ pub(crate) struct Record {
     /// The first child tag and the next sibling, in document order.
     pub(crate) first_child: u32,
     pub(crate) next_sibling: u32,
-    /// Byte offsets: the start tag is `start..start_end`, the end tag `end..end_end`
-    /// (`start_end == end == end_end` for `<x/>`).
+    /// Byte offsets into the file's whole text as read (a byte-order mark starting it
+    /// counts; line endings are as written): the start tag is `start..start_end`, the
+    /// end tag `end..end_end` (`start_end == end == end_end` for `<x/>`).
     pub(crate) start: u32,
     pub(crate) start_end: u32,
     pub(crate) end: u32,

@@ -48,6 +48,7 @@ impl SourceBuilder {
         start: usize,
         start_end: usize,
     ) -> u32 {
+        debug_assert!(self.is_tag(file, start, start_end), "start tag at {start}..{start_end}");
         let i = self.records.len() as u32;
         // The file's length fits in u32 (`SourceBuilder::file`), so offsets do.
         let (start, start_end) = (start as u32, start_end as u32);
@@ -81,9 +82,22 @@ impl SourceBuilder {
     /// Sets the end tag span of the record `r`.
     pub(crate) fn close(&mut self, r: u32, end: usize, end_end: usize) {
         if let Some(rec) = self.records.get_mut(r as usize) {
+            debug_assert!(
+                self.files.get(rec.file as usize).is_none_or(|f| f.text[end..].starts_with("</")),
+                "end tag at {end}..{end_end}"
+            );
             rec.end = end as u32;
             rec.end_end = end_end as u32;
         }
+    }
+
+    /// Whether `start..end` of `file` is a tag as read (`<` to `>`): the offsets are
+    /// into the whole text, a byte-order mark included (checked in debug builds).
+    fn is_tag(&self, file: u32, start: usize, end: usize) -> bool {
+        self.files.get(file as usize).is_none_or(|f| {
+            let b = f.text.as_bytes();
+            b.get(start) == Some(&b'<') && end > start && b.get(end - 1) == Some(&b'>')
+        })
     }
 
     /// Gives every record from `from` on whose element is a key of `ids` the element

@@ -46,9 +46,11 @@ use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
 use crate::xml::source::{NO_RECORD, RecordKind};
 
+mod events;
 mod finish;
 mod include;
 
+use events::Events;
 use finish::finish;
 use include::{Includes, order_as_reference, splice_include};
 
@@ -647,7 +649,7 @@ fn parse(
     let mut stack: Vec<Open> = Vec::new();
     // A shared copy: `r` stays free to be changed while the text is read.
     let text = r.files[r.at as usize].text.clone();
-    let mut xml = quick_xml::Reader::from_str(&text);
+    let mut xml = Events::new(&text);
     let (mut model_name, mut seen_root) = (None, false);
     // How many elements are open around the file's root.
     let outer = match into {
@@ -655,11 +657,11 @@ fn parse(
         Place::Entry(spot) => spot.depth,
     };
     loop {
-        let offset = xml.buffer_position() as usize;
+        let offset = xml.position();
         let event = match xml.read_event() {
             Ok(e) => e,
             Err(e) => {
-                let at = xml.error_position() as usize;
+                let at = xml.error_position();
                 return Err(r.err(ErrorKind::Syntax(e.to_string()), at));
             }
         };
@@ -668,7 +670,7 @@ fn parse(
             Event::Empty(t) => (t, true),
             Event::End(_) => {
                 if let (Some(open), Some(src)) = (stack.pop(), tree.src.as_mut()) {
-                    src.close(open.rec, offset, xml.buffer_position() as usize);
+                    src.close(open.rec, offset, xml.position());
                 }
                 continue;
             }
@@ -683,7 +685,7 @@ fn parse(
             }
             _ => continue,
         };
-        let after = xml.buffer_position() as usize;
+        let after = xml.position();
         let Some(&parent) = stack.last() else {
             if seen_root {
                 return Err(r.err(ErrorKind::Syntax("more than one root element".into()), offset));

@@ -12,12 +12,14 @@
 //! - children: those read keep their text and the whitespace and comments before
 //!   them, in the model's order; a removed child goes with the whitespace and
 //!   comments before it (comments stay with what they annotate); a new child is
-//!   written under the element's first tag, indented like its siblings, in the plain
-//!   writer's attribute style without the plain writer's additions (no `class="/"`,
+//!   written under the element's first tag, indented like its siblings (its lines
+//!   ending with the file's first line break), in the plain writer's attribute style without the plain writer's additions (no `class="/"`,
 //!   no automatic names, files named as `stem.ext`); a child moved from elsewhere
 //!   keeps its text; empty singletons are not written;
 //! - nothing is renamed, compiler folders and file attributes stay as written, and
-//!   whatever lies outside the root (declaration, comments, DOCTYPE) stays.
+//!   whatever lies outside the root (byte-order mark, declaration, comments, DOCTYPE)
+//!   stays. The spans of the tags are byte offsets into the whole text as read, a
+//!   byte-order mark included (`xml::read` reads through one place that counts it).
 //!
 //! A model with attachments saves as a scene (`scene`): its own files written
 //! against the text they were read from, each attached model in files of its own.
@@ -33,9 +35,10 @@ use crate::error::WriteError;
 use crate::files::write::{self, Fault, Fingerprint, OnDisk};
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
-use crate::schema::{AttrType, ElementKind, Multiplicity};
+use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{FloatStyle, Reference, Value};
 use crate::xml::source::{NO_RECORD, RecordKind, Source};
+use crate::xml::write::policy::{self, DefaultChild};
 use tag::Tag;
 
 /// Why a model cannot be saved losslessly.
@@ -185,7 +188,8 @@ impl Model {
     /// kept: an element no edit touched is written byte for byte; an edited element
     /// keeps its untouched attributes' text, quoting and order, with changed values in
     /// place, new ones appended and removed ones gone with their spacing; a new element
-    /// is indented like its siblings; a removed element goes with the comments
+    /// is indented like its siblings, on lines ending as the file's do (`\n`, `\r\n`
+    /// or `\r`); a removed element goes with the comments
     /// directly before it; nothing is renamed, no class or automatic name is added,
     /// file attributes and compiler folders stay as written. An edit inside an
     /// included file is saved into that file. A confined model
@@ -628,6 +632,7 @@ impl Saver<'_> {
             return Ok(text.to_string());
         }
         let root = &self.src.records[file.root as usize];
+        let nl = newline(text);
         let mut out = String::with_capacity(text.len() + 64);
         out.push_str(&text[..root.start as usize]);
         let mut stack = vec![Item::Record(file.root)];
@@ -638,10 +643,10 @@ impl Saver<'_> {
                 }
                 Item::Str(s) => out.push_str(&s),
                 Item::Record(r) => {
-                    let items = self.expand(r)?;
+                    let items = self.expand(r, nl)?;
                     stack.extend(items.into_iter().rev());
                 }
-                Item::New(node, indent) => self.write_new(&node, &indent, &mut out)?,
+                Item::New(node, indent) => self.write_new(&node, nl, &indent, &mut out)?,
             }
         }
         out.push_str(&text[root.end_end as usize..]);
@@ -657,22 +662,23 @@ impl Saver<'_> {
     }
 
     /// The items of the record `r`: its text as read if its element is clean, else
-    /// its start tag (rewritten), its children and its end tag.
-    fn expand(&self, r: u32) -> Result<Vec<Item>, SaveError> {
+    /// its start tag (rewritten), its children and its end tag; `nl`: the line break
+    /// new lines take (the file's, [`newline`]).
+    fn expand(&self, r: u32, nl: &str) -> Result<Vec<Item>, SaveError> {
         let rec = &self.src.records[r as usize];
         let whole = Item::Text(rec.file, rec.start, rec.end_end);
         if rec.kind == RecordKind::Include || self.clean(rec.id) {
             return Ok(vec![whole]);
         }
         let Some(node) = self.model.node_by_id(rec.id) else { return Ok(Vec::new()) };
-        let children = self.children(r, node)?;
+        let children = self.children(r, node, nl)?;
         let open = rec.self_closing() && !children.is_empty();
         let mut items = vec![Item::Str(self.start_tag(r, node, open)?)];
         let text = self.src.text_of(r);
         if open {
             items.extend(children);
             let name = Tag::parse(&text[rec.start as usize..rec.start_end as usize]).tag_name();
-            items.push(Item::Str(format!("\n{}</{name}>", indent_of(text, rec.start))));
+            items.push(Item::Str(format!("{nl}{}</{name}>", indent_of(text, rec.start))));
         } else if !rec.self_closing() {
             items.extend(children);
             // What follows the last child, and the end tag.
@@ -684,8 +690,9 @@ impl Saver<'_> {
     }
 
     /// The children of record `r` (of the element `node`) in the model's order: each
-    /// child read with the text before it, and the new ones.
-    fn children(&self, r: u32, node: &Node) -> Result<Vec<Item>, SaveError> {
+    /// child read with the text before it, and the new ones (on lines ending with `nl`
+    /// where the text before the children gives no line break).
+    fn children(&self, r: u32, node: &Node, nl: &str) -> Result<Vec<Item>, SaveError> {
         let rec = &self.src.records[r as usize];
         let id = rec.id;
         let pos: HashMap<ElementId, usize> =
@@ -732,7 +739,7 @@ impl Saver<'_> {
         }
         if self.src.primary(id) == Some(r) {
             let text = self.src.text_of(r);
-            let ws = ws.unwrap_or_else(|| format!("\n{}  ", indent_of(text, rec.start)));
+            let ws = ws.unwrap_or_else(|| format!("{nl}{}  ", indent_of(text, rec.start)));
             for (at, c) in node.children().iter().enumerate() {
                 if self.at_home(c.id(), id) || blank(c) {
                     continue;
@@ -786,8 +793,10 @@ impl Saver<'_> {
         let read = self.read.node_by_id(rec.id);
         let unchanged = read.is_some_and(|n| std::ptr::eq(n.attrs(), node.attrs()))
             && !self.dirty.contains(&rec.id);
+        // A root `<default>` the reader would fold into the root class says `main`.
+        let main = self.folds(r, node).then(|| ("class", "main".to_string()));
         if rec.kind == RecordKind::FileRoot || unchanged {
-            return Ok(tag.rewrite(&[], &[], &[], open));
+            return Ok(tag.rewrite(&[], &[], main.as_slice(), open));
         }
         let kind = node.kind();
         let mut indices: Vec<usize> = node.attrs().iter().map(|(i, _)| *i as usize).collect();
@@ -821,7 +830,35 @@ impl Saver<'_> {
                 _ => {}
             }
         }
+        append.extend(main);
         Ok(tag.rewrite(&set, &remove, &append, open))
+    }
+
+    /// Whether the record `r` is a file's root `<default>` (the root class's outer
+    /// tag, `node`) without attributes whose content, as written, the reader would
+    /// fold into the root class (one class named `/`: `policy::folds_into_root_class`),
+    /// reading another model: a class `/` left alone by an edit where it stood beside
+    /// other classes (a composed model written out). Such a tag is written
+    /// `class="main"`, as the plain writer writes it (a wrapper with an attribute is
+    /// never folded).
+    fn folds(&self, r: u32, node: &Node) -> bool {
+        let rec = &self.src.records[r as usize];
+        let p = rec.parent;
+        let at_root = p != NO_RECORD && self.src.records[p as usize].parent == NO_RECORD;
+        if !at_root || rec.kind != RecordKind::Element || !node.attrs().is_empty() {
+            return false;
+        }
+        if Some(rec.id) != root_class(self.model) {
+            return false;
+        }
+        let written = node.children().iter().filter(|c| !blank(c)).map(|c| {
+            if c.kind().is(Role::DefaultClass) {
+                DefaultChild::Class(c.identifier())
+            } else {
+                DefaultChild::Setting
+            }
+        });
+        policy::folds_into_root_class(false, written)
     }
 
     /// Whether the record `q` (an element's own tag) gives the attribute `i`.
@@ -834,14 +871,21 @@ impl Saver<'_> {
         t.tokens.iter().any(|k| attr_of(kind, t.name_of(k)) == Some(i))
     }
 
-    /// Writes `node` (and its children) in full, indented by `indent`.
-    fn write_new(&self, node: &Node, indent: &str, out: &mut String) -> Result<(), SaveError> {
+    /// Writes `node` (and its children) in full, indented by `indent`, its lines ending
+    /// with `nl`.
+    fn write_new(
+        &self,
+        node: &Node,
+        nl: &str,
+        indent: &str,
+        out: &mut String,
+    ) -> Result<(), SaveError> {
         // (node, depth, closing): an explicit stack, so nesting depth costs no stack.
         let mut stack: Vec<(&Node, usize, bool)> = vec![(node, 0, false)];
         let mut first = true;
         while let Some((n, depth, closing)) = stack.pop() {
             if !first {
-                out.push('\n');
+                out.push_str(nl);
                 out.push_str(indent);
                 (0..depth).for_each(|_| out.push_str("  "));
             }
@@ -876,25 +920,41 @@ impl Saver<'_> {
 }
 
 /// The whitespace on the line of `at` before it (`""` if anything else is there).
+/// Lines end at `\n`, `\r\n` or a `\r` alone, as XML ends them.
 fn indent_of(text: &str, at: u32) -> &str {
     let before = &text[..at as usize];
-    let line = before.rfind('\n').map_or(before, |i| &before[i + 1..]);
+    let line = before.rfind(['\n', '\r']).map_or(before, |i| &before[i + 1..]);
     if line.chars().all(|c| c == ' ' || c == '\t') { line } else { "" }
 }
 
 /// The line break and indentation ending `lead` (the text before a child), if it
-/// ends with whitespace after its last line break; `lead` itself if it is all
-/// whitespace on one line.
+/// ends with whitespace after its last line break (`\n`, `\r\n` or `\r`, kept as
+/// written); `lead` itself if it is all whitespace on one line.
 fn line_break(lead: &str) -> Option<String> {
-    let tail = lead.rfind('\n').map_or(lead, |i| &lead[i..]);
-    let tail = tail.strip_prefix('\n').map_or(tail, |t| t.trim_start_matches('\r'));
-    if !tail.chars().all(|c| c == ' ' || c == '\t') {
+    let at = lead.rfind(['\n', '\r']);
+    let indent = at.map_or(lead, |i| &lead[i + 1..]);
+    if !indent.chars().all(|c| c == ' ' || c == '\t') {
         return None;
     }
-    Some(match lead.rfind('\n') {
-        Some(i) => lead[i..].to_string(),
-        None => tail.to_string(),
-    })
+    let from = match at {
+        Some(i) if lead[..i].ends_with('\r') && lead[i..].starts_with('\n') => i - 1,
+        Some(i) => i,
+        None => 0,
+    };
+    Some(lead[from..].to_string())
+}
+
+/// The line break of `text`: its first one (`\n`, `\r\n` or `\r`), or `\n` if it
+/// has none.
+///
+/// Time: O(length of the first line).
+fn newline(text: &str) -> &'static str {
+    let b = text.as_bytes();
+    match b.iter().position(|&c| c == b'\n' || c == b'\r') {
+        Some(i) if b[i] == b'\r' && b.get(i + 1) == Some(&b'\n') => "\r\n",
+        Some(i) if b[i] == b'\r' => "\r",
+        _ => "\n",
+    }
 }
 
 /// Whether the node is an empty singleton, holding only empty singletons (every

@@ -89,7 +89,12 @@ impl<'t> Tag<'t> {
         let mut at = 0;
         for (k, t) in self.tokens.iter().enumerate() {
             if remove.contains(&k) {
-                out.push_str(&self.text[at..t.lead]);
+                // With the whitespace before it, unless another attribute follows it
+                // without any (`a="1"b="2"`): then the whitespace separates that one.
+                let next = self.text.as_bytes().get(t.value.1 + 1);
+                let glued =
+                    next.is_some_and(|c| !matches!(c, b' ' | b'\t' | b'\n' | b'\r' | b'/' | b'>'));
+                out.push_str(&self.text[at..if glued { t.name.0 } else { t.lead }]);
                 at = t.value.1 + 1;
             } else if let Some((_, v)) = set.iter().find(|(j, _)| *j == k) {
                 out.push_str(&self.text[at..t.value.0]);
@@ -153,6 +158,18 @@ mod tests {
         assert_eq!(s, "<geom name=\"a\"\n   pos='1 2 3' rgba=\"1 0 0 1\" />");
         let s = t.rewrite(&[], &[0], &[], true);
         assert_eq!(s, "<geom\n   pos='0 0 .5'  size=\"1\">");
+    }
+
+    /// An attribute removed from before another written without whitespace between
+    /// them leaves the whitespace before it, so that the next one stays apart from
+    /// the tag name (found by the `lossless` fuzz target).
+    #[test]
+    fn a_removed_attribute_glued_to_the_next_leaves_its_whitespace() {
+        let t = Tag::parse("<body name=\"b \"pos=\"0 0 1\"\tmass='1'/>");
+        assert_eq!(t.rewrite(&[], &[0], &[], false), "<body pos=\"0 0 1\"\tmass='1'/>");
+        assert_eq!(t.rewrite(&[], &[1], &[], false), "<body name=\"b \"\tmass='1'/>");
+        assert_eq!(t.rewrite(&[], &[0, 1], &[], false), "<body \tmass='1'/>");
+        assert_eq!(t.rewrite(&[], &[2], &[], true), "<body name=\"b \"pos=\"0 0 1\">");
     }
 
     #[test]

@@ -1,0 +1,25 @@
+//! Fresh folders and files for the tests that read and save models on disk
+//! (`tests/lossless.rs`, `tests/spellings.rs`); include with
+//! `#[path = "support/dirs.rs"] mod dirs;`.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// A fresh, empty folder under the system's temp folder, named after the test binary,
+/// `tag`, the process and a counter (so that tests running at once never share one).
+pub(crate) fn temp_dir(tag: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let n = N.fetch_add(1, Ordering::Relaxed);
+    let test = env!("CARGO_CRATE_NAME");
+    let d = std::env::temp_dir().join(format!("mjcf-{test}-{tag}-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `text` to `rel` under `dir`, making its folders.
+pub(crate) fn write(dir: &Path, rel: &str, text: &str) {
+    let p = dir.join(rel);
+    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+    std::fs::write(p, text).unwrap();
+}
