@@ -3,6 +3,10 @@
 //! mass, a free joint beside another joint, a key longer than the model), `check()`
 //! reports a problem of a kind MuJoCo refuses exactly when MuJoCo refuses the model.
 //! (`UncomposedKey` is no such kind: MuJoCo compiles the key, on the wrong joints.)
+//! And over scenes of the wide generators (`Palette::Wide`: attachments at sites
+//! anywhere, inside moving bodies, `<frame>`s and attached models; attached models
+//! with free bodies and planes; frames with mixed joints and freejoints anywhere),
+//! the same verdict for every scene as it is generated.
 
 mod support;
 
@@ -14,9 +18,15 @@ use support::mujoco;
 
 /// Whether MuJoCo refuses the model; other failures are the test's.
 fn refused(mujoco: &MuJoCo, m: &Model) -> Result<bool, String> {
+    refusal(mujoco, m).map(|r| r.is_some())
+}
+
+/// MuJoCo's message when it refuses the model (its first line); other failures are
+/// the test's.
+fn refusal(mujoco: &MuJoCo, m: &Model) -> Result<Option<String>, String> {
     match mujoco.compile(m) {
-        Ok(_) => Ok(false),
-        Err(Error::Compile(_)) => Ok(true),
+        Ok(_) => Ok(None),
+        Err(Error::Compile(e)) => Ok(Some(e.message.lines().next().unwrap_or("").to_string())),
         Err(e) => Err(e.to_string()),
     }
 }
@@ -130,4 +140,79 @@ fn check_reports_a_problem_exactly_when_mujoco_refuses() {
         "{}",
         disagreements[..disagreements.len().min(20)].join("\n")
     );
+}
+
+/// The MuJoCo refusals that `check` does not report yet, while its rules for them are
+/// being written: a free joint below a moving body (an attached model's free body, or
+/// an attachment frame's freejoint, inside a moving body) and a plane in a moving
+/// body. A scene MuJoCo refuses with one of these messages while `check` finds
+/// nothing is counted and shown, and does not fail the test. DELETE THIS CONSTANT
+/// (and its one use) when `check` has those rules.
+const EXPECTED_UNTIL_CHECK_RULES_LAND: &[&str] =
+    &["free joint can only be used on top level", "plane only allowed in static bodies"];
+
+/// How many wide scenes the judge compiles: `MJCF_JUDGE_SCENES`, else 2,000.
+fn wide_scene_count() -> usize {
+    std::env::var("MJCF_JUDGE_SCENES").ok().and_then(|n| n.parse().ok()).unwrap_or(2000)
+}
+
+/// One kind of disagreement: how often, and the smallest scene that shows it.
+#[derive(Default)]
+struct Class {
+    count: usize,
+    example: Option<(usize, String)>,
+}
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn check_agrees_with_mujoco_on_every_wide_scene() {
+    let mujoco = mujoco();
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &[27; 32]);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let scenes = mjcf::generate::strategy::scene_recipe_in(mjcf::generate::Palette::Wide);
+    let n = wide_scene_count();
+    let (mut refused_count, mut reported) = (0, 0);
+    // Disagreements by what MuJoCo says (or what check says, when MuJoCo compiles).
+    let mut classes = std::collections::BTreeMap::<String, Class>::new();
+    let mut by_message = std::collections::BTreeMap::<String, usize>::new();
+    let mut unexpected = 0;
+    for i in 0..n {
+        let m = scenes.new_tree(&mut runner).unwrap().current().build();
+        let problems = refusals(&m);
+        let refusal = refusal(&mujoco, &m).unwrap_or_else(|e| panic!("scene {i}: {e}"));
+        refused_count += usize::from(refusal.is_some());
+        reported += usize::from(!problems.is_empty());
+        if let Some(msg) = &refusal {
+            *by_message.entry(msg.clone()).or_default() += 1;
+        }
+        let key = match (&refusal, problems.first()) {
+            (Some(msg), None) => format!("MuJoCo refuses, check finds nothing: {msg}"),
+            (None, Some(p)) => format!("MuJoCo compiles, check reports: {:?}", p.kind),
+            _ => continue,
+        };
+        let expected = refusal.as_ref().is_some_and(|msg| {
+            problems.is_empty() && EXPECTED_UNTIL_CHECK_RULES_LAND.iter().any(|e| msg.contains(e))
+        });
+        unexpected += usize::from(!expected);
+        let class = classes.entry(key).or_default();
+        class.count += 1;
+        let xml = m.to_xml_string().unwrap();
+        if class.example.as_ref().is_none_or(|(_, x)| xml.len() < x.len()) {
+            class.example = Some((i, xml));
+        }
+    }
+    eprintln!(
+        "{n} wide scenes: MuJoCo refused {refused_count}, check reported problems in {reported}; \
+         MuJoCo's refusals: {by_message:#?}"
+    );
+    let total: usize = classes.values().map(|c| c.count).sum();
+    eprintln!("{total} disagreements ({unexpected} not expected), by class:");
+    for (key, c) in &classes {
+        eprintln!("  {:5}  {key}", c.count);
+    }
+    for (key, c) in &classes {
+        let (i, xml) = c.example.as_ref().unwrap();
+        eprintln!("\n--- {key}: the smallest, scene {i} ---\n{xml}");
+    }
+    assert_eq!(unexpected, 0, "check disagrees with MuJoCo outside the expected classes");
 }

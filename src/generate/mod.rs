@@ -85,6 +85,7 @@
 //! ```
 
 mod builder;
+mod debug;
 mod edit;
 mod palette;
 mod pick;
@@ -100,5 +101,5 @@ pub use palette::{Domain, Length, PaletteEntry, palette, value};
 pub use recipe::{
     ActuatorKind, AttrDraw, DefaultTag, Edit, EditRecipe, EqualityKind, FrameJoint, FrameRecipe,
     GeomRecipe, JointKind, MAX_DEPTH, MAX_ELEMENTS, MAX_STEPS, MODEL_WORDS, ModelRecipe, ObjKind,
-    Pick, SensorKind, Settings, Shape, Step, Unit, WORDS, Word,
+    Palette, Pick, SensorKind, Settings, Shape, Step, Unit, WORDS, Word,
 };
