@@ -10,6 +10,7 @@ use super::pick::{joint_fits, valid};
 use super::recipe::{
     EditRecipe, FrameRecipe, JointKind, MAX_ELEMENTS, MAX_STEPS, ModelRecipe, Palette, Pick, Word,
 };
+use super::simulate::with_contact_classes;
 
 impl ModelRecipe {
     /// Builds the model, skipping the steps that would make it invalid (and every
@@ -18,7 +19,8 @@ impl ModelRecipe {
     /// Time: O(s · N) for `s` steps and a composed model of N elements (each step is
     /// checked with [`Model::check`](crate::Model::check)).
     pub fn build(&self) -> Model {
-        Builder::new(self.palette).model(self, 0, "")
+        let m = Builder::new(self.palette).model(self, 0, "");
+        if self.palette == Palette::Simulates { with_contact_classes(m) } else { m }
     }
 }
 
@@ -173,7 +175,7 @@ impl Builder {
                 let make = |n: Option<&str>| {
                     let mut el = Element::new("joint").attr("type", j.kind.keyword());
                     if self.palette == Palette::Simulates {
-                        el = el.attr("armature", 0.01).attr("damping", 0.01);
+                        el = el.attr("armature", 0.1).attr("damping", 1.0);
                     }
                     let el = if j.kind == JointKind::Ball {
                         el

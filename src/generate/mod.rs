@@ -91,6 +91,7 @@ mod palette;
 mod pick;
 mod recipe;
 mod repair;
+mod simulate;
 mod steps;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategy;

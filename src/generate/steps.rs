@@ -253,7 +253,7 @@ fn joint(
         if pal == Palette::Simulates {
             // Simulating: every joint has armature and damping (the palette's draws
             // may raise them).
-            el = el.attr("armature", 0.01).attr("damping", 0.01);
+            el = el.attr("armature", 0.1).attr("damping", 1.0);
         }
         if jk != JointKind::Ball {
             el = el.attr("axis", direction(*axis));
