@@ -5,7 +5,8 @@
 //! frames by how many moving bodies are above them, and requires each of them.
 //!
 //! Scenes: `MJCF_SIM_SCENES` (default 300, about a minute in a debug build); the
-//! full 10,000 is `MJCF_SIM_SCENES=10000`.
+//! full 10,000 is `MJCF_SIM_SCENES=10000`. `MJCF_SIM_DUMP=DIR` writes every scene to
+//! `DIR/scene_I.xml`, to study one in MuJoCo.
 
 mod support;
 

@@ -54,18 +54,18 @@ fn tally(m: &Model, counts: &mut std::collections::BTreeMap<&'static str, usize>
         if above.attachment && !e.is_frame() {
             note(
                 "free body in an attached model",
-                e.tag() == "body" && kids.iter().any(|k| k.0 == "freejoint"),
+                e.kind().is(Role::Body) && kids.iter().any(|k| k.0 == "freejoint"),
             );
             note(
                 "plane in an attached model",
                 e.kind().is(Role::Geom) && e.string("type") == Some("plane"),
             );
         }
-        note("site in a <frame>", above.mujoco_frame && e.tag() == "site");
+        note("site in a <frame>", above.mujoco_frame && e.kind().is(Role::Site));
         let moves = kids.iter().any(|k| matches!(k.0, "joint" | "freejoint"));
         stack.push(Above {
-            moving: above.moving + usize::from(moves && (e.tag() == "body" || e.is_frame())),
-            mujoco_frame: above.mujoco_frame || (e.tag() == "frame" && !e.is_frame()),
+            moving: above.moving + usize::from(moves && (e.kind().is(Role::Body) || e.is_frame())),
+            mujoco_frame: above.mujoco_frame || (e.kind().is(Role::Frame) && !e.is_frame()),
             attachment: above.attachment || e.is_frame(),
         });
     }

@@ -16,7 +16,7 @@ pub(super) fn view(m: &Model, loc: &Loc) -> Option<(&'static str, ElementKind, b
 pub(super) fn body_parents(m: &Model) -> Vec<Loc> {
     let mut out = vec![m.worldbody()];
     out.extend(m.find_all(Namespace::Body).into_iter().filter(|l| !is_frame(m, l)));
-    out.extend(elements(m, |t| t.tag == "frame" && !t.frame).into_iter().map(|t| t.loc));
+    out.extend(elements(m, |t| t.kind.is(Role::Frame) && !t.frame).into_iter().map(|t| t.loc));
     out
 }
 

@@ -46,7 +46,7 @@ pub(super) fn contact_classes(m: &Model) -> Vec<(Loc, ContactClass)> {
             Event::Enter(e) => {
                 let above = stack.last().copied().unwrap_or(ContactClass::Static);
                 let mut own = above;
-                if e.tag() == "body" || e.is_frame() {
+                if e.kind().is(Role::Body) || e.is_frame() {
                     for c in e.children() {
                         let free = c.kind().is(Role::Freejoint)
                             || (c.kind().is(Role::Joint) && c.string("type") == Some("free"));

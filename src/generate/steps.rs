@@ -4,7 +4,7 @@
 //! allowed problems.
 
 use crate::model::{Element, Loc, Model};
-use crate::schema::{ElementKind, Namespace};
+use crate::schema::{ElementKind, Namespace, Role};
 
 use super::builder::{Builder, add_named};
 use super::palette::{direction, palette_of, real, with_extras};
@@ -238,7 +238,7 @@ fn joint(
     let bodies: Vec<Loc> = body_parents(m)
         .into_iter()
         .skip(1)
-        .filter(|b| view(m, b).is_some_and(|v| v.0 == "body") && joint_fits(m, b, jk))
+        .filter(|b| view(m, b).is_some_and(|v| v.1.is(Role::Body)) && joint_fits(m, b, jk))
         .collect();
     let b = body.of(&bodies)?.clone();
     let kind = view(m, &b)?.1.child("joint")?;
