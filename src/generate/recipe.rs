@@ -492,14 +492,14 @@ pub enum Palette {
     /// Also the shapes MuJoCo may refuse, for judging `check` against MuJoCo: attached
     /// models with free bodies and planes in their worldbody, attachment frames with
     /// a freejoint wherever they are (inside moving bodies, `<frame>`s and other
-    /// attached models), geoms of every shape wherever they go. No step is skipped
-    /// for what `check` says, so a built model may have problems.
+    /// attached models); [`Step::Frame`]s in the strategies' recipes. No step is
+    /// skipped for what `check` says, so a built model may have problems.
     Wide,
     /// Valid models that simulate: what [`Palette::Valid`] gives, within ranges that
-    /// keep MuJoCo's simulation stable (every body at least 0.05 in size, every joint
-    /// and attachment-frame joint with armature and damping, gains and stiffnesses
-    /// bounded, the `implicitfast` integrator, a timestep of 0.002 at most), with
-    /// free bodies in attached models directly in the world, planes in the worldbody.
+    /// keep MuJoCo's simulation stable: no geom smaller than 0.05, every joint and
+    /// attachment-frame joint with armature (at least 0.1) and damping (at least 1),
+    /// the `implicitfast` integrator at MuJoCo's default timestep, and each geom's
+    /// `contype`/`conaffinity` set by what moves it (the module docs say why).
     Simulates,
 }
 
