@@ -13,8 +13,9 @@ use super::recipe::{
 use super::simulate::with_contact_classes;
 
 impl ModelRecipe {
-    /// Builds the model, skipping the steps that would make it invalid (and every
-    /// step after the first [`MAX_STEPS`], nested recipes included).
+    /// Builds the model of the recipe's [`Palette`], skipping the steps that would
+    /// make it invalid (none for [`Palette::Wide`]), and every step after the first
+    /// [`MAX_STEPS`], nested recipes included.
     ///
     /// Time: O(s · N) for `s` steps and a composed model of N elements (each step is
     /// checked with [`Model::check`](crate::Model::check)).

@@ -288,7 +288,7 @@ pub struct FrameRecipe {
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Settings {
     /// `option/@timestep`: 0.002, 0.004, 0.005 or 0.01 (merged by minimum when
-    /// attached).
+    /// attached); unused by [`Palette::Simulates`], which keeps MuJoCo's 0.002.
     pub timestep: Option<u8>,
     /// `compiler/@angle`: `radian` (true) or `degree` (false); two models that set
     /// it differently cannot be attached to one another (the attach is skipped).
