@@ -105,16 +105,6 @@ impl Builder {
                 m = next;
             }
         }
-        if sim && depth == 0 {
-            // Ground for the free bodies to land on (static: it touches free geoms).
-            let ground = Element::new("geom")
-                .attr("type", "plane")
-                .attr("size", [10.0, 10.0, 0.1])
-                .attr("pos", [0.0, 0.0, -1.0]);
-            if let Ok((next, _)) = m.add(&m.worldbody(), ground) {
-                m = next;
-            }
-        }
         // Simulating: MuJoCo's default timestep, 0.002.
         if let Some(t) = r.settings.timestep.filter(|_| !sim) {
             let t = TIMESTEPS[usize::from(t) % TIMESTEPS.len()];

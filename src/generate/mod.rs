@@ -56,8 +56,7 @@
 //!   collide with free bodies' geoms only (randomly placed bodies that can only
 //!   turn or slide about their joints start inside one another and cannot part,
 //!   and the contact forces between them made most diverging scenes diverge; a
-//!   light joint inertia, which armature raises, made most of the rest). A ground
-//!   plane at `z = -1` catches the free bodies as they fall. The scenes
+//!   light joint inertia, which armature raises, made most of the rest). The scenes
 //!   keep every joint type (free, ball, slide, hinge), contacts, and attachments
 //!   below moving bodies, nested. `mjcf-mujoco`'s `tests/simulates.rs` steps them
 //!   1,000 steps each and requires at least 99.9% without a MuJoCo warning.

@@ -499,8 +499,7 @@ pub enum Palette {
     /// keep MuJoCo's simulation stable: no geom smaller than 0.05, every joint and
     /// attachment-frame joint with armature (at least 0.1) and damping (at least 1),
     /// the `implicitfast` integrator at MuJoCo's default timestep, and each geom's
-    /// `contype`/`conaffinity` set by what moves it (the module docs say why), and
-    /// a ground plane at `z = -1` that free bodies land on.
+    /// `contype`/`conaffinity` set by what moves it (the module docs say why).
     Simulates,
 }
 
