@@ -104,6 +104,8 @@ fn simulating_scenes_step_1000_steps_without_a_warning() {
          attachment frames by moving bodies above them: {depths:?}",
         failures.len()
     );
+    let warned_scenes: Vec<usize> = failures.iter().map(|f| f.0).collect();
+    eprintln!("scenes that warned: {warned_scenes:?}");
     for (i, w, xml) in failures.iter().take(3) {
         eprintln!("\n--- scene {i}: {w} ---\n{xml}");
     }
