@@ -6,6 +6,10 @@
 //! welded or not, each beside its accepted twin), `check()` reports a problem
 //! exactly when MuJoCo refuses the model. (`advice()` is no such thing: MuJoCo
 //! compiles what it points at.)
+//! And over scenes of the wide generators (`Palette::Wide`: attachments at sites
+//! anywhere, inside moving bodies, `<frame>`s and attached models; attached models
+//! with free bodies and planes; frames with mixed joints and freejoints anywhere),
+//! the same verdict for every scene as it is generated.
 
 mod support;
 
@@ -17,9 +21,15 @@ use support::mujoco;
 
 /// Whether MuJoCo refuses the model; other failures are the test's.
 fn refused(mujoco: &MuJoCo, m: &Model) -> Result<bool, String> {
+    refusal(mujoco, m).map(|r| r.is_some())
+}
+
+/// MuJoCo's message when it refuses the model (its first line); other failures are
+/// the test's.
+fn refusal(mujoco: &MuJoCo, m: &Model) -> Result<Option<String>, String> {
     match mujoco.compile(m) {
-        Ok(_) => Ok(false),
-        Err(Error::Compile(_)) => Ok(true),
+        Ok(_) => Ok(None),
+        Err(Error::Compile(e)) => Ok(Some(e.message.lines().next().unwrap_or("").to_string())),
         Err(e) => Err(e.to_string()),
     }
 }
@@ -327,4 +337,71 @@ fn check_agrees_with_mujoco_on_free_bodies_attached_inside_frames_and_replicates
     // MuJoCo 4.0.0's verdicts: a world <frame> keeps the body top level; the writer
     // writes an attachment frame inside a <replicate> or a body as a body.
     assert_eq!(verdicts, [("in_frame", false), ("in_replicate", true), ("in_body_frame", true)]);
+}
+
+/// How many wide scenes the judge compiles: `MJCF_JUDGE_SCENES`, else 2,000.
+fn wide_scene_count() -> usize {
+    std::env::var("MJCF_JUDGE_SCENES").ok().and_then(|n| n.parse().ok()).unwrap_or(2000)
+}
+
+/// One kind of disagreement: how often, and the smallest scene that shows it.
+#[derive(Default)]
+struct Class {
+    count: usize,
+    example: Option<(usize, String)>,
+}
+
+/// Every wide scene gets both verdicts, check's and MuJoCo's, and they agree; the
+/// summary (run with `--nocapture` to see it when the test passes) counts MuJoCo's
+/// refusals by message and the disagreements by class, with the smallest scene of
+/// each as MJCF.
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn check_agrees_with_mujoco_on_every_wide_scene() {
+    let mujoco = mujoco();
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &[27; 32]);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let scenes = mjcf::generate::strategy::scene_recipe_in(mjcf::generate::Palette::Wide);
+    let n = wide_scene_count();
+    let (mut refused_count, mut reported) = (0, 0);
+    // Disagreements by what MuJoCo says (or what check says, when MuJoCo compiles).
+    let mut classes = std::collections::BTreeMap::<String, Class>::new();
+    let mut by_message = std::collections::BTreeMap::<String, usize>::new();
+    for i in 0..n {
+        let m = scenes.new_tree(&mut runner).unwrap().current().build();
+        let problems = refusals(&m);
+        let refusal = refusal(&mujoco, &m).unwrap_or_else(|e| panic!("scene {i}: {e}"));
+        refused_count += usize::from(refusal.is_some());
+        reported += usize::from(!problems.is_empty());
+        if let Some(msg) = &refusal {
+            *by_message.entry(msg.clone()).or_default() += 1;
+        }
+        let key = match (&refusal, problems.first()) {
+            (Some(msg), None) => format!("MuJoCo refuses, check finds nothing: {msg}"),
+            (None, Some(p)) => format!("MuJoCo compiles, check reports: {:?}", p.kind),
+            _ => continue,
+        };
+        let class = classes.entry(key).or_default();
+        class.count += 1;
+        let xml = m.to_xml_string().unwrap();
+        if class.example.as_ref().is_none_or(|(_, x)| xml.len() < x.len()) {
+            class.example = Some((i, xml));
+        }
+    }
+    eprintln!(
+        "{n} wide scenes: MuJoCo refused {refused_count}, check reported problems in {reported}; \
+         MuJoCo's refusals: {by_message:#?}"
+    );
+    let total: usize = classes.values().map(|c| c.count).sum();
+    eprintln!("{total} disagreements, by class:");
+    for (key, c) in &classes {
+        eprintln!("  {:5}  {key}", c.count);
+    }
+    for (key, c) in &classes {
+        let (i, xml) = c.example.as_ref().unwrap();
+        eprintln!("\n--- {key}: the smallest, scene {i} ---\n{xml}");
+    }
+    // Both verdicts are judged: the wide scenes reach refusals and compiled models.
+    assert!(refused_count > 0 && refused_count < n, "MuJoCo refused {refused_count} of {n}");
+    assert_eq!(total, 0, "check disagrees with MuJoCo on {total} wide scenes");
 }

@@ -8,17 +8,20 @@ use crate::schema::{Namespace, Role};
 use super::palette::direction;
 use super::pick::{joint_fits, valid};
 use super::recipe::{
-    EditRecipe, FrameRecipe, JointKind, MAX_ELEMENTS, MAX_STEPS, ModelRecipe, Pick, Word,
+    EditRecipe, FrameRecipe, JointKind, MAX_ELEMENTS, MAX_STEPS, ModelRecipe, Palette, Pick, Word,
 };
+use super::simulate::with_contact_classes;
 
 impl ModelRecipe {
-    /// Builds the model, skipping the steps that would make it invalid (and every
-    /// step after the first [`MAX_STEPS`], nested recipes included).
+    /// Builds the model of the recipe's [`Palette`], skipping the steps that would
+    /// make it invalid (none for [`Palette::Wide`]), and every step after the first
+    /// [`MAX_STEPS`], nested recipes included.
     ///
     /// Time: O(s · N) for `s` steps and a composed model of N elements (each step is
     /// checked with [`Model::check`](crate::Model::check)).
     pub fn build(&self) -> Model {
-        Builder::new().model(self, 0, "")
+        let m = Builder::new(self.palette).model(self, 0, "");
+        if self.palette == Palette::Simulates { with_contact_classes(m) } else { m }
     }
 }
 
@@ -49,7 +52,7 @@ impl EditRecipe {
     /// assert_eq!(versions[3], base); // detach gives back the model before the attach
     /// ```
     pub fn apply(&self, base: &Model) -> Vec<Model> {
-        let mut b = Builder::new();
+        let mut b = Builder::new(Palette::Valid);
         let mut versions = vec![base.clone()];
         let mut current = base.clone();
         let allowed = base.check().len();
@@ -75,17 +78,35 @@ pub(super) struct Builder {
     pub(super) children: Vec<Model>,
     /// How many `include_copy` sources were built (their name prefixes).
     pub(super) copies: usize,
+    /// The outermost recipe's palette, for every model built.
+    pub(super) palette: Palette,
 }
 
 impl Builder {
-    pub(super) fn new() -> Builder {
-        Builder { budget: MAX_STEPS, children: Vec::new(), copies: 0 }
+    pub(super) fn new(palette: Palette) -> Builder {
+        Builder { budget: MAX_STEPS, children: Vec::new(), copies: 0, palette }
+    }
+
+    /// How many problems a step may leave: none beyond `allowed`, but any number in
+    /// the wide palette (whose models `check` is judged on).
+    pub(super) fn allowed(&self, allowed: usize) -> usize {
+        if self.palette == Palette::Wide { usize::MAX } else { allowed }
     }
 
     /// Builds a recipe's model at attachment depth `depth`; names get `prefix`.
     pub(super) fn model(&mut self, r: &ModelRecipe, depth: u32, prefix: &str) -> Model {
         let mut m = Model::new(r.name.model_name());
-        if let Some(t) = r.settings.timestep {
+        let sim = self.palette == Palette::Simulates;
+        if sim {
+            // Damping and the joints' springs integrated implicitly.
+            if let Some(next) =
+                m.section("option").and_then(|o| m.set_attr(&o, "integrator", "implicitfast").ok())
+            {
+                m = next;
+            }
+        }
+        // Simulating: MuJoCo's default timestep, 0.002.
+        if let Some(t) = r.settings.timestep.filter(|_| !sim) {
             let t = TIMESTEPS[usize::from(t) % TIMESTEPS.len()];
             if let Some(next) = m.section("option").and_then(|o| m.set_attr(&o, "timestep", t).ok())
             {
@@ -127,11 +148,12 @@ impl Builder {
         places.extend(m.find_all(Namespace::Site));
         let place = at.of(&places)?.clone();
         // The frame goes where the site is: directly in the worldbody, or not.
-        let top = depth == 0
-            && (place == m.worldbody()
-                || m.element(&place)
-                    .and_then(|e| e.parent())
-                    .is_some_and(|p| p.kind().is(Role::Worldbody)));
+        let top = self.palette == Palette::Wide
+            || depth == 0
+                && (place == m.worldbody()
+                    || m.element(&place)
+                        .and_then(|e| e.parent())
+                        .is_some_and(|p| p.kind().is(Role::Worldbody)));
         let (mut next, a) = m.attach(&place, child).ok()?;
         let frame_loc = a.frame().clone();
         let inertial = || {
@@ -152,7 +174,10 @@ impl Builder {
                     continue;
                 }
                 let make = |n: Option<&str>| {
-                    let el = Element::new("joint").attr("type", j.kind.keyword());
+                    let mut el = Element::new("joint").attr("type", j.kind.keyword());
+                    if self.palette == Palette::Simulates {
+                        el = el.attr("armature", 0.1).attr("damping", 1.0);
+                    }
                     let el = if j.kind == JointKind::Ball {
                         el
                     } else {

@@ -7,7 +7,7 @@ use crate::model::Element;
 use crate::schema::{ArrayType, AttrType, ElementKind};
 use crate::value::AttrInput;
 
-use super::recipe::{AttrDraw, Pick, Unit};
+use super::recipe::{AttrDraw, Palette, Pick, Unit};
 
 /// The range of values an attribute of a palette takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -168,6 +168,31 @@ pub fn palette(tag: &str, in_default: bool) -> &'static [PaletteEntry] {
         "jointpos" | "jointvel" | "touch" | "accelerometer" | "gyro" | "framepos" => SENSOR,
         "fixed" => TENDON,
         _ => &[],
+    }
+}
+
+static SIM_JOINT: &[PaletteEntry] = &[
+    p("pos", Real(-100, 100), Full),
+    p("damping", Real(1000, 3000), UpTo(1)),
+    p("stiffness", Real(0, 5000), UpTo(1)),
+    p("armature", Real(100, 500), Full),
+    p("frictionloss", Real(0, 500), Full),
+    p("group", Int(0, 5), Full),
+];
+static SIM_DEFAULT_JOINT: &[PaletteEntry] = &[
+    p("damping", Real(1000, 3000), UpTo(1)),
+    p("stiffness", Real(0, 5000), UpTo(1)),
+    p("armature", Real(100, 500), Full),
+];
+
+/// The palette of `tag` for models of the recipe palette `pal`: [`palette`], but
+/// for [`Palette::Simulates`] joints keep armature (at least 0.1) and damping (at
+/// least 1).
+pub(super) fn palette_of(tag: &str, in_default: bool, pal: Palette) -> &'static [PaletteEntry] {
+    match (pal, tag, in_default) {
+        (Palette::Simulates, "joint", false) => SIM_JOINT,
+        (Palette::Simulates, "joint", true) => SIM_DEFAULT_JOINT,
+        _ => palette(tag, in_default),
     }
 }
 

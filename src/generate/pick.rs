@@ -11,10 +11,12 @@ pub(super) fn view(m: &Model, loc: &Loc) -> Option<(&'static str, ElementKind, b
     Some((e.tag(), e.kind(), e.is_frame()))
 }
 
-/// The worldbody, then every body that is not a frame (inside attachments too).
+/// The worldbody, then every body that is not an attachment frame, then every MuJoCo
+/// `<frame>` (inside attachments too).
 pub(super) fn body_parents(m: &Model) -> Vec<Loc> {
     let mut out = vec![m.worldbody()];
     out.extend(m.find_all(Namespace::Body).into_iter().filter(|l| !is_frame(m, l)));
+    out.extend(elements(m, |t| t.kind.is(Role::Frame) && !t.frame).into_iter().map(|t| t.loc));
     out
 }
 

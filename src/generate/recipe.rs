@@ -23,7 +23,7 @@ pub const MAX_STEPS: usize = 512;
 pub const MAX_ELEMENTS: usize = 10_000;
 
 /// A choice among what exists when a step runs: `Pick(i)` takes item `i mod len`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Pick(pub u16);
 
@@ -39,7 +39,7 @@ impl Pick {
 /// A number in `[0, 1]` in steps of 1/1000: `Unit(k)` is `(k mod 1001) / 1000`.
 /// Applying a recipe maps it into the range the attribute needs, to at most three
 /// decimals (so the written numbers are short and exact).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Unit(pub u16);
 
@@ -60,7 +60,7 @@ impl Unit {
 }
 
 /// A name from [`WORDS`] (`Word(i)` is `WORDS[i mod len]`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Word(pub u8);
 
@@ -93,7 +93,7 @@ impl Word {
 /// One more attribute of an element: which one of the attributes recipes set on
 /// that tag ([`palette`](super::palette())), and the numbers its value is made from (the schema gives
 /// its type and length: a float, an array, an integer or a keyword).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct AttrDraw {
     /// Which attribute of the tag's palette.
@@ -260,7 +260,7 @@ pub struct GeomRecipe {
 }
 
 /// One joint of an attachment frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct FrameJoint {
     /// Its name (unique on its frame), if any.
@@ -288,7 +288,7 @@ pub struct FrameRecipe {
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct Settings {
     /// `option/@timestep`: 0.002, 0.004, 0.005 or 0.01 (merged by minimum when
-    /// attached).
+    /// attached); unused by [`Palette::Simulates`], which keeps MuJoCo's 0.002.
     pub timestep: Option<u8>,
     /// `compiler/@angle`: `radian` (true) or `degree` (false); two models that set
     /// it differently cannot be attached to one another (the attach is skipped).
@@ -447,6 +447,16 @@ pub enum Step {
         /// The second geom.
         second: Pick,
     },
+    /// A MuJoCo `<frame>` (a placement, no body of its own) under the worldbody, a
+    /// body or another `<frame>`: bodies, geoms and sites can then go inside it.
+    Frame {
+        /// The parent, as for [`Step::Body`] (`<frame>`s included).
+        parent: Pick,
+        /// Its position (each coordinate -1 to 1).
+        pos: [Unit; 3],
+        /// Its orientation (`euler`, each angle -90 to 90 degrees).
+        euler: [Unit; 3],
+    },
     /// Builds `child` and attaches it at a site (inside attachments too) or the
     /// worldbody; its frame gets what `frame` says.
     Attach {
@@ -466,6 +476,31 @@ pub enum Step {
         /// The frame's joints.
         frame: FrameRecipe,
     },
+}
+
+/// Which models a recipe builds: the shapes its steps may make, and whether a step
+/// that [`Model::check`](crate::Model::check) finds a problem in is skipped. Only the
+/// outermost recipe's palette counts: the recipes it attaches are built with it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
+pub enum Palette {
+    /// Valid models (the default): `check` finds nothing, MuJoCo compiles them.
+    /// Attached models have no free bodies and no planes of their own, and
+    /// freejoints go only on frames directly in the outermost worldbody.
+    #[default]
+    Valid,
+    /// Also the shapes MuJoCo may refuse, for judging `check` against MuJoCo: attached
+    /// models with free bodies and planes in their worldbody, attachment frames with
+    /// a freejoint wherever they are (inside moving bodies, `<frame>`s and other
+    /// attached models); [`Step::Frame`]s in the strategies' recipes. No step is
+    /// skipped for what `check` says, so a built model may have problems.
+    Wide,
+    /// Valid models that simulate: what [`Palette::Valid`] gives, within ranges that
+    /// keep MuJoCo's simulation stable: no geom smaller than 0.05, every joint and
+    /// attachment-frame joint with armature (at least 0.1) and damping (at least 1),
+    /// the `implicitfast` integrator at MuJoCo's default timestep, and each geom's
+    /// `contype`/`conaffinity` set by what moves it (the module docs say why).
+    Simulates,
 }
 
 /// A model as plain data: build it with [`ModelRecipe::build`].
@@ -489,7 +524,7 @@ pub enum Step {
 /// assert!(m.find(mjcf::Namespace::Body, "torso").is_some());
 /// assert!(m.check().is_empty());
 /// ```
-#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "arbitrary", derive(arbitrary::Arbitrary))]
 pub struct ModelRecipe {
     /// The model name ([`Word::model_name`]).
@@ -498,6 +533,10 @@ pub struct ModelRecipe {
     pub settings: Settings,
     /// The steps, in order.
     pub steps: Vec<Step>,
+    /// Which models it builds (of an attached recipe: unused, the outermost one's
+    /// counts). Bytes for a fuzzer always give [`Palette::Valid`].
+    #[cfg_attr(feature = "arbitrary", arbitrary(default))]
+    pub palette: Palette,
 }
 
 /// One edit of an [`EditRecipe`]. Targets are picked in the composed model (inside

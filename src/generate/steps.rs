@@ -4,16 +4,16 @@
 //! allowed problems.
 
 use crate::model::{Element, Loc, Model};
-use crate::schema::{ElementKind, Namespace};
+use crate::schema::{ElementKind, Namespace, Role};
 
 use super::builder::{Builder, add_named};
-use super::palette::{direction, palette, real, with_extras};
+use super::palette::{direction, palette_of, real, with_extras};
 use super::pick::{
     any, body_parents, joint_fits, named, not_frame, not_plane, scalar_joint, two, valid, view,
 };
 use super::recipe::{
     ActuatorKind, AttrDraw, DefaultTag, EqualityKind, GeomRecipe, JointKind, MAX_DEPTH, ObjKind,
-    Pick, SensorKind, Shape, Step, Unit, Word,
+    Palette, Pick, SensorKind, Shape, Step, Unit, Word,
 };
 
 /// A tetrahedron's vertices, the shape of every generated mesh.
@@ -27,6 +27,7 @@ struct At<'a> {
     depth: u32,
     prefix: &'a str,
     allowed: usize,
+    palette: Palette,
 }
 
 impl Builder {
@@ -40,7 +41,8 @@ impl Builder {
         prefix: &str,
         allowed: usize,
     ) -> Option<Model> {
-        let at = At { m, depth, prefix, allowed };
+        let allowed = self.allowed(allowed);
+        let at = At { m, depth, prefix, allowed, palette: self.palette };
         match step {
             Step::Body { parent, name, pos, geom, free, childclass, extras } => {
                 body(at, *parent, *name, pos, geom, *free, *childclass, extras)
@@ -77,6 +79,7 @@ impl Builder {
                 let geoms = named(m, Namespace::Geom, not_plane);
                 contact(at, ["pair", "geom1", "geom2"], &geoms, *first, *second)
             }
+            Step::Frame { parent, pos, euler } => frame_step(at, *parent, pos, euler),
             Step::Attach { at: place, child, frame } => {
                 if depth + 1 > MAX_DEPTH {
                     return None;
@@ -106,13 +109,14 @@ fn body(
     childclass: Option<Pick>,
     extras: &[AttrDraw],
 ) -> Option<Model> {
-    let At { m, depth, prefix, allowed } = at;
+    let At { m, depth, prefix, allowed, palette: pal } = at;
     let p = parent.of(&body_parents(m))?.clone();
     let kind = view(m, &p)?.1.child("body")?;
     let gkind = kind.child("geom")?;
     // Directly in the worldbody of the outermost model: an attached model's
-    // worldbody is a frame in the composed model.
-    let top = p == m.worldbody() && depth == 0;
+    // worldbody is a frame in the composed model (the wide palette frees bodies of
+    // attached models too).
+    let top = p == m.worldbody() && (depth == 0 || pal == Palette::Wide);
     let scoped = p.is_scoped();
     let class = if scoped {
         None
@@ -120,7 +124,7 @@ fn body(
         childclass.and_then(|c| c.of(&named(m, Namespace::Default, any)).cloned())
     };
     let pos: Vec<f64> = pos.iter().map(|u| real(-1000, 1000, *u)).collect();
-    let g = geom_element(m, gkind, geom, false, scoped, None);
+    let g = geom_element(m, gkind, geom, (false, scoped, pal), None);
     let make = |n: Option<&str>| {
         let mut el = Element::new("body");
         if let Some(n) = n {
@@ -132,7 +136,8 @@ fn body(
             el = el.attr("childclass", c.as_str());
             taken.push("childclass");
         }
-        el = with_extras(el, kind, palette("body", false), extras, &taken).child(g.clone());
+        el = with_extras(el, kind, palette_of("body", false, at.palette), extras, &taken)
+            .child(g.clone());
         if free && top { el.child(Element::new("freejoint")) } else { el }
     };
     add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
@@ -145,11 +150,12 @@ fn geom_element(
     m: &Model,
     kind: ElementKind,
     g: &GeomRecipe,
-    in_world: bool,
-    scoped: bool,
+    (in_world, scoped, pal): (bool, bool, Palette),
     name: Option<&str>,
 ) -> Element {
-    let size = |n: usize| -> Vec<f64> { g.size[..n].iter().map(|u| real(20, 300, *u)).collect() };
+    // Simulating: no geom smaller than 0.05 (a light body on a stiff joint diverges).
+    let lo = if pal == Palette::Simulates { 50 } else { 20 };
+    let size = |n: usize| -> Vec<f64> { g.size[..n].iter().map(|u| real(lo, 300, *u)).collect() };
     let mut el = Element::new("geom");
     let mut taken = vec!["type", "size"];
     let meshes = if scoped { Vec::new() } else { named(m, Namespace::Mesh, any) };
@@ -179,16 +185,17 @@ fn geom_element(
     if let Some(n) = name {
         el = el.attr("name", n);
     }
-    with_extras(el, kind, palette("geom", false), &g.extras, &taken)
+    with_extras(el, kind, palette_of("geom", false, pal), &g.extras, &taken)
 }
 
 /// Adds a geom to a picked body (a plane only directly in the outermost worldbody).
 fn geom_step(at: At<'_>, parent: Pick, geom: &GeomRecipe) -> Option<Model> {
-    let At { m, depth, prefix, allowed } = at;
+    let At { m, depth, prefix, allowed, palette: pal } = at;
     let p = parent.of(&body_parents(m))?.clone();
     let kind = view(m, &p)?.1.child("geom")?;
-    let (top, scoped) = (p == m.worldbody() && depth == 0, p.is_scoped());
-    let make = |n: Option<&str>| geom_element(m, kind, geom, top, scoped, n);
+    // A plane in the outermost worldbody (the wide palette: in an attached one too).
+    let top = p == m.worldbody() && (depth == 0 || pal == Palette::Wide);
+    let make = |n: Option<&str>| geom_element(m, kind, geom, (top, p.is_scoped(), pal), n);
     add_named(m, &p, make, geom.name.map(Word::text), prefix, allowed).map(|r| r.0)
 }
 
@@ -206,7 +213,7 @@ fn site(
     let pos: Vec<f64> = pos.iter().map(|u| real(-1000, 1000, *u)).collect();
     let make = |n: Option<&str>| {
         let el = Element::new("site").attr("pos", pos.clone());
-        let el = with_extras(el, kind, palette("site", false), extras, &["pos"]);
+        let el = with_extras(el, kind, palette_of("site", false, at.palette), extras, &["pos"]);
         if let Some(n) = n { el.attr("name", n) } else { el }
     };
     add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
@@ -225,10 +232,14 @@ fn joint(
     class: Option<Pick>,
     extras: &[AttrDraw],
 ) -> Option<Model> {
-    let At { m, prefix, allowed, .. } = at;
-    // Bodies where the joint fits: no freejoint, at most 6 degrees of freedom.
-    let bodies: Vec<Loc> =
-        body_parents(m).into_iter().skip(1).filter(|b| joint_fits(m, b, jk)).collect();
+    let At { m, prefix, allowed, palette: pal, .. } = at;
+    // Bodies where the joint fits: no freejoint, at most 6 degrees of freedom (not
+    // a `<frame>`).
+    let bodies: Vec<Loc> = body_parents(m)
+        .into_iter()
+        .skip(1)
+        .filter(|b| view(m, b).is_some_and(|v| v.1.is(Role::Body)) && joint_fits(m, b, jk))
+        .collect();
     let b = body.of(&bodies)?.clone();
     let kind = view(m, &b)?.1.child("joint")?;
     let class = if b.is_scoped() {
@@ -239,6 +250,11 @@ fn joint(
     let make = |n: Option<&str>| {
         let mut el = Element::new("joint").attr("type", jk.keyword());
         let mut taken = vec!["type", "axis", "range"];
+        if pal == Palette::Simulates {
+            // Simulating: every joint has armature and damping (the palette's draws
+            // may raise them).
+            el = el.attr("armature", 0.1).attr("damping", 1.0);
+        }
         if jk != JointKind::Ball {
             el = el.attr("axis", direction(*axis));
             if let Some([lo, hi]) = range {
@@ -252,7 +268,7 @@ fn joint(
         if let Some(n) = n {
             el = el.attr("name", n);
         }
-        with_extras(el, kind, palette("joint", false), extras, &taken)
+        with_extras(el, kind, palette_of("joint", false, at.palette), extras, &taken)
     };
     add_named(m, &b, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
 }
@@ -269,7 +285,8 @@ fn camera_or_light(
     let p = parent.of(&body_parents(m))?.clone();
     let kind = view(m, &p)?.1.child(tag)?;
     let make = |n: Option<&str>| {
-        let el = with_extras(Element::new(tag), kind, palette(tag, false), extras, &[]);
+        let el =
+            with_extras(Element::new(tag), kind, palette_of(tag, false, at.palette), extras, &[]);
         if let Some(n) = n { el.attr("name", n) } else { el }
     };
     add_named(m, &p, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
@@ -300,7 +317,13 @@ fn class(
             let Some(ck) = kind.child(t.tag()) else { continue };
             if !draws.is_empty() {
                 let child = Element::new(t.tag());
-                el = el.child(with_extras(child, ck, palette(t.tag(), true), &draws, &[]));
+                el = el.child(with_extras(
+                    child,
+                    ck,
+                    palette_of(t.tag(), true, at.palette),
+                    &draws,
+                    &[],
+                ));
             }
         }
         el
@@ -315,7 +338,7 @@ fn material(at: At<'_>, name: Word, extras: &[AttrDraw]) -> Option<Model> {
     let kind = view(m, &asset)?.1.child("material")?;
     let make = |n: Option<&str>| {
         let el = Element::new("material").attr("name", n.unwrap_or("x"));
-        with_extras(el, kind, palette("material", false), extras, &[])
+        with_extras(el, kind, palette_of("material", false, at.palette), extras, &[])
     };
     add_named(m, &asset, make, Some(name.text()), prefix, allowed).map(|r| r.0)
 }
@@ -354,7 +377,7 @@ fn actuator(
     let kind = view(m, &section)?.1.child(tag)?;
     let make = |n: Option<&str>| {
         let el = Element::new(tag).attr("joint", j.as_str());
-        let el = with_extras(el, kind, palette(tag, false), extras, &["joint"]);
+        let el = with_extras(el, kind, palette_of(tag, false, at.palette), extras, &["joint"]);
         if let Some(n) = n { el.attr("name", n) } else { el }
     };
     add_named(m, &section, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
@@ -400,7 +423,7 @@ fn sensor(
         for (k, v) in &attrs {
             el = el.attr(k, v.as_str());
         }
-        let el = with_extras(el, kind, palette(tag, false), extras, &[]);
+        let el = with_extras(el, kind, palette_of(tag, false, at.palette), extras, &[]);
         if let Some(n) = n { el.attr("name", n) } else { el }
     };
     add_named(m, &section, make, name.map(Word::text), prefix, allowed).map(|r| r.0)
@@ -487,5 +510,16 @@ fn contact(
     }
     let el = Element::new(tag).attr(a, x).attr(b, y);
     let (next, _) = m.add(&section, el).ok()?;
+    valid(&next, allowed).then_some(next)
+}
+
+/// Adds a MuJoCo `<frame>` under a picked body or `<frame>` (or the worldbody).
+fn frame_step(at: At<'_>, parent: Pick, pos: &[Unit; 3], euler: &[Unit; 3]) -> Option<Model> {
+    let At { m, allowed, .. } = at;
+    let p = parent.of(&body_parents(m))?.clone();
+    view(m, &p)?.1.child("frame")?;
+    let pos: Vec<f64> = pos.iter().map(|u| real(-1000, 1000, *u)).collect();
+    let euler: Vec<f64> = euler.iter().map(|u| real(-90_000, 90_000, *u)).collect();
+    let (next, _) = m.add(&p, Element::new("frame").attr("pos", pos).attr("euler", euler)).ok()?;
     valid(&next, allowed).then_some(next)
 }

@@ -25,8 +25,8 @@ use ::proptest::strategy::Union;
 
 use super::{
     ActuatorKind, AttrDraw, DefaultTag, Edit, EditRecipe, EqualityKind, FrameJoint, FrameRecipe,
-    GeomRecipe, JointKind, MODEL_WORDS, ModelRecipe, ObjKind, Pick, SensorKind, Settings, Shape,
-    Step, Unit, WORDS, Word,
+    GeomRecipe, JointKind, MODEL_WORDS, ModelRecipe, ObjKind, Palette, Pick, SensorKind, Settings,
+    Shape, Step, Unit, WORDS, Word,
 };
 use crate::model::Model;
 
@@ -142,6 +142,14 @@ fn settings() -> impl Strategy<Value = Settings> + Clone {
 ///
 /// Time: O(1) to make; O(size) per value.
 pub fn step(depth: u32) -> BoxedStrategy<Step> {
+    step_in(depth, Palette::Valid)
+}
+
+/// One [`Step`] for recipes of `palette`: [`step`], and for the other palettes than
+/// [`Palette::Valid`] MuJoCo `<frame>`s too (places to put bodies and sites in).
+///
+/// Time: O(1) to make; O(size) per value.
+pub fn step_in(depth: u32, palette: Palette) -> BoxedStrategy<Step> {
     let mut arms: Vec<(u32, BoxedStrategy<Step>)> = vec![
         (6, body()),
         (3, geom_step()),
@@ -159,10 +167,18 @@ pub fn step(depth: u32) -> BoxedStrategy<Step> {
         (1, exclude()),
         (1, pair()),
     ];
+    if palette != Palette::Valid {
+        arms.push((
+            2,
+            (pick(), units::<3>(), units::<3>())
+                .prop_map(|(parent, pos, euler)| Step::Frame { parent, pos, euler })
+                .boxed(),
+        ));
+    }
     if depth > 0 {
         arms.push((
             3,
-            (pick(), recipe(depth - 1, 12), frame())
+            (pick(), recipe_in(depth - 1, 12, palette), frame())
                 .prop_map(|(at, child, frame)| Step::Attach { at, child: Box::new(child), frame })
                 .boxed(),
         ));
@@ -352,8 +368,15 @@ fn pair() -> BoxedStrategy<Step> {
 ///
 /// Time: O(1) to make; O(size) per value.
 pub fn recipe(depth: u32, max_steps: usize) -> BoxedStrategy<ModelRecipe> {
-    (model_word(), settings(), vec(step(depth), 0..=max_steps))
-        .prop_map(|(name, settings, steps)| ModelRecipe { name, settings, steps })
+    recipe_in(depth, max_steps, Palette::Valid)
+}
+
+/// [`recipe`] of `palette`: its steps are [`step_in`] that palette.
+///
+/// Time: O(1) to make; O(size) per value.
+pub fn recipe_in(depth: u32, max_steps: usize, palette: Palette) -> BoxedStrategy<ModelRecipe> {
+    (model_word(), settings(), vec(step_in(depth, palette), 0..=max_steps))
+        .prop_map(move |(name, settings, steps)| ModelRecipe { name, settings, steps, palette })
         .boxed()
 }
 
@@ -405,6 +428,95 @@ pub fn scene_recipe() -> BoxedStrategy<ModelRecipe> {
         .prop_map(|(mut r, child, frame)| {
             // At least one attachment, at the world, first.
             r.steps.insert(0, Step::Attach { at: Pick(0), child: Box::new(child), frame });
+            r
+        })
+        .boxed()
+}
+
+/// A recipe of a model to attach in `palette`: [`attachable_recipe`], and for the
+/// other palettes than [`Palette::Valid`] its body moves (a joint of any type) and
+/// holds a `<frame>` with a site, so what is attached at them is below a moving body.
+///
+/// Time: O(1) to make; O(size) per value.
+pub fn attachable_recipe_in(palette: Palette) -> BoxedStrategy<ModelRecipe> {
+    if palette == Palette::Valid {
+        return attachable_recipe();
+    }
+    (recipe_in(0, 24, palette), units::<3>(), geom(), joint_kind(), units::<3>())
+        .prop_map(move |(mut r, pos, geom, kind, axis)| {
+            let mut steps = moving_body_with_site(pos, geom, kind, axis, false);
+            steps.insert(
+                0,
+                Step::Site { parent: Pick(0), name: Some(Word(0)), pos, extras: vec![] },
+            );
+            // A `<frame>` in the body ([world, base, frame] are the parents), a site in it.
+            steps.push(Step::Frame { parent: Pick(1), pos, euler: axis });
+            steps.push(Step::Site { parent: Pick(2), name: Some(Word(1)), pos, extras: vec![] });
+            steps.append(&mut r.steps);
+            r.steps = steps;
+            r
+        })
+        .boxed()
+}
+
+/// The steps of a body in the worldbody (the first body), moving by a joint of
+/// `kind` or, when `free`, a freejoint, with a site.
+fn moving_body_with_site(
+    pos: [Unit; 3],
+    geom: GeomRecipe,
+    kind: JointKind,
+    axis: [Unit; 3],
+    free: bool,
+) -> Vec<Step> {
+    let mut steps = vec![Step::Body {
+        parent: Pick(0),
+        name: Some(Word(3)),
+        pos,
+        geom,
+        free,
+        childclass: None,
+        extras: vec![],
+    }];
+    if !free {
+        steps.push(Step::Joint {
+            body: Pick(0),
+            name: Some(Word(4)),
+            kind,
+            axis,
+            range: None,
+            class: None,
+            extras: vec![],
+        });
+    }
+    steps.push(Step::Site { parent: Pick(1), name: Some(Word(2)), pos, extras: vec![] });
+    steps
+}
+
+/// A recipe of a composed scene in `palette`: [`scene_recipe`] (for
+/// [`Palette::Valid`], the same recipes), and for the other palettes it starts with
+/// a moving body (a joint of any type, or a freejoint) with a site, and a model
+/// ([`attachable_recipe_in`]) attached there, below the moving body; its steps are
+/// [`step_in`] the palette.
+///
+/// [`Palette::Wide`] scenes are what `mjcf-mujoco`'s judge compares `check` with
+/// MuJoCo on; [`Palette::Simulates`] scenes are for properties that simulate every
+/// scene.
+///
+/// Time: O(1) to make; O(size) per value.
+pub fn scene_recipe_in(palette: Palette) -> BoxedStrategy<ModelRecipe> {
+    if palette == Palette::Valid {
+        return scene_recipe();
+    }
+    let moving = (units::<3>(), geom(), joint_kind(), units::<3>(), prop::bool::weighted(0.25));
+    let children = (attachable_recipe_in(palette), attachable_recipe_in(palette));
+    (recipe_in(2, 24, palette), children, frame(), frame(), moving)
+        .prop_map(move |(mut r, (c1, c2), f1, f2, (pos, geom, kind, axis, free))| {
+            let mut steps = moving_body_with_site(pos, geom, kind, axis, free);
+            // The site in the moving body is the first site.
+            steps.push(Step::Attach { at: Pick(1), child: Box::new(c2), frame: f2 });
+            steps.push(Step::Attach { at: Pick(0), child: Box::new(c1), frame: f1 });
+            steps.append(&mut r.steps);
+            r.steps = steps;
             r
         })
         .boxed()

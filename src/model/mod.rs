@@ -652,7 +652,21 @@ impl std::hash::Hash for Model {
 }
 
 impl fmt::Debug for Model {
+    /// `Model { name, elements }`; the alternate form (`{:#?}`, what proptest prints
+    /// for a failing input) is the model's MJCF text ([`Model::to_xml_string`]), after
+    /// a line with its name and size.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if f.alternate() {
+            if let Ok(xml) = self.to_xml_string() {
+                let n = self.index.len();
+                return write!(
+                    f,
+                    "Model {:?} ({n} elements), as MJCF:\n{}",
+                    self.name(),
+                    xml.trim_end()
+                );
+            }
+        }
         f.debug_struct("Model")
             .field("name", &self.name())
             .field("elements", &self.index.len())
