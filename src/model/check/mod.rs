@@ -143,8 +143,8 @@ pub enum ProblemKind {
     /// A limited range that is not one: a joint's, tendon's or actuator's low end not
     /// below its high end, or a limited ball joint's low end not 0 (its own or its
     /// classes' values; see the `limits` rule for when a range is limited). MuJoCo
-    /// refuses it with `mujoco`'s words ("range[0] should be smaller than range[1] in
-    /// joint", "invalid control range for actuator", ...).
+    /// refuses it with `mujoco`'s words (`range[0] should be smaller than range[1] in
+    /// joint`, `invalid control range for actuator`, ...).
     InvalidRange {
         /// The range attribute (`range`, `ctrlrange`, `actuatorfrcrange`, ...).
         attribute: &'static str,
