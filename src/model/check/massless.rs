@@ -104,12 +104,8 @@ mod tests {
     use super::*;
     use crate::model::Model;
     use crate::model::check::tests::kinds_of;
+    use crate::model::check::tests::node;
     use crate::schema::Namespace;
-
-    fn node<'m>(m: &'m Model, ns: Namespace, name: &str) -> &'m Node {
-        let loc = m.find(ns, name).expect("the element exists");
-        m.node_by_id(loc.id()).expect("its node")
-    }
 
     #[test]
     fn an_inertial_with_mass_and_a_geom_not_of_mass_0_give_mass() {

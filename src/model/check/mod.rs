@@ -439,6 +439,16 @@ pub(crate) mod tests {
     use super::*;
 
     /// The problems `rule` alone finds in `m`, in walk order.
+    /// The node of the element `name` of namespace `ns` in `m`.
+    pub(crate) fn node<'m>(
+        m: &'m Model,
+        ns: crate::schema::Namespace,
+        name: &str,
+    ) -> &'m crate::model::tree::Node {
+        let loc = m.find(ns, name).expect("the element exists");
+        m.node_by_id(loc.id()).expect("its node")
+    }
+
     pub(crate) fn kinds_of<'m>(m: &'m Model, rule: impl Rule<'m> + 'm) -> Vec<ProblemKind> {
         let mut rules: Vec<Box<dyn Rule<'m> + 'm>> = vec![Box::new(rule)];
         walk::run(m, &mut rules).into_iter().map(|p| p.kind).collect()

@@ -112,12 +112,7 @@ fn unresolved_references<'m>(
 mod tests {
     use super::*;
     use crate::model::Element;
-
-    /// The node of the element `name` of namespace `ns` in `m`.
-    fn node<'m>(m: &'m Model, ns: Namespace, name: &str) -> &'m Node {
-        let loc = m.find(ns, name).expect("the element exists");
-        m.node_by_id(loc.id()).expect("its node")
-    }
+    use crate::model::check::tests::node;
 
     #[test]
     fn references_by_name_resolve_in_their_model_or_are_dangling_with_suggestions() {
