@@ -84,6 +84,13 @@ fn renaming_keeps_values_and_retyping_defaults_them() {
     let retyped = m.set(&b, Attrs::new().set("type", "hinge")).unwrap();
     assert_eq!(key(&retyped, "home", "qpos"), [1.0, 0.0, 3.0]);
     assert_eq!(key(&retyped, "home", "qvel"), [10.0, 0.0, 30.0]);
+    // A body that stops being a mocap body takes its pose out of the key.
+    let target = m.find(Namespace::Body, "target").unwrap();
+    let fixed = m.set(&target, Attrs::new().set("mocap", false)).unwrap();
+    assert_eq!(key(&fixed, "home", "mpos"), Vec::<f64>::new());
+    // Moving a body changes no key.
+    let moved = m.set(&target, Attrs::new().set("pos", [0.0, 0.0, 1.0])).unwrap();
+    assert_eq!(key(&moved, "home", "mpos"), [4.0, 5.0, 6.0]);
 }
 
 #[test]

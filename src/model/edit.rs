@@ -444,7 +444,14 @@ impl Model {
             }
             index.rename(node.id(), new_name.map(SmolStr::from));
         }
-        let follow = follow::has_keys(self) && follow::moves_layout(node);
+        // Keys follow a joint's or actuator's edit, and a body's new `mocap` (a body's
+        // other attributes move no joint, actuator or mocap body).
+        let relayout = if kind.is(crate::schema::Role::Body) {
+            attrs.items().iter().any(|(name, _)| name == "mocap")
+        } else {
+            follow::moves_layout(node)
+        };
+        let follow = relayout && follow::has_keys(self);
         let root = self.root.update_path(&path, |_| Ok::<_, EditError>(new_node))?;
         let out = self.next(root, index);
         Ok(if follow { self.keys_followed(out) } else { out })

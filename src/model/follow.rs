@@ -154,7 +154,9 @@ impl Model {
                             _ => now.extend_from_slice(default),
                         }
                     }
-                    attrs = attrs.set(name, now);
+                    // An array left with no element goes (MuJoCo reads an empty one
+                    // as none, but the file need not say it).
+                    attrs = if now.is_empty() { attrs.clear(name) } else { attrs.set(name, now) };
                 }
                 (key.id(), attrs)
             })
