@@ -143,16 +143,21 @@ impl Model {
     /// The `childclass` in force at the body at `path` from its ancestors (bodies
     /// and frames), when the body has none of its own.
     fn class_in_force(&self, path: &[usize], node: &Node) -> Option<String> {
-        let kind = node.kind();
-        let own = kind.attr_index("childclass").and_then(|i| node.attr(i));
-        if own.is_some() {
+        fn childclass(n: &Node) -> Option<&Value> {
+            n.kind().attr_index("childclass").and_then(|i| n.attr(i))
+        }
+        if childclass(node).is_some() {
             return None;
         }
-        (1..path.len()).rev().find_map(|k| {
-            let a = self.node_at(&path[..k])?;
-            let v = a.kind().attr_index("childclass").and_then(|i| a.attr(i))?;
-            self.class_name(v)
-        })
+        // One walk down the path (looking each ancestor up from the root was
+        // O(depth²)), the nearest ancestor's winning.
+        let mut nearest = None;
+        let mut at = &self.root;
+        for &i in path {
+            nearest = childclass(at).or(nearest);
+            at = at.children().get(i)?;
+        }
+        self.class_name(nearest?)
     }
 
     /// The name of the default class a reference names.
