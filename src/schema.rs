@@ -288,6 +288,13 @@ impl ElementKind {
     pub fn all() -> impl Iterator<Item = ElementKind> {
         (0..ELEMENTS.len() as u16).map(ElementKind)
     }
+
+    /// Its index among [`ElementKind::all`], for tables kept per kind.
+    ///
+    /// Time: O(1).
+    pub(crate) fn index(self) -> usize {
+        self.0 as usize
+    }
 }
 
 /// The hash of an attribute name in the per-kind tables; `build.rs` has the same

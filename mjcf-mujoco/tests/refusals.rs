@@ -35,6 +35,13 @@ fn pairs() -> Vec<(String, String)> {
         .collect()
 }
 
+/// Whether the crate's `text` holds `message` as [`holds`] says, MuJoCo's numeric ids
+/// (`(id = %d)`, `id = %d, `) left out: the crate names elements by name, and the
+/// numbers MuJoCo gives them in compiling are not its to know.
+fn crate_holds(text: &str, message: &str) -> bool {
+    holds(text, &message.replace(" (id = %d)", "").replace("id = %d, ", ""))
+}
+
 /// Whether `text` holds `message`'s pieces between its printf specifiers, in order.
 fn holds(text: &str, message: &str) -> bool {
     let mut rest = text;
@@ -139,7 +146,7 @@ fn crate_objections(path: &Path) -> Vec<(String, Vec<&'static str>)> {
 
 /// The pairs "known" (the crate objects to the refused model with MuJoCo's class of
 /// problem) when this was written: the floor, which can only go up.
-const KNOWN_FLOOR: usize = 78;
+const KNOWN_FLOOR: usize = 85;
 
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]
@@ -165,7 +172,7 @@ fn every_refusal_pair_is_judged_by_mujoco_and_measures_the_crate() {
         }
         let objections = crate_objections(&refused);
         let right = objections.iter().any(|(text, stands_for)| {
-            holds(text, message) || stands_for.iter().any(|m| message.contains(m))
+            crate_holds(text, message) || stands_for.iter().any(|m| message.contains(m))
         });
         match (objections.is_empty(), right) {
             (true, _) => silent.push(case.as_str()),
@@ -209,4 +216,12 @@ fn a_message_is_held_when_its_pieces_appear_in_order() {
     ));
     assert!(!holds("must be positive in geom size 1", "size %d must be positive in geom"));
     assert!(holds("repeated name 'g' in geom", "repeated name '%s' in %s"));
+    assert!(crate_holds(
+        "tendon 't': path cannot be empty",
+        "tendon '%s' (id = %d): path cannot be empty"
+    ));
+    assert!(crate_holds(
+        "fovy too large in camera 'c' (value = 180)",
+        "fovy too large in camera '%s' (id = %d, value = %d)"
+    ));
 }

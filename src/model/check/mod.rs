@@ -33,6 +33,7 @@ mod massless;
 mod mocap;
 mod plane;
 mod references;
+mod values;
 mod walk;
 
 pub use advice::{Advice, AdviceKind};
@@ -52,6 +53,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(key_length::KeyLength::new(model, options)),
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
+        Box::new(values::Values),
     ]
 }
 
@@ -183,6 +185,21 @@ pub enum ProblemKind {
         /// The numbers it has.
         found: usize,
     },
+    /// Something else MuJoCo refuses in the element's own values (an attribute out
+    /// of its range, a zero axis, two attributes that exclude each other, a keyword
+    /// another one rules out), found by one of the checks of the `values` rule, in
+    /// MuJoCo 4.0.0's words.
+    Refused {
+        /// The check's name, stable (`geom-size-positive`).
+        rule: &'static str,
+        /// The attribute at fault, when one is.
+        attribute: Option<&'static str>,
+        /// MuJoCo 4.0.0's message, with names and numbers filled in (MuJoCo's
+        /// numeric ids left out).
+        mujoco: String,
+        /// What to do about it.
+        fix: &'static str,
+    },
 }
 
 impl fmt::Display for Problem {
@@ -269,6 +286,12 @@ impl fmt::Display for Problem {
                 "{}: '{attribute}' has {found} numbers, MuJoCo needs a multiple of {of}",
                 self.path
             ),
+            ProblemKind::Refused { attribute: Some(a), mujoco, fix, .. } => {
+                write!(f, "{}: '{a}' (MuJoCo: \"{mujoco}\"); {fix}", self.path)
+            }
+            ProblemKind::Refused { attribute: None, mujoco, fix, .. } => {
+                write!(f, "{} (MuJoCo: \"{mujoco}\"); {fix}", self.path)
+            }
         }
     }
 }
