@@ -254,7 +254,7 @@ fn frame_inertial() -> mjcf::Element {
     element!("inertial", pos = [0, 0, 0], mass = 0.1, diaginertia = [1e-3; 3])
 }
 
-/// The names written (issue 19 items 2, 5, 8; DESIGN D14), as MuJoCo names them.
+/// The names written (issue 19 items 2, 5, 8; decision D14), as MuJoCo names them.
 fn names(out: &Path) -> Result<(), Box<dyn std::error::Error>> {
     // Two unnamed joints on one frame: the first takes the frame's name, the second
     // its automatic name.
@@ -321,7 +321,7 @@ fn names(out: &Path) -> Result<(), Box<dyn std::error::Error>> {
         &with,
         &format!(r#"{{{expect}, "geom_rgba[2][0]": 0.5, "geom_rgba[2][1]": 0.5}}"#),
     )?;
-    // A root class named `main` (D9) with an attached model: the robot's geom keeps
+    // A root class named `main` (decision D9) with an attached model: the robot's geom keeps
     // MuJoCo's default colour.
     let mut main = Model::from_xml_str(
         r#"<mujoco model="arena"><default class="main"><geom rgba="1 0 0 1"/></default>

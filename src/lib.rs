@@ -70,6 +70,8 @@
 extern crate self as mjcf;
 
 mod compose;
+#[doc = include_str!("decisions.md")]
+pub mod decisions {}
 mod error;
 mod files;
 #[cfg(any(test, feature = "proptest", feature = "arbitrary"))]

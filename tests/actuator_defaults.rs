@@ -1,4 +1,4 @@
-//! DESIGN D11 wherever a default class's content comes from: its actuator defaults
+//! decision D11 wherever a default class's content comes from: its actuator defaults
 //! (`<motor>`, `<velocity>`, `<position>`, ...) are written in the order they were
 //! read or given, which is the order MuJoCo applies them in (the last one sets the
 //! gains), not in schema order (`motor`, `position`, `velocity`). Issue 19 item 3:

@@ -318,7 +318,7 @@ fn merged_settings_follow_edits_inside_nested_attachments() {
     assert!(!cleared.to_xml_string().unwrap().contains("timestep"));
 }
 
-/// DESIGN D15: the attachment frame sits where MuJoCo puts the site, also when the
+/// decision D15: the attachment frame sits where MuJoCo puts the site, also when the
 /// site's class or its `fromto` places it (dm_control copies the site's own
 /// attributes only).
 #[test]

@@ -298,3 +298,91 @@ fn readme_line_counts_are_default_rustfmt_counts() {
     let stated = format!("({quick} non-blank lines after\n`rustfmt` with its default settings");
     assert!(readme.contains(&stated), "the README's seed count is not {quick}");
 }
+
+/// The headings of `src/decisions.md` (`D10`), each with its section's text.
+fn decisions() -> Vec<(String, String)> {
+    let text = read("src/decisions.md");
+    let mut out: Vec<(String, String)> = Vec::new();
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("# D") {
+            let number: String = rest.chars().take_while(char::is_ascii_digit).collect();
+            out.push((format!("D{number}"), String::new()));
+        } else if let Some((_, body)) = out.last_mut() {
+            body.push_str(line);
+            body.push('\n');
+        }
+    }
+    out
+}
+
+/// Every `decision D<n>` (or `decisions D<n>`) a comment or document cites is a heading
+/// of `src/decisions.md`, and every deviation label of the conformance cases is one; no
+/// file cites design notes that are not in the repository.
+#[test]
+fn every_decision_cited_is_a_heading_of_the_decisions_document() {
+    let headings: Vec<String> = decisions().into_iter().map(|(d, _)| d).collect();
+    assert!(headings.len() >= 15, "{headings:?}");
+    let mut files = Vec::new();
+    text_files(root(), &mut files);
+    let mut cited = 0;
+    // Split so that this file names none of them itself.
+    let foreign =
+        [concat!("DESIGN", ".md"), concat!("DESIGN", " D"), concat!("dm_control_mjcf", ".md")];
+    for path in &files {
+        let relative = path.strip_prefix(root()).unwrap().display().to_string();
+        let text = std::fs::read_to_string(path).unwrap();
+        for f in foreign {
+            assert!(!text.contains(f), "{relative} cites {f}, which is not in the repository");
+        }
+        for word in ["decision D", "decisions D"] {
+            for (at, _) in text.match_indices(word) {
+                let number: String =
+                    text[at + word.len()..].chars().take_while(char::is_ascii_digit).collect();
+                if number.is_empty() {
+                    continue; // `decision D<n>`, the form itself
+                }
+                let label = format!("D{number}");
+                assert!(
+                    headings.contains(&label),
+                    "{relative} cites {word}{number}, not a heading"
+                );
+                cited += 1;
+            }
+        }
+    }
+    assert!(cited >= 20, "{cited} citations found");
+    for label in case_deviation_labels() {
+        for one in label.split(',') {
+            assert!(headings.iter().any(|h| h == one.trim()), "deviation {one} is not a decision");
+        }
+    }
+}
+
+/// Each decision names its tests (`` `tests/file.rs` `test_name` ``): every test named
+/// is a function of the file named before it.
+#[test]
+fn every_test_a_decision_names_exists() {
+    let mut named = 0;
+    for (label, body) in decisions() {
+        let tests = body.split("Tests:").nth(1).unwrap_or_else(|| panic!("{label} names no tests"));
+        let mut file: Option<String> = None;
+        for quoted in tests.split('`').skip(1).step_by(2) {
+            if quoted.ends_with(".rs") || quoted.ends_with('/') || quoted.starts_with(".ci/") {
+                let path = root().join(quoted);
+                assert!(path.exists(), "{label}: {quoted} does not exist");
+                file = quoted.ends_with(".rs").then(|| read(quoted));
+            } else if quoted
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+                && quoted.contains('_')
+            {
+                let text = file
+                    .as_deref()
+                    .unwrap_or_else(|| panic!("{label}: `{quoted}` follows no file"));
+                assert!(text.contains(&format!("fn {quoted}(")), "{label}: no test `{quoted}`");
+                named += 1;
+            }
+        }
+    }
+    assert!(named >= 15, "{named} tests named");
+}

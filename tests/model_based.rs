@@ -50,7 +50,7 @@
 //! `robot`) compares as its scope prefix and namespace (``, `geom`; `robot/`, `geom`)
 //! without its index, so unnamed elements are compared by position, but still in the
 //! right scope and namespace. The first unnamed joint of a frame is written with its
-//! frame's name (`robot/`), unless a named frame joint has that name (DESIGN D14); the
+//! frame's name (`robot/`), unless a named frame joint has that name (decision D14); the
 //! other unnamed ones with auto-names. The naive model renders to the same form directly; `Display` prints the
 //! form one element per line, which is what a failure shows (with the steps replayed
 //! and the library's XML).
@@ -835,7 +835,7 @@ fn parse_xml(xml: &str) -> Result<XNode, String> {
                 a.normalized_value(quick_xml::XmlVersion::default()).map_err(|e| e.to_string())?;
             attrs.push((a.key.as_ref().to_string(), v.to_string()));
         }
-        // An attachment frame written as MuJoCo's `<frame>` (DESIGN D10: its model's
+        // An attachment frame written as MuJoCo's `<frame>` (decision D10: its model's
         // top-level bodies carry freejoints) is the same attachment frame as a `<body>`
         // here: the naive model knows no D10, and these models hold no other frames.
         let tag = match t.name().as_ref() {

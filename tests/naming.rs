@@ -1,4 +1,4 @@
-//! The names MuJoCo sees (issue 19 items 2, 5 and 8; DESIGN D14): every name the
+//! The names MuJoCo sees (issue 19 items 2, 5 and 8; decision D14): every name the
 //! writer writes is the element's `full_name`, `from_full_name` gives the element
 //! back, and no name is written twice in a namespace, however the names were made:
 //! frames and their joints, automatic names inside `<replicate>`, scopes beside
@@ -265,7 +265,7 @@ fn a_class_named_slash_leaves_the_root_class_another_name() {
     assert!(xml.contains(r#"<geom name="//unnamed_geom_0" class="/1" size="1"/>"#), "{xml}");
 }
 
-/// A root class named `main` (DESIGN D9) is written as MuJoCo's main class, the
+/// A root class named `main` (decision D9) is written as MuJoCo's main class, the
 /// `<default class="main">` itself; with attached models it is a class `/`, a sibling
 /// of theirs: written as the main class, the attached root classes inside it
 /// inherited its defaults.
@@ -322,7 +322,7 @@ fn automatic_names_avoid_literal_automatic_names() {
 
 /// Item 4: a composed model written, read and written again is the same text: an
 /// attachment frame's name is written at its schema place (first), as the body (or
-/// MuJoCo `<frame>`, DESIGN D10) it reads back as is written, not after the pose
+/// MuJoCo `<frame>`, decision D10) it reads back as is written, not after the pose
 /// copied from its site.
 #[test]
 fn a_composed_model_written_read_and_written_again_is_the_same_text() {

@@ -496,7 +496,7 @@ fn written_empty_models_read_back_unchanged() {
     let again = write(&Model::from_xml_str(&w).unwrap());
     assert_eq!(again, text::rewrapped_root_default(&w));
     assert_eq!(write(&Model::from_xml_str(&again).unwrap()), again);
-    // A root class named `main` is MuJoCo's main class itself (DESIGN D9): written as
+    // A root class named `main` is MuJoCo's main class itself (decision D9): written as
     // the outer `<default class="main">`, it reads back named so, and writes the same.
     let main = m.set_attr(&m.default_class(), "class", "main").unwrap();
     let w = write(&main);

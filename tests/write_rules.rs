@@ -4,7 +4,7 @@
 //! text names), the model read back writes the same text, and reads back as the
 //! same model. Where a rule keeps the model (a flat model in the shape the writer
 //! writes), the model read back is the model written; a composed model reads back
-//! flat, its names literal (DESIGN D13).
+//! flat, its names literal (decision D13).
 //!
 //! The last test ties the table to this file: every test here is in the table, and
 //! every rule of the table names a test here and functions that exist.
@@ -267,7 +267,7 @@ fn an_attached_model_is_outside_its_frames_childclass() {
 
 #[test]
 fn named_references_keep_their_meaning() {
-    // `world` is the one world body in every scope (D5); `main` names the root class.
+    // `world` is the one world body in every scope (decision D5); `main` names the root class.
     let r = read(
         r#"<mujoco model="robot"><worldbody><body name="b"><freejoint/><geom class="main" size="1"/></body></worldbody><equality><weld body1="world" body2="b"/></equality></mujoco>"#,
     );

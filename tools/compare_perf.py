@@ -455,7 +455,7 @@ def table(args, ours, dmc, mjs):
 
 
 def targets(ours):
-    """The issue's targets and DESIGN.md's ratios against quick-xml, met or missed."""
+    """The performance targets (the checks below) and the ratios against quick-xml, met or missed."""
     rec = ours.records
 
     def get(key, field='seconds'):
@@ -580,7 +580,7 @@ def main():
     print()
     for line in table(args, ours, dmc, mjs):
         print(line)
-    print('\nTargets (the performance issue; DESIGN.md "Performance targets"):')
+    print("\nTargets:")
     for line in targets(ours):
         print('  ' + line)
     if args.json_out:

@@ -231,7 +231,7 @@ impl Copier<'_> {
 }
 
 /// The children of the default class `dest` merged with `src` (`children`), with
-/// their actuator defaults in document order (DESIGN D11): those `dest` sets, in its
+/// their actuator defaults in document order (decision D11): those `dest` sets, in its
 /// order, then those only `src` sets, in its order (what is copied comes after the
 /// receiving model's own).
 fn actuator_defaults_in_order(dest: &Node, src: &Node, children: &Seq<Node>) -> Seq<Node> {

@@ -81,7 +81,7 @@ impl Word {
 
     /// The name of a joint of an attachment frame: for odd words a model name
     /// ([`Word::model_name`]), which the scope of an attachment inside the attached
-    /// model can share (the names written for both then meet: DESIGN D14); an
+    /// model can share (the names written for both then meet: decision D14); an
     /// element name ([`Word::text`]) otherwise.
     ///
     /// Time: O(1).

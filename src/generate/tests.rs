@@ -107,7 +107,7 @@ proptest! {
     /// names hold `/` (`robot/torso`, the class `robot/`, `robot/root/`,
     /// `//unnamed_geom_0`). Every version writes unique names: the scopes of new
     /// attachments, their frames' joints and the automatic names avoid the literal
-    /// ones (DESIGN D14).
+    /// ones (decision D14).
     #[test]
     fn edits_of_a_read_back_scene_write_unique_names((r, e) in scene_and_edits()) {
         let scene = r.build();
@@ -195,7 +195,7 @@ fn generators_reach_every_kind_of_step() {
     let (mut nested, mut frame_joints, mut free_frames, mut shared, mut edits_applied) =
         (0, 0, 0, 0, 0);
     // Frames with two unnamed joints; frame joints named as a scope of the model
-    // the frame holds (their names meet: DESIGN D14).
+    // the frame holds (their names meet: decision D14).
     let (mut two_unnamed, mut joint_named_as_scope) = (0, 0);
     for _ in 0..300 {
         let (r, e) = scene_and_edits().new_tree(&mut runner).unwrap().current();

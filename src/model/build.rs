@@ -485,7 +485,7 @@ struct Filling<'e> {
     /// singleton at this position, or (`None`) appended.
     slot: Option<usize>,
     /// The singleton children `part` gives, in its order (their order as given is
-    /// kept for a default class's actuator defaults: DESIGN D11).
+    /// kept for a default class's actuator defaults: decision D11).
     given: Vec<ElementKind>,
 }
 
@@ -561,7 +561,7 @@ fn fill(
         }
         let Some(mut done) = stack.pop() else { break };
         if done.kind.is(Role::DefaultClass) && done.given.len() > 1 {
-            // DESIGN D11: the actuator defaults in the order given.
+            // decision D11: the actuator defaults in the order given.
             let mut children: Vec<Node> = done.children.iter().cloned().collect();
             let given = &done.given;
             super::defaults::order(

@@ -1,4 +1,4 @@
-//! The actuator defaults of a default class keep their document order (DESIGN D11).
+//! The actuator defaults of a default class keep their document order (decision D11).
 //!
 //! `<position>`, `<velocity>`, `<motor>`, `<general>`, ... in a default class all set
 //! the class's one actuator default, and MuJoCo applies them in document order: a

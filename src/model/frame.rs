@@ -33,7 +33,7 @@ pub(crate) fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
 }
 
 /// The frame attributes of an attachment at `site` (at `path` in `model`), placing
-/// the frame where MuJoCo places the site (DESIGN D15): its own attributes, and where
+/// the frame where MuJoCo places the site (decision D15): its own attributes, and where
 /// it sets neither a position nor an orientation, those its default classes give it;
 /// a `fromto` gives both (its middle, and the direction from its end back to its
 /// start as the z axis), as MuJoCo

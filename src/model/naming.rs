@@ -24,7 +24,7 @@
 //!   model `/` (dm_control's name), see [`RootClass`] for the cases where that name
 //!   cannot be used.
 //!
-//! Every name written is unique in its namespace (DESIGN D14). Literal names of
+//! Every name written is unique in its namespace (decision D14). Literal names of
 //! different instances cannot meet: every name an instance writes starts with its
 //! prefix, and a model may not hold a literal name that starts with one of its own
 //! scopes and a `/` (`Index` refuses one, and a new scope skips such names). What is
@@ -56,7 +56,7 @@ pub(crate) enum RootClass {
     Slash,
     /// As MuJoCo's main class, the `<default>` wrapper itself, referred to as `main`:
     /// when it is named `main` (`<default class="main">` inside the wrapper is a
-    /// repeated name for MuJoCo; DESIGN D9), or a class of the model is named `/`
+    /// repeated name for MuJoCo; decision D9), or a class of the model is named `/`
     /// (read from MJCF), and no attached model's root class follows (which would
     /// inherit from it).
     Main,

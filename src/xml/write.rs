@@ -1,6 +1,6 @@
 //! Model → MJCF text. The only code that produces XML and resolves names.
 //!
-//! The output has the reference's shape (dm_control_mjcf.md §6): sections and
+//! The output has dm_control's shape (what it writes, observed): sections and
 //! attributes in schema order, empty singletons left out, the root default class
 //! wrapped as `<default><default class="/">…</default></default>`, an explicit `class`
 //! on every element that can have one and has no `childclass` above it, and
@@ -17,24 +17,24 @@
 //!
 //! | Rule | Function | Writes | Read back by | Test |
 //! |---|---|---|---|---|
-//! | names | `model::naming` | every name slot from the naming rules: own names with the instance's prefix (`robot/torso`), attachment frames and their joints by scope (`robot/`) | literal names, `/` included (DESIGN D13) | `scoped_names_read_back_as_literal_names` |
+//! | names | `model::naming` | every name slot from the naming rules: own names with the instance's prefix (`robot/torso`), attachment frames and their joints by scope (`robot/`) | literal names, `/` included (decision D13) | `scoped_names_read_back_as_literal_names` |
 //! | automatic names | [`policy::is_auto_name`] | `//unnamed_<ns>_<i>` for an unnamed element with a name slot (`naming::Written::Auto`) | `forget_auto_name`: no name, derived again when written | `automatic_names_are_forgotten_and_derived_again` |
 //! | replicate suffix | [`policy::is_auto_name`] | `_` after an automatic name inside a `<replicate>` (MuJoCo appends the copy's number) | `forget_auto_name`, as any automatic name | `automatic_names_in_a_replicate_end_in_an_underscore` |
 //! | composed output | [`policy::is_composed_output`] | the root class `/` (or `/1`) beside the attached models' root classes `robot/` | `hoist_root_class` tells it; the automatic names are kept as literal names | `a_composed_output_keeps_its_automatic_names` |
 //! | root class wrapper | [`policy::in_root_wrapper`] | one `<default>` around the root classes (`/`, then `robot/`, ...), closed before the next section | `hoist_root_class`: a wrapper holding only `<default class="/">` is the root class ([`policy::folds_into_root_class`]) | `root_classes_share_one_wrapper` |
-//! | root class as main (D9) | [`policy::root_class_is_wrapper`] | a root class named `main`, or beside a class named `/`: its content in the wrapper itself | the wrapper's content is the root class's | `a_root_class_named_main_is_the_wrapper` |
+//! | root class as main (decision D9) | [`policy::root_class_is_wrapper`] | a root class named `main`, or beside a class named `/`: its content in the wrapper itself | the wrapper's content is the root class's | `a_root_class_named_main_is_the_wrapper` |
 //! | main wrapper | [`policy::wrapper_says_main`] | `<default class="main">` for such a root class named `main` or holding a lone class `/` | `hoist_root_class` folds no wrapper with an attribute ([`policy::folds_into_root_class`]) | `a_lone_slash_class_in_the_main_class_stays_a_class` |
 //! | numbered root class | `naming::RootClass::Numbered` | `/1` (the first free `/k`) for the root class when a class is named `/` and attached root classes follow | a class of that name | `a_root_class_beside_a_class_named_slash_is_numbered` |
 //! | implicit class | [`policy::implicit_class`] | `class="/"` (the root class's name) where an element can have a class and has none, nor a `childclass` above | `/` and `main` resolve to the root class | `elements_without_a_class_name_the_root_class` |
 //! | childclass scope | [`policy::childclass_above`], [`policy::childclass_below`] | no implicit class under a written `childclass` of the element's own model; an attached model starts outside it | MuJoCo's own `childclass` rule | `an_attached_model_is_outside_its_frames_childclass` |
-//! | references by name | [`policy::named_reference`] | `main` and `/` as the root class is named, `world` (D5) and names in another model bare, the rest prefixed | `/` and `main` resolve to the root class | `named_references_keep_their_meaning` |
+//! | references by name | [`policy::named_reference`] | `main` and `/` as the root class is named, `world` (decision D5) and names in another model bare, the rest prefixed | `/` and `main` resolve to the root class | `named_references_keep_their_meaning` |
 //! | removed references | [`policy::removed_reference`] | nothing for an optional reference to a removed element; `MissingRequired` for a required one | the element without it | `references_to_removed_elements_are_left_out_or_refused` |
 //! | silent elements | [`policy::is_silent`] | nothing for an empty singleton below the sections | `finish` makes every singleton not read, empty | `empty_singletons_are_left_out_and_made_again` |
 //! | sections on demand | [`policy::section_presence`] | a section once it holds something (a child, an attribute); no empty worldbody | every section not read, made empty | `empty_sections_are_left_out_and_made_again` |
 //! | merged settings | [`policy::writes_merged_settings`] | the settings merged over the composition, in place of the outermost model's | the model's own settings | `settings_are_written_merged` |
 //! | merged keys | [`policy::merges_keys`] | with `merge_keyframes`, one key per name laid out over the composed model | plain keys, which fit the model read back | `merged_keys_read_back_as_keys_that_fit` |
-//! | attachment frame tag | [`policy::written_tag`] | an attachment frame as `<body name="robot/">` with its site's pose | a body with a literal name (D13) | `an_attachment_frame_reads_back_as_a_body` |
-//! | frames keeping bodies top level (D10) | [`policy::frame_keeps_bodies_top_level`], [`policy::passes_world_on`] | `<frame>` for a frame in the world over bodies with freejoints | MuJoCo's `<frame>` (D12) | `a_frame_over_free_bodies_is_written_as_a_frame` |
+//! | attachment frame tag | [`policy::written_tag`] | an attachment frame as `<body name="robot/">` with its site's pose | a body with a literal name (decision D13) | `an_attachment_frame_reads_back_as_a_body` |
+//! | frames keeping bodies top level (decision D10) | [`policy::frame_keeps_bodies_top_level`], [`policy::passes_world_on`] | `<frame>` for a frame in the world over bodies with freejoints | MuJoCo's `<frame>` (decision D12) | `a_frame_over_free_bodies_is_written_as_a_frame` |
 //! | file names | [`policy::file_name`] | `stem-<sha1>.ext` (or `stem.ext` without `filename_with_hash`) | `FileAsset::named_as` drops `-<sha1>` | `files_read_back_under_their_names` |
 //! | base paths | [`policy::writes_attr`] | no `meshdir`, `texturedir`, `assetdir` (files are named as written) | files read by their written names | `base_paths_are_not_written` |
 //! | unnamed model | [`policy::implicit_model_name`] | `model="unnamed_model"` for a model without a name | a model read without a name is named so | `an_unnamed_model_reads_back_unnamed` |

@@ -83,7 +83,7 @@ pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<
                 }
             }
             if p.kind.is(Role::DefaultClass) {
-                // DESIGN D11: the actuator defaults in the order they were read.
+                // decision D11: the actuator defaults in the order they were read.
                 crate::model::defaults::order(&mut singles, |(n, _)| n, |(_, at)| *at);
             }
             // Singletons are few: their identifiers (if any) read from the nodes.

@@ -10,7 +10,7 @@
 //!   pose, `user`, `mocap`, joints, freejoint and inertial, named as the composed
 //!   writer names the frame (`robot/`) and its joints (`robot/`, `robot/slide/`),
 //!   holding `<attach model="M" prefix="robot/"/>`; where the composed writer writes
-//!   the frame as MuJoCo's `<frame>` (DESIGN D10: the attached model's top-level
+//!   the frame as MuJoCo's `<frame>` (decision D10: the attached model's top-level
 //!   bodies carry free joints), a `<frame>` of that name holds the `<attach>`;
 //! - the parent's `<asset>` gets one `<model name="M" file="M.xml"/>` per distinct
 //!   model attached to it (after its own assets), the file named after the model
@@ -583,7 +583,7 @@ pub(crate) fn frame_as_body(
 }
 
 /// Whether the attachment frame `frame` (a child of an element of kind `parent`, in
-/// the world or not) is written as MuJoCo's `<frame>` (DESIGN D10), as the composed
+/// the world or not) is written as MuJoCo's `<frame>` (decision D10), as the composed
 /// writer writes it.
 fn kind_is_frame(frame: &Node, parent: ElementKind, parent_world: bool) -> bool {
     parent_world && parent.child("frame").is_some() && frame_keeps_bodies_top_level(frame)

@@ -16,7 +16,7 @@
 //!   unnamed one), `s/j/` (a joint named `j`), or unnamed (written with its automatic
 //!   name); after reopening, each is written with exactly the name it had;
 //! - it is a `<frame>` exactly where the composed writer writes the attachment as one
-//!   (DESIGN D10: in the world, no joints, and the model's top-level bodies carry
+//!   (decision D10: in the world, no joints, and the model's top-level bodies carry
 //!   free joints), a body everywhere else; it is not inside a `<replicate>`;
 //! - the file's own global settings already hold the model's (MuJoCo keeps the
 //!   parent's settings; merging the model's into them must change nothing), and no
@@ -43,7 +43,7 @@
 //! # Flat files
 //! A composed model written as one flat file ([`Model::to_xml_string`], or
 //! dm_control's `export_with_assets`) does not reopen composed: it reads as one model
-//! with literal names (`robot/torso`, DESIGN D13). What separated the attached models
+//! with literal names (`robot/torso`, decision D13). What separated the attached models
 //! is gone from such a file: their sections (actuators, sensors, keys, assets,
 //! default classes) are merged into one list each, told apart only by name prefixes
 //! that a literal name may hold too; their global settings are merged, with no trace

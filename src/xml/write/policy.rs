@@ -152,7 +152,7 @@ pub(super) fn in_root_wrapper(kind: ElementKind) -> bool {
     kind.is(Role::DefaultClass)
 }
 
-/// Rule *root class as main* (DESIGN D9): the outermost root class written as
+/// Rule *root class as main* (decision D9): the outermost root class written as
 /// MuJoCo's main class (naming's [`RootClass::Main`]: it is named `main`, or a class
 /// of the model is named `/`, and no attached root class follows) is the wrapper
 /// itself: its content is written straight in the wrapper, with no `<default>` of
@@ -284,7 +284,7 @@ pub(super) enum NamedReference {
 /// class unless a class has that name (as the reader resolves them), and are written
 /// as the root class is ([`NamedReference::RootClass`]), so that the text reads back
 /// to the same class in any scope; the one world body is `world` in every scope
-/// (DESIGN D5); a name in another model (`RefTarget::Unless`, such as `<attach
+/// (decision D5); a name in another model (`RefTarget::Unless`, such as `<attach
 /// body>` of an asset model) is not this model's. Every other name takes the
 /// instance's prefix.
 pub(super) fn named_reference(model: &Model, node: &Node, i: usize, name: &str) -> NamedReference {
@@ -385,9 +385,9 @@ pub(super) fn kind_facts(kind: ElementKind) -> &'static KindFacts {
 /// Rule *attachment frame tag*: the tag an element is written with. An attachment
 /// frame is written as a `<body>` (named by its scope, with the pose copied from
 /// its site: `model::naming`), or as MuJoCo's `<frame>` where its parent is in the
-/// world (`parent_in_world`) and [`frame_keeps_bodies_top_level`] (DESIGN D10); any
+/// world (`parent_in_world`) and [`frame_keeps_bodies_top_level`] (decision D10); any
 /// other element with its own tag. The reader reads either as an element of that
-/// tag (a body with a literal name, DESIGN D13; a `<frame>`, D12).
+/// tag (a body with a literal name, decision D13; a `<frame>`, decision D12).
 pub(super) fn written_tag(
     node: &Node,
     parent_in_world: bool,

@@ -42,7 +42,7 @@ pub struct WrittenElement {
     /// The element's locator in the model written.
     pub loc: crate::Loc,
     /// The tag it was written with: its element's, or for an attachment frame `body`,
-    /// or `frame` where it is written as MuJoCo's `<frame>` (DESIGN D10), which
+    /// or `frame` where it is written as MuJoCo's `<frame>` (decision D10), which
     /// MuJoCo's compiled model keeps no record of.
     pub tag: &'static str,
     /// The line its start tag begins on (1 for the first).
