@@ -86,7 +86,9 @@ def main():
     for pname, parent in elements.items():
         ptag = '(world)body' if pname in body_like else parent['xml']
         for child, _card in parent['children']:
-            if child not in elements:
+            # The root's `body` child is the world body (whose grammar is a body's):
+            # its elements appear under `(world)body`.
+            if child not in elements or (pname == 'mujoco' and child == 'body'):
                 continue
             e = elements[child]
             key = (ptag, e['xml'], child)
