@@ -797,6 +797,16 @@ fn merge_mujoco40(elems: &mut Vec<Elem>, printed: &[Printed], types: &str) {
                     a.path_namespace = Some(folder.to_string());
                 }
             }
+            ["required", key, name] => {
+                let targets = with_key(elems, key);
+                assert!(!targets.is_empty(), "{at}: no element at {key}");
+                for t in targets {
+                    let a = elems[t].attrs.iter_mut().find(|a| a.name == *name);
+                    let a = a.unwrap_or_else(|| panic!("{at}: {key} has no {name}"));
+                    assert!(!a.required, "{at}: {key}@{name} is required already");
+                    a.required = true;
+                }
+            }
             ["child", parent_key, key] => {
                 let kinds = with_key(elems, key);
                 let [kind] = kinds[..] else { panic!("{at}: {key} is not one element") };

@@ -112,3 +112,30 @@ fn a_material_removed_with_cascade_is_cleared_from_the_geom_that_stays() {
     assert_eq!(r.cleared, [("upper_geom".to_string(), "material")]);
     assert!(dangling(&r.model).is_empty());
 }
+
+/// What cannot stay without its reference goes with it (each shape refused by MuJoCo
+/// 4.0.0 when the reference is only cleared): a mesh geom (by its own type or its
+/// class's) with its mesh, a height-field geom with its height field, a material's
+/// `<layer>` with its texture; a geom of another type keeps its place.
+#[test]
+fn a_referrer_that_cannot_stay_without_its_reference_goes_with_it() {
+    let m = Model::from_xml_str(
+        r#"<mujoco><default><default class="meshy"><geom type="mesh"/></default></default>
+           <asset><mesh name="me" builtin="sphere" params="1"/><hfield name="hf" nrow="3" ncol="3" size="1 1 1 .1"/>
+           <texture name="tex" type="2d" builtin="checker" width="8" height="8"/>
+           <material name="mat"><layer texture="tex" role="rgb"/></material></asset>
+           <worldbody><geom name="own" type="mesh" mesh="me"/><geom name="by_class" class="meshy" mesh="me"/>
+           <geom name="fitted" type="box" size="1 1 1" mesh="me"/><geom name="ground" type="hfield" hfield="hf"/></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let me = m.find(Namespace::Mesh, "me").unwrap();
+    let r = m.remove_with(&me, Referrers::Cascade).unwrap();
+    assert_eq!(r.removed, ["own", "by_class"]);
+    assert_eq!(r.cleared, [("fitted".to_string(), "mesh")]);
+    let hf = m.find(Namespace::Hfield, "hf").unwrap();
+    assert_eq!(m.remove_with(&hf, Referrers::Cascade).unwrap().removed, ["ground"]);
+    let tex = m.find(Namespace::Texture, "tex").unwrap();
+    let r = m.remove_with(&tex, Referrers::Cascade).unwrap();
+    assert_eq!(r.removed, ["<layer> in mat"]);
+    assert!(!r.model.to_xml_string().unwrap().contains("<layer"));
+}

@@ -56,9 +56,10 @@ const NEWER_THAN_4_0_0: &[(&str, &str, &str)] =
 /// Where the crate's `required` is not the file's, because MuJoCo 4.0.0 decides so:
 /// an asset `<model>` without `file` makes MuJoCo 4.0.0 fail ("Caught an unknown
 /// exception!"), so the crate requires it; a `<text>` may give its data as its
-/// content (CDATA) instead of `data`.
+/// content (CDATA) instead of `data`; a material's `<layer>` without `texture` is
+/// refused by MuJoCo 4.0.0 ("required attribute missing: 'texture'").
 const REQUIRED_DIFFERS: &[(&str, &str, &str)] =
-    &[("asset", "model", "file"), ("custom", "text", "data")];
+    &[("asset", "model", "file"), ("custom", "text", "data"), ("material", "layer", "texture")];
 
 /// Every (kind, attribute spec, row) the facts declare, the attributes a default class
 /// cannot set (`nodefault`, its elements' `name` and `class`) left out, with the rows

@@ -9,17 +9,21 @@
 //! actuator, a sensor, a tendon, an equality, a contact pair or exclude (the
 //! elements of those namespaces, and everything inside them: a tendon's path
 //! element refers for its tendon). A cascade removes those, and in turn what
-//! depends on them (an actuator on a removed tendon); any other referrer (a geom
-//! naming a removed material, a body's `childclass`) keeps its place and loses the
-//! reference, as [`Model::remove`] clears it, and the removal reports it.
+//! depends on them (an actuator on a removed tendon). A referrer that cannot stay
+//! without its reference goes too: a required one (a material's `<layer>` without
+//! its texture), and a mesh or height-field geom without its mesh or height field.
+//! Any other referrer (a geom naming a removed material, a body's `childclass`)
+//! keeps its place and loses the reference, as [`Model::remove`] clears it, and the
+//! removal reports it.
 
 use std::collections::HashSet;
 
 use crate::error::{EditError, ErrorKind};
-use crate::schema::Namespace;
+use crate::schema::{Namespace, Role};
 use crate::value::{Reference, Value};
 
 use super::cursor::{Step, Walk};
+use super::layout::{class_at, effective};
 use super::tree::{ElementId, Node};
 use super::{Loc, Model};
 
@@ -120,8 +124,8 @@ impl Model {
             for (r, attr) in found {
                 match m.dependent_of(&r) {
                     Some(d) => next.push(d),
-                    // A required reference: the element cannot stay without it.
-                    None if required(m, &r, attr) => next.push(r),
+                    // The element cannot stay without it.
+                    None if needed(m, &r, attr) => next.push(r),
                     None => {
                         removal.cleared.push((label(m, &r), attr));
                         clear.push((r, attr));
@@ -198,12 +202,27 @@ impl Model {
     }
 }
 
-/// Whether `attr` is a required attribute of the element at `loc`.
-fn required(m: &Model, loc: &Loc, attr: &str) -> bool {
-    m.element(loc).is_some_and(|e| {
-        let kind = e.kind();
-        kind.attr_index(attr).is_some_and(|i| kind.attr(i).required)
-    })
+/// Whether the element at `loc` cannot stay without its reference `attr`: a
+/// required attribute, or the mesh or height field a geom's type needs (its own
+/// `type` or its classes': MuJoCo refuses a mesh geom without a mesh, "mesh geom must
+/// have valid meshid", and a height-field geom without one).
+fn needed(m: &Model, loc: &Loc, attr: &str) -> bool {
+    let Some(e) = m.element(loc) else { return false };
+    let kind = e.kind();
+    if kind.attr_index(attr).is_some_and(|i| kind.attr(i).required) {
+        return true;
+    }
+    if !kind.is(Role::Geom) || !matches!(attr, "mesh" | "hfield") {
+        return false;
+    }
+    let Some(own) = m.scoped_model(loc.scope()) else { return false };
+    let Some(path) = own.path_of(loc.id()) else { return false };
+    let Some(node) = own.node_at(&path) else { return false };
+    let ty = effective(own, node, class_at(own, &path), "type").and_then(Value::as_str);
+    match attr {
+        "mesh" => matches!(ty, Some("mesh" | "sdf")),
+        _ => ty == Some("hfield"),
+    }
 }
 
 /// How a removal names an element: the name MuJoCo gives it; unnamed and without a

@@ -258,6 +258,26 @@ impl ClassesInForce {
     }
 }
 
+/// The root default class of `model` (what an element without a class uses).
+fn root_class(model: &Model) -> Option<ElementId> {
+    model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id)
+}
+
+/// The default class in force for the element at `path` in `model` (as
+/// [`ClassesInForce`] finds it in a walk): its own class, else the nearest
+/// `childclass` above it, else the model's root class.
+///
+/// Time: O(depth).
+pub(crate) fn class_at(model: &Model, path: &[usize]) -> Option<ElementId> {
+    let mut inherited = None;
+    let mut at = &model.root;
+    for &i in path {
+        inherited = childclass_of(at).or(inherited);
+        at = at.children().get(i)?;
+    }
+    class_of(at).or(inherited).or_else(|| root_class(model))
+}
+
 /// The class an element's `childclass` gives its content, if it sets one.
 pub(crate) fn childclass_of(node: &Node) -> Option<ElementId> {
     let c = node.kind().attr_index("childclass")?;
