@@ -688,3 +688,29 @@ fn the_import_scan_reads_use_trees_and_paths() {
     g.insert("d".into(), ["a".to_string()].into());
     assert_eq!(circles(&g), [["a", "b", "c"]]);
 }
+
+/// Reading reopens scenes as a step after reading: `xml::scene` names the asset model
+/// files it needs and builds the composed model from the models the reader read; it
+/// never calls the reader (no callback, no `Model::from_…` of its own).
+#[test]
+fn scenes_never_call_back_into_the_reader() {
+    let graph = import_graph();
+    let scene: Vec<(&String, &BTreeSet<String>)> =
+        graph.iter().filter(|(m, _)| m.starts_with("xml::scene")).collect();
+    assert!(!scene.is_empty(), "{graph:?}");
+    for (module, to) in scene {
+        let reader: Vec<&String> = to.iter().filter(|t| t.starts_with("xml::read")).collect();
+        assert!(reader.is_empty(), "{module} names the reader: {reader:?}");
+    }
+    assert!(graph["xml::read"].iter().any(|t| t.starts_with("xml::scene")), "{graph:?}");
+    for (path, text) in sources() {
+        let path = path.display().to_string();
+        if path.starts_with("src/xml/scene/") && !path.ends_with("/tests.rs") {
+            let code = code_only(&text);
+            // (A callback that reads would return `ReadError`.)
+            for call in ["from_xml_str", "from_path", "ReadOptions", "read_str", "ReadError"] {
+                assert!(!code.contains(call), "{path} reads a model ({call})");
+            }
+        }
+    }
+}

@@ -44,6 +44,7 @@ use crate::model::{
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
+use crate::xml::scene::reopen;
 use crate::xml::source::{NO_RECORD, RecordKind};
 
 mod events;
@@ -859,10 +860,12 @@ fn read_element(
     }
 }
 
-/// Reads the main document (includes are spliced into it as it is read), with the
-/// `<attach>`es that have a saved scene's shape reopened as attachments (`xml::scene::reopen`), each part read
-/// from its file with its own source kept (so that it saves losslessly in turn), and
-/// the model as the text spells it kept in the source beside the reopened one.
+/// Reads the main document (includes are spliced into it as it is read), then
+/// reopens the `<attach>`es that have a saved scene's shape as attachments
+/// (`xml::scene::reopen`, a step after reading: it names the asset model files it
+/// needs, read here as documents in turn, each with its own source kept so that it
+/// saves losslessly), and keeps the model as the text spells it in the source beside
+/// the reopened one.
 fn read_document(
     text: &str,
     file: Option<PathBuf>,
@@ -874,23 +877,76 @@ fn read_document(
 ) -> Result<Model, ReadError> {
     let keep_source = tree.src.is_some();
     let model = read_literal(text, file, ctx, max_depth, tree, model_files, src)?;
-    let reopened =
-        crate::xml::scene::reopen::reopen(model.clone(), text, &mut |text, path, ctx| {
-            let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            let mut tree = Includes::new(files::canonical(path), Some(dir), keep_source);
-            // A part's text is its file's bytes (read as UTF-8 as they are).
-            let read = Some(Fingerprint::of(text.as_bytes()));
-            let src = tree.record_file(Some(path), read, text, true, None);
-            let file = Some(path.to_path_buf());
-            let m = read_document(text, file, ctx, max_depth, &mut tree, model_files, src)?;
-            Ok(tree.attach_source(m))
+    let wanted = reopen::parts_to_read(&model, text);
+    if wanted.is_empty() {
+        return Ok(model);
+    }
+    let depth = PARTS.with(|p| p.borrow().depth);
+    if depth >= MAX_SCENE_NESTING {
+        return Ok(model);
+    }
+    PARTS.with(|p| p.borrow_mut().depth = depth + 1);
+    let mut parts = HashMap::new();
+    for part in wanted {
+        let read = PARTS.with(|p| p.borrow().read.get(&part.key).cloned()).or_else(|| {
+            let m = read_part(&part, max_depth, keep_source, model_files).ok()?;
+            PARTS.with(|p| p.borrow_mut().read.insert(part.key.clone(), m.clone()));
+            Some(m)
         });
+        if let Some(m) = read {
+            parts.insert(part.asset, m);
+        }
+    }
+    PARTS.with(|p| {
+        let mut p = p.borrow_mut();
+        p.depth = depth;
+        if depth == 0 {
+            p.read.clear();
+        }
+    });
+    let reopened = reopen::reopen(model.clone(), parts);
     // The text spells the model before reopening: the lossless writer writes the
     // scene's own file against it (`xml::save`).
     if let Some(src) = tree.src.as_mut().filter(|_| !reopened.ptr_eq(&model)) {
         src.literal = Some(model);
     }
     Ok(reopened)
+}
+
+/// How deep reopened scenes may nest (as asset model files may: `model::build`).
+const MAX_SCENE_NESTING: usize = 16;
+
+/// The scene parts being read on this thread: how deep, and those read so far by the
+/// outermost document (a part that several parts attach is read once and shared, as
+/// it was before saving; forgotten when the outermost document is read).
+#[derive(Default)]
+struct PartsRead {
+    depth: usize,
+    read: HashMap<(PathBuf, String), Model>,
+}
+
+thread_local! {
+    static PARTS: std::cell::RefCell<PartsRead> = std::cell::RefCell::new(PartsRead::default());
+}
+
+/// Reads a scene part's file as a document of its own (its own include tree and
+/// source), reopened in turn.
+fn read_part(
+    part: &reopen::PartFile,
+    max_depth: usize,
+    keep_source: bool,
+    model_files: &ModelFiles,
+) -> Result<Model, ReadError> {
+    let path = &part.path;
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut tree = Includes::new(files::canonical(path), Some(dir), keep_source);
+    // A part's text is its file's bytes (read as UTF-8 as they are).
+    let read = Some(Fingerprint::of(part.text.as_bytes()));
+    let src = tree.record_file(Some(path), read, &part.text, true, None);
+    let file = Some(path.to_path_buf());
+    let m =
+        read_document(&part.text, file, part.ctx.clone(), max_depth, &mut tree, model_files, src)?;
+    Ok(tree.attach_source(m))
 }
 
 fn read_literal(

@@ -54,14 +54,12 @@
 //! with [`Model::save_scene`] (or, for a model read from a file, [`Model::save`]) to
 //! reopen composed.
 
-use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use smol_str::SmolStr;
 
-use crate::error::ReadError;
 use crate::files::FileContext;
 use crate::model::frame::FRAME_ATTRS;
 use crate::model::naming::Written;
@@ -72,46 +70,70 @@ use crate::schema::{ElementKind, Role};
 use crate::seq::Seq;
 use crate::value::{Reference, Value};
 
-/// How deep reopened scenes may nest (as asset model files may: `model::build`).
-const MAX_NESTING: usize = 16;
-
-thread_local! {
-    /// How many reopenings are in progress on this thread (a part reopens its parts).
-    static NESTING: Cell<usize> = const { Cell::new(0) };
-    /// The parts read by the reopening in progress, by their file (its canonical
-    /// path and the SHA-1 of its contents): a part that several parts attach is read
-    /// once and shared, as it was before saving. Emptied when the outermost
-    /// reopening ends.
-    static READ: RefCell<HashMap<(PathBuf, String), Model>> = RefCell::new(HashMap::new());
+/// An asset model's file that reopening needs read: the reader reads it as a model
+/// (which may reopen in turn) and hands it to [`reopen`] under `asset`. Reopening
+/// never reads a file itself: it is a step after reading.
+pub(crate) struct PartFile {
+    /// The asset `<model>` that names it.
+    pub(crate) asset: ElementId,
+    /// Its path, as the model's files locate it.
+    pub(crate) path: PathBuf,
+    /// Its text.
+    pub(crate) text: Arc<str>,
+    /// What identifies its content: its canonical path and its contents' SHA-1 (a file
+    /// several asset models name is read once).
+    pub(crate) key: (PathBuf, String),
+    /// The file context its own files resolve in.
+    pub(crate) ctx: FileContext,
 }
 
-/// Reads a part's file as a model (reopened in turn): its text, its path, and the
-/// file context its own files resolve in.
-pub(crate) type ReadPart<'a> = dyn FnMut(&str, &Path, FileContext) -> Result<Model, ReadError> + 'a;
-
-/// `model`, read literally from `text`, with every `<attach>` that has the shape of a
-/// saved scene's reopened as an attachment (see the module documentation); `model`
-/// itself when none has.
+/// The asset model files of `model` (read literally from `text`) that an `<attach>`
+/// of a saved scene's shape may use: nothing when `text` has no `<attach`.
 ///
 /// Time: O(L) to look for `<attach` in the `L` bytes of text; where there is one,
-/// O(L + n log n) more (the asset models' paths read from the text, the tree rebuilt
-/// and indexed, at most once per attachment that does not reopen), plus reading
-/// each part.
-pub(crate) fn reopen(model: Model, text: &str, read: &mut ReadPart<'_>) -> Model {
+/// O(L) more for the asset models' paths.
+pub(crate) fn parts_to_read(model: &Model, text: &str) -> Vec<PartFile> {
     if !text.contains("<attach") {
-        return model;
+        return Vec::new();
     }
-    let depth = NESTING.with(Cell::get);
-    if depth >= MAX_NESTING {
-        return model;
+    let paths = asset_model_paths(text);
+    let Some(asset) = ElementKind::ROOT.child("asset").and_then(|k| model.root.child_of_kind(k))
+    else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
+        let kind = node.kind();
+        let Some(path) = node.identifier().and_then(|name| paths.get(name)) else { continue };
+        let has = |a: &str| kind.attr_index(a).is_some_and(|i| node.attr(i).is_some());
+        if has("content_type") {
+            continue;
+        }
+        let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| node.attr(i)) else {
+            continue;
+        };
+        let Ok(text) = std::str::from_utf8(file.contents()) else { continue };
+        let Ok((full, _)) = model.files.locate(None, path) else { continue };
+        out.push(PartFile {
+            asset: node.id(),
+            key: (crate::files::canonical(&full), file.sha1_hex().to_string()),
+            ctx: model.files.for_included(&full),
+            text: text.into(),
+            path: full,
+        });
     }
-    NESTING.with(|n| n.set(depth + 1));
-    let out = reopened(&model, text, read);
-    NESTING.with(|n| n.set(depth));
-    if depth == 0 {
-        READ.with(|r| r.borrow_mut().clear());
-    }
-    out.unwrap_or(model)
+    out
+}
+
+/// `model` with every `<attach>` that has the shape of a saved scene's reopened as an
+/// attachment of the model read from its asset's file (`parts`, by asset `<model>`;
+/// see the module documentation); `model` itself when none has.
+///
+/// Time: O(n log n) for a model of `n` elements (the tree rebuilt and indexed, at
+/// most once per attachment that does not reopen) when any part is given; O(1)
+/// otherwise.
+pub(crate) fn reopen(model: Model, parts: HashMap<ElementId, Model>) -> Model {
+    reopened(&model, parts).unwrap_or(model)
 }
 
 /// A body that reopens, if the checks after building agree.
@@ -126,36 +148,7 @@ struct Candidate {
     as_frame: bool,
 }
 
-fn reopened(model: &Model, text: &str, read: &mut ReadPart<'_>) -> Option<Model> {
-    let paths = asset_model_paths(text);
-    let asset_kind = ElementKind::ROOT.child("asset")?;
-    let asset = model.root.child_of_kind(asset_kind)?;
-    // The asset models this file names itself, read (each once).
-    let mut parts: HashMap<ElementId, Model> = HashMap::new();
-    for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
-        let kind = node.kind();
-        let Some(name) = node.identifier() else { continue };
-        let Some(path) = paths.get(name) else { continue };
-        let has = |a: &str| kind.attr_index(a).is_some_and(|i| node.attr(i).is_some());
-        if has("content_type") {
-            continue;
-        }
-        let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| node.attr(i)) else {
-            continue;
-        };
-        let Ok(text) = std::str::from_utf8(file.contents()) else { continue };
-        let Ok((full, _)) = model.files.locate(None, path) else { continue };
-        let key = (crate::files::canonical(&full), file.sha1_hex().to_string());
-        if let Some(part) = READ.with(|r| r.borrow().get(&key).cloned()) {
-            parts.insert(node.id(), part);
-            continue;
-        }
-        let ctx = model.files.for_included(&full);
-        if let Ok(part) = read(text, &full, ctx) {
-            READ.with(|r| r.borrow_mut().insert(key, part.clone()));
-            parts.insert(node.id(), part);
-        }
-    }
+fn reopened(model: &Model, mut parts: HashMap<ElementId, Model>) -> Option<Model> {
     if parts.is_empty() {
         return None;
     }
