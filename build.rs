@@ -400,6 +400,22 @@ fn main() {
         .unwrap();
     }
     writeln!(out, "];").unwrap();
+    // The root's sections as constants (`ElementKind::WORLDBODY`): the crate names a
+    // section by its constant, never by looking its tag up.
+    writeln!(out, "\nimpl ElementKind {{").unwrap();
+    if let Some(root) = elems.iter().position(|e| e.parent.is_none()) {
+        for &c in &elems[root].children {
+            let name = &elems[c].name;
+            writeln!(out, "    /// The root's `<{name}>` section.").unwrap();
+            writeln!(
+                out,
+                "    pub(crate) const {}: ElementKind = ElementKind({c});",
+                name.to_uppercase()
+            )
+            .unwrap();
+        }
+    }
+    writeln!(out, "}}").unwrap();
     write_roles(&mut out, &roles);
 
     let dest = Path::new(&std::env::var("OUT_DIR").unwrap()).join("schema_tables.rs");

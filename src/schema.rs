@@ -229,6 +229,14 @@ impl ElementKind {
         self.spec().children.iter().copied().find(|c| c.tag() == tag)
     }
 
+    /// The child kind with this role, if the schema allows one (`<body>` of the
+    /// worldbody: [`Role::Body`]).
+    ///
+    /// Time: O(k) for the `k` child kinds of this kind.
+    pub(crate) fn child_of_role(self, role: Role) -> Option<ElementKind> {
+        self.spec().children.iter().copied().find(|c| c.is(role))
+    }
+
     /// The child kinds every element of this kind has exactly one of (`option`'s
     /// `flag`, a default class's `geom`, ...), in schema order.
     ///

@@ -391,13 +391,17 @@ impl Model {
             Some(Role::Body | Role::Frame)
                 if placement == Placement::Inside && node.attached().is_none() =>
             {
-                let kind =
-                    node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                let kind = node
+                    .kind()
+                    .child_of_role(Role::Body)
+                    .ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 (path.clone(), node, node.children().len(), kind, Vec::new())
             }
             Some(Role::Worldbody) => {
-                let kind =
-                    node.kind().child("body").ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
+                let kind = node
+                    .kind()
+                    .child_of_role(Role::Body)
+                    .ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 (path.clone(), node, node.children().len(), kind, Vec::new())
             }
             Some(Role::Site) if placement == Placement::AtSite && !path.is_empty() => {
@@ -406,7 +410,7 @@ impl Model {
                 let parent = self.node_at(&parent_path).ok_or_else(|| err(ErrorKind::NotFound))?;
                 let kind = parent
                     .kind()
-                    .child("body")
+                    .child_of_role(Role::Body)
                     .ok_or_else(|| err(ErrorKind::InvalidParent(tag)))?;
                 // Right after the site, after the frames already attached there.
                 let mut pos = last + 1;

@@ -40,8 +40,7 @@ pub struct Part {
 
 /// The settings sections a part leaves behind (the compiler's stay).
 fn scene_setting(node: &Node) -> bool {
-    node.kind().is(Role::SettingsSection)
-        && Some(node.kind()) != ElementKind::ROOT.child("compiler")
+    node.kind().is(Role::SettingsSection) && node.kind() != ElementKind::COMPILER
 }
 
 impl Model {
@@ -131,8 +130,7 @@ impl Model {
             m = r.model;
         }
         m = m.without_scene_settings()?;
-        let asset = ElementKind::ROOT.child("asset");
-        m = m.without_unused(|n| n.kind().spec().parent == asset)?;
+        m = m.without_unused(|n| n.kind().spec().parent == Some(ElementKind::ASSET))?;
         m = m.without_unused(|n| n.kind().is(Role::DefaultClass))?;
         if let Some(name) = node_name(&m, root) {
             m.set_name(&name);

@@ -215,7 +215,7 @@ mod tests {
         let want = [named("meshes.xml", None, Some("asset")), named("yes.stl", None, None)];
         assert_eq!(files(text, ElementKind::ROOT), want);
         // Read as an asset section's content (an included file): its meshes are named.
-        let asset = ElementKind::ROOT.child("asset").unwrap();
+        let asset = ElementKind::ASSET;
         let text = r#"<mujoco><mesh file="a.stl"/></mujoco>"#;
         assert_eq!(files(text, asset), [named("a.stl", None, None)]);
     }

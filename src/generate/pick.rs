@@ -91,7 +91,7 @@ pub(super) fn valid(m: &Model, allowed: usize) -> bool {
 
 /// The kind of the root default class.
 pub(super) fn m_default_kind() -> ElementKind {
-    ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT)
+    ElementKind::DEFAULT
 }
 
 /// An element of the composed model, as edits pick them.

@@ -63,5 +63,5 @@ pub(super) fn in_body_tree(kind: ElementKind) -> bool {
 
 /// Whether elements of `kind` are assets (children of the `<asset>` section).
 pub(super) fn in_assets(kind: ElementKind) -> bool {
-    kind.spec().parent.is_some_and(|p| Some(p) == ElementKind::ROOT.child("asset"))
+    kind.spec().parent == Some(ElementKind::ASSET)
 }

@@ -111,8 +111,8 @@ fn body(
 ) -> Option<Model> {
     let At { m, depth, prefix, allowed, palette: pal } = at;
     let p = parent.of(&body_parents(m))?.clone();
-    let kind = view(m, &p)?.1.child("body")?;
-    let gkind = kind.child("geom")?;
+    let kind = view(m, &p)?.1.child_of_role(Role::Body)?;
+    let gkind = kind.child_of_role(Role::Geom)?;
     // Directly in the worldbody of the outermost model: an attached model's
     // worldbody is a frame in the composed model (the wide palette frees bodies of
     // attached models too).
@@ -192,7 +192,7 @@ fn geom_element(
 fn geom_step(at: At<'_>, parent: Pick, geom: &GeomRecipe) -> Option<Model> {
     let At { m, depth, prefix, allowed, palette: pal } = at;
     let p = parent.of(&body_parents(m))?.clone();
-    let kind = view(m, &p)?.1.child("geom")?;
+    let kind = view(m, &p)?.1.child_of_role(Role::Geom)?;
     // A plane in the outermost worldbody (the wide palette: in an attached one too).
     let top = p == m.worldbody() && (depth == 0 || pal == Palette::Wide);
     let make = |n: Option<&str>| geom_element(m, kind, geom, (top, p.is_scoped(), pal), n);
@@ -209,7 +209,7 @@ fn site(
 ) -> Option<Model> {
     let At { m, prefix, allowed, .. } = at;
     let p = parent.of(&body_parents(m))?.clone();
-    let kind = view(m, &p)?.1.child("site")?;
+    let kind = view(m, &p)?.1.child_of_role(Role::Site)?;
     let pos: Vec<f64> = pos.iter().map(|u| real(-1000, 1000, *u)).collect();
     let make = |n: Option<&str>| {
         let el = Element::new("site").attr("pos", pos.clone());
@@ -241,7 +241,7 @@ fn joint(
         .filter(|b| view(m, b).is_some_and(|v| v.1.is(Role::Body)) && joint_fits(m, b, jk))
         .collect();
     let b = body.of(&bodies)?.clone();
-    let kind = view(m, &b)?.1.child("joint")?;
+    let kind = view(m, &b)?.1.child_of_role(Role::Joint)?;
     let class = if b.is_scoped() {
         None
     } else {
@@ -308,7 +308,7 @@ fn class(
             .filter(|l| !l.is_scoped() && m.element(l).is_some_and(|e| e.identifier().is_some())),
     );
     let p = parent.of(&parents)?.clone();
-    let kind = view(m, &p)?.1.child("default")?;
+    let kind = view(m, &p)?.1.child_of_role(Role::DefaultClass)?;
     let make = |n: Option<&str>| {
         let mut el = Element::new("default").attr("class", n.unwrap_or("x"));
         for t in [DefaultTag::Geom, DefaultTag::Joint, DefaultTag::Site] {
@@ -335,7 +335,7 @@ fn class(
 fn material(at: At<'_>, name: Word, extras: &[AttrDraw]) -> Option<Model> {
     let At { m, prefix, allowed, .. } = at;
     let asset = m.asset();
-    let kind = view(m, &asset)?.1.child("material")?;
+    let kind = view(m, &asset)?.1.child_of_role(Role::Material)?;
     let make = |n: Option<&str>| {
         let el = Element::new("material").attr("name", n.unwrap_or("x"));
         with_extras(el, kind, palette_of("material", false, at.palette), extras, &[])
@@ -517,7 +517,7 @@ fn contact(
 fn frame_step(at: At<'_>, parent: Pick, pos: &[Unit; 3], euler: &[Unit; 3]) -> Option<Model> {
     let At { m, allowed, .. } = at;
     let p = parent.of(&body_parents(m))?.clone();
-    view(m, &p)?.1.child("frame")?;
+    view(m, &p)?.1.child_of_role(Role::Frame)?;
     let pos: Vec<f64> = pos.iter().map(|u| real(-1000, 1000, *u)).collect();
     let euler: Vec<f64> = euler.iter().map(|u| real(-90_000, 90_000, *u)).collect();
     let (next, _) = m.add(&p, Element::new("frame").attr("pos", pos).attr("euler", euler)).ok()?;

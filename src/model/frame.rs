@@ -73,8 +73,7 @@ pub(crate) fn placed_frame_attrs(
     // The class in force: the site's own, else the nearest `childclass` above it, else
     // the model's root class.
     let class = super::layout::class_of(site).or_else(|| nearest_childclass(model, path));
-    let class = class
-        .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id));
+    let class = class.or_else(|| super::layout::root_class(model));
     if own("pos").is_none() {
         if let Some(v) = super::layout::effective(model, site, class, "pos") {
             set(&mut attrs, "pos", v.clone());

@@ -247,9 +247,7 @@ impl ClassesInForce {
     pub(crate) fn enter(&mut self, model: &Model, inst: usize, node: &Node) -> Option<ElementId> {
         let inherited = self.open.last().filter(|(i, _)| *i == inst).and_then(|(_, c)| *c);
         self.open.push((inst, childclass_of(node).or(inherited)));
-        class_of(node)
-            .or(inherited)
-            .or_else(|| model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id))
+        class_of(node).or(inherited).or_else(|| root_class(model))
     }
 
     /// The element entered last is left.
@@ -259,8 +257,8 @@ impl ClassesInForce {
 }
 
 /// The root default class of `model` (what an element without a class uses).
-fn root_class(model: &Model) -> Option<ElementId> {
-    model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id)
+pub(crate) fn root_class(model: &Model) -> Option<ElementId> {
+    model.root.child_of_kind(ElementKind::DEFAULT).map(Node::id)
 }
 
 /// The default class in force for the element at `path` in `model` (as
@@ -499,9 +497,8 @@ struct Gathered<'a> {
 /// instance's origin.
 fn gather(model: &Model) -> Gathered<'_> {
     let merged = settings::merged(model).ok();
-    let compiler_kind = ElementKind::ROOT.child("compiler");
     let compiler =
-        merged.as_deref().and_then(|m| m.iter().find(|n| Some(n.kind()) == compiler_kind));
+        merged.as_deref().and_then(|m| m.iter().find(|n| n.kind() == ElementKind::COMPILER));
     let angles = Angles::of(compiler);
     let name = model.name();
     let mut out = Gathered {

@@ -604,11 +604,10 @@ impl Model {
     /// The compiler's folder settings.
     pub(crate) fn basepaths(&self) -> Basepaths {
         let mut b = Basepaths::default();
-        let Some(kind) = ElementKind::ROOT.child("compiler") else { return b };
-        let Some(compiler) = self.root.child_of_kind(kind) else { return b };
+        let Some(compiler) = self.root.child_of_kind(ElementKind::COMPILER) else { return b };
         for (i, v) in compiler.attrs() {
             if let (AttrType::Basepath { path_namespace }, Value::Basepath(p)) =
-                (kind.attr(*i as usize).ty, v)
+                (ElementKind::COMPILER.attr(*i as usize).ty, v)
             {
                 b.set(path_namespace, Some(p.clone()));
             }

@@ -352,14 +352,8 @@ pub(crate) fn is_builtin_name(ns: Namespace, name: &str) -> bool {
     matches!((ns, name), (Namespace::Body, "world") | (Namespace::Default, "/" | "main"))
 }
 
-/// The kind of the root default class (looked up once: every element named asks).
-pub(crate) fn root_default_kind() -> Option<ElementKind> {
-    static KIND: std::sync::OnceLock<Option<ElementKind>> = std::sync::OnceLock::new();
-    *KIND.get_or_init(|| ElementKind::ROOT.child("default"))
-}
-
 fn root_default(model: &Model) -> Option<&Node> {
-    model.root.child_of_kind(root_default_kind()?)
+    model.root.child_of_kind(ElementKind::DEFAULT)
 }
 
 /// How the outermost `model`'s root default class is written ([`RootClass`]).

@@ -24,8 +24,8 @@ impl Model {
         // What a body takes and the worldbody does not (`joint`, `freejoint`,
         // `inertial`) belongs in a body, even where a section has a child of that tag
         // (`<equality><joint>` is a constraint, not a joint).
-        let world = ElementKind::ROOT.child("worldbody").ok_or_else(refuse)?;
-        let body = world.child("body").ok_or_else(refuse)?;
+        let world = ElementKind::WORLDBODY;
+        let body = world.child_of_role(Role::Body).ok_or_else(refuse)?;
         if body.child(tag).is_some() && world.child(tag).is_none() {
             return Err(refuse());
         }

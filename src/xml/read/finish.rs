@@ -18,7 +18,7 @@ use crate::xml::write::policy;
 pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
     let (composed, hoisted) = hoist_root_class(&mut r.arena);
     if let Some(only) = hoisted {
-        let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
+        let root_default = ElementKind::DEFAULT;
         if let Some(d) = unique_child(&r.arena, 0, root_default) {
             r.hoisted = Some((r.arena[only].id, r.arena[d].id));
         }
@@ -216,7 +216,7 @@ pub(super) fn empty_size(k: ElementKind) -> usize {
 /// Returns whether the file is a composed model written out (a class `/` beside
 /// other classes), and the arena entry of the class hoisted (no longer in the tree).
 pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
-    let root_default = ElementKind::ROOT.child("default").unwrap_or(ElementKind::ROOT);
+    let root_default = ElementKind::DEFAULT;
     if arena.is_empty() {
         return (false, None);
     }

@@ -621,7 +621,7 @@ impl Saver<'_> {
         if !at_root || rec.kind != RecordKind::Element || !node.attrs().is_empty() {
             return false;
         }
-        if Some(rec.id) != root_class(self.model) {
+        if Some(rec.id) != crate::model::layout::root_class(self.model) {
             return false;
         }
         let written = node.children().iter().filter(|c| !blank(c)).map(|c| {
@@ -764,7 +764,9 @@ fn value_text(model: &Model, node: &Node, i: usize) -> Result<Option<String>, Sa
             };
             match target.identifier() {
                 Some(n) => n.to_string(),
-                None if Some(target.id()) == root_class(model) => "main".to_string(),
+                None if Some(target.id()) == crate::model::layout::root_class(model) => {
+                    "main".to_string()
+                }
                 None => {
                     return Err(SaveError::UnnamedTarget { tag: kind.tag(), attribute: spec.name });
                 }
@@ -777,12 +779,6 @@ fn value_text(model: &Model, node: &Node, i: usize) -> Result<Option<String>, Sa
             s
         }
     }))
-}
-
-/// The root default class's element.
-fn root_class(model: &Model) -> Option<ElementId> {
-    let kind = ElementKind::ROOT.child("default")?;
-    model.root.child_of_kind(kind).map(Node::id)
 }
 
 #[cfg(test)]

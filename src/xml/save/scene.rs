@@ -52,8 +52,7 @@ use crate::schema::{ElementKind, Namespace, Role};
 use crate::seq::Seq;
 use crate::value::{FileAsset, Reference, Value};
 use crate::xml::scene::{
-    attrs_of, file_stem, frame_as_body, frame_joint_names, part_options, section_kind, world_level,
-    write_part,
+    attrs_of, file_stem, frame_as_body, frame_joint_names, part_options, world_level, write_part,
 };
 
 /// A model with attachments, spelled as its scene file is (see the module
@@ -91,7 +90,7 @@ pub(super) fn spell(model: &Model, src: &Source, with_assets: bool) -> Result<Sp
     let mut reused: HashSet<ElementId> = HashSet::new();
     let mut new_assets: Vec<Node> = Vec::new();
     let mut asset_of: Vec<(&Model, ElementId)> = Vec::with_capacity(values.len());
-    let model_kind = section_kind("asset").and_then(|k| k.child("model"));
+    let model_kind = ElementKind::ASSET.child_of_role(Role::AssetModel);
     // The names of the asset models kept are taken for the new ones.
     for part in &parts {
         if let Part::Lossless { rel, .. } = part {
@@ -315,7 +314,7 @@ fn gather(parts: Vec<Part>) -> Outputs {
 /// from the scene's folder (as the text writes it; the reader resolves it there).
 fn read_asset_models(lit: &Model, src: &Source) -> HashMap<PathBuf, Node> {
     let mut out = HashMap::new();
-    let Some(asset) = section_kind("asset").and_then(|k| lit.root.child_of_kind(k)) else {
+    let Some(asset) = lit.root.child_of_kind(ElementKind::ASSET) else {
         return out;
     };
     for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
@@ -357,7 +356,6 @@ fn spell_tree(
     let merged = settings::merged(model).map_err(|k| conflict(&k.to_string()))?;
     let joint_names = frame_joint_names(model);
     let world: HashSet<ElementId> = world_level(model).into_iter().collect();
-    let asset_kind = section_kind("asset");
     let mut missing = false;
     let root = model.root.rebuild(|n, children| {
         let parent_world = world.contains(&n.id());
@@ -381,7 +379,7 @@ fn spell_tree(
                     if let Some(m) = merged.iter().find(|m| m.kind() == c.kind()) {
                         *c = m.clone();
                     }
-                } else if Some(c.kind()) == asset_kind {
+                } else if c.kind() == ElementKind::ASSET {
                     *c = spell_assets(c, lit, reused, new_assets);
                 }
             }

@@ -423,8 +423,7 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
     let merged = settings::merged(model).map_err(|k| WriteError::Conflict(k.to_string()))?;
     let joint_names = frame_joint_names(model);
     // The asset `<model>`s, named after their files, each free in this model.
-    let asset_kind = section_kind("asset");
-    let model_kind = asset_kind.and_then(|k| k.child("model"));
+    let model_kind = ElementKind::ASSET.child_of_role(Role::AssetModel);
     let mut assets: Vec<Node> = Vec::new();
     let mut asset_of: Vec<(&Model, ElementId)> = Vec::new();
     let mut used: Vec<SmolStr> = Vec::new();
@@ -478,7 +477,7 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
                 .map(|c| {
                     if settings::is_settings_section(c.kind()) {
                         merged.iter().find(|m| m.kind() == c.kind()).cloned().unwrap_or(c.clone())
-                    } else if Some(c.kind()) == asset_kind && !assets.is_empty() {
+                    } else if c.kind() == ElementKind::ASSET && !assets.is_empty() {
                         let mut own = c.children().clone();
                         for a in &assets {
                             own.push_back(a.clone());
@@ -514,7 +513,7 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
 /// it (whose bodies are top-level bodies for MuJoCo).
 pub(crate) fn world_level(model: &Model) -> Vec<ElementId> {
     let mut out: Vec<ElementId> = Vec::new();
-    if let Some(wb) = section_kind("worldbody").and_then(|k| model.root.child_of_kind(k)) {
+    if let Some(wb) = model.root.child_of_kind(ElementKind::WORLDBODY) {
         let mut stack = vec![wb];
         while let Some(n) = stack.pop() {
             out.push(n.id());
@@ -541,11 +540,11 @@ pub(crate) fn frame_as_body(
     let asset = asset_of.iter().find(|(m, _)| m.ptr_eq(&a.model))?.1;
     let name = Value::Identifier(smol_str::format_smolstr!("{}/", a.scope));
     let kind = if kind_is_frame(frame, parent, parent_world) {
-        parent.child("frame")?
+        parent.child_of_role(Role::Frame)?
     } else {
         frame.kind()
     };
-    let attach = kind.child("attach")?;
+    let attach = kind.child_of_role(Role::Attach)?;
     let mut attrs: Vec<Attr> = frame
         .attrs()
         .iter()
@@ -586,15 +585,12 @@ pub(crate) fn frame_as_body(
 /// the world or not) is written as MuJoCo's `<frame>` (decision D10), as the composed
 /// writer writes it.
 fn kind_is_frame(frame: &Node, parent: ElementKind, parent_world: bool) -> bool {
-    parent_world && parent.child("frame").is_some() && frame_keeps_bodies_top_level(frame)
+    parent_world
+        && parent.child_of_role(Role::Frame).is_some()
+        && frame_keeps_bodies_top_level(frame)
 }
 
 /// The attributes `values` of an element of `kind` (those it has).
 pub(crate) fn attrs_of<const N: usize>(kind: ElementKind, values: [(&str, Value); N]) -> Vec<Attr> {
     values.into_iter().filter_map(|(n, v)| Some((kind.attr_index(n)? as u16, v))).collect()
-}
-
-/// The kind of the root's section `tag`.
-pub(crate) fn section_kind(tag: &str) -> Option<ElementKind> {
-    ElementKind::ROOT.child(tag)
 }

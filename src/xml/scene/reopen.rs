@@ -97,8 +97,7 @@ pub(crate) fn parts_to_read(model: &Model, text: &str) -> Vec<PartFile> {
         return Vec::new();
     }
     let paths = asset_model_paths(text);
-    let Some(asset) = ElementKind::ROOT.child("asset").and_then(|k| model.root.child_of_kind(k))
-    else {
+    let Some(asset) = model.root.child_of_kind(ElementKind::ASSET) else {
         return Vec::new();
     };
     let mut out = Vec::new();
@@ -185,8 +184,7 @@ fn asset_model_paths(text: &str) -> HashMap<String, String> {
 /// The bodies and frames with a scene's attachment shape whose model is among
 /// `parts` (before the checks that need the built model).
 fn find_candidates(model: &Model, parts: &HashMap<ElementId, Model>) -> Vec<Candidate> {
-    let Some(wb) = ElementKind::ROOT.child("worldbody").and_then(|k| model.root.child_of_kind(k))
-    else {
+    let Some(wb) = model.root.child_of_kind(ElementKind::WORLDBODY) else {
         return Vec::new();
     };
     let mut out: Vec<Candidate> = Vec::new();
@@ -330,7 +328,7 @@ fn build(
                 }
             }
         }
-        let children: Vec<Node> = if Some(n.kind()) == ElementKind::ROOT.child("asset") {
+        let children: Vec<Node> = if n.kind() == ElementKind::ASSET {
             // Asset models only reopened attachments used go.
             children
                 .into_iter()
@@ -405,7 +403,7 @@ fn build(
 
 /// `root` with the asset models of `original` put back.
 fn restore_assets(root: &Node, original: &Node) -> Node {
-    let Some(kind) = ElementKind::ROOT.child("asset") else { return root.clone() };
+    let kind = ElementKind::ASSET;
     let (Some(at), Some(asset)) =
         (root.children().iter().position(|c| c.kind() == kind), original.child_of_kind(kind))
     else {
@@ -425,7 +423,7 @@ fn as_frame_node(
     literal: &mut HashMap<ElementId, Option<SmolStr>>,
 ) -> Option<Node> {
     let part = parts.get(&cand.asset)?;
-    let body = parent.kind().child("body")?;
+    let body = parent.kind().child_of_role(Role::Body)?;
     let kind = node.kind();
     let mut attrs: Vec<Attr> = node
         .attrs()
