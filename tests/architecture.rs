@@ -689,12 +689,17 @@ fn the_import_scan_reads_use_trees_and_paths() {
     assert_eq!(circles(&g), [["a", "b", "c"]]);
 }
 
-/// Reading reopens scenes as a step after reading: `xml::scene` names the asset model
-/// files it needs and builds the composed model from the models the reader read; it
-/// never calls the reader (no callback, no `Model::from_…` of its own).
+/// Reading reopens scenes as a step after reading (`xml::open`): the reader imports
+/// nothing of scenes; `xml::scene` names the asset model files it needs and builds
+/// the composed model from the models opened for it; it never calls the reader (no
+/// callback, no `Model::from_…` of its own).
 #[test]
-fn scenes_never_call_back_into_the_reader() {
+fn the_reader_and_scenes_know_nothing_of_each_other() {
     let graph = import_graph();
+    for (module, to) in graph.iter().filter(|(m, _)| m.starts_with("xml::read")) {
+        let scenes: Vec<&String> = to.iter().filter(|t| t.starts_with("xml::scene")).collect();
+        assert!(scenes.is_empty(), "{module} names scenes: {scenes:?}");
+    }
     let scene: Vec<(&String, &BTreeSet<String>)> =
         graph.iter().filter(|(m, _)| m.starts_with("xml::scene")).collect();
     assert!(!scene.is_empty(), "{graph:?}");
@@ -702,7 +707,7 @@ fn scenes_never_call_back_into_the_reader() {
         let reader: Vec<&String> = to.iter().filter(|t| t.starts_with("xml::read")).collect();
         assert!(reader.is_empty(), "{module} names the reader: {reader:?}");
     }
-    assert!(graph["xml::read"].iter().any(|t| t.starts_with("xml::scene")), "{graph:?}");
+    assert!(graph["xml::open"].contains("xml::scene::reopen"), "{graph:?}");
     for (path, text) in sources() {
         let path = path.display().to_string();
         if path.starts_with("src/xml/scene/") && !path.ends_with("/tests.rs") {
@@ -713,4 +718,39 @@ fn scenes_never_call_back_into_the_reader() {
             }
         }
     }
+}
+
+/// The crate's layers, lowest first: a module names only modules of its own layer or
+/// below. Foundations (ids, the schema, persistent sequences, suggestions, errors,
+/// the write options); values; the file layer (a model holds the context its files
+/// resolve in, so files sit below the model); the model (and its history); reading,
+/// writing and composing; the generators.
+const LAYERS: &[&[&str]] = &[
+    &["id", "schema", "seq", "suggest", "error", "write_options"],
+    &["value"],
+    &["files"],
+    &["model", "history"],
+    &["xml", "compose"],
+    &["generate"],
+];
+
+#[test]
+fn modules_name_only_their_own_layer_and_those_below() {
+    let graph = top_level(&import_graph());
+    let layer = |m: &str| LAYERS.iter().position(|l| l.contains(&m));
+    let mut wrong = Vec::new();
+    for (module, to) in &graph {
+        let Some(own) = layer(module) else {
+            wrong.push(format!("{module} is in no layer: add it to LAYERS"));
+            continue;
+        };
+        for t in to {
+            match layer(t) {
+                Some(l) if l <= own => {}
+                _ => wrong.push(format!("{module} (layer {own}) names {t}")),
+            }
+        }
+    }
+    assert!(graph.len() >= 12, "{graph:?}");
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }

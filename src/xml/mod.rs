@@ -1,6 +1,7 @@
 //! MJCF text: reading and writing.
 
 mod export;
+mod open;
 mod read;
 mod save;
 mod scene;

@@ -26,13 +26,13 @@ use crate::xml::source::{RecordKind, SourceBuilder};
 /// each file once per model), and includes nest at most [`MAX_INCLUDE_DEPTH`] deep.
 /// Files are told apart by their canonical path (symlinks followed), in-memory files
 /// by their path as written, normalised.
-pub(super) struct Includes {
+pub(crate) struct Includes {
     /// The main file and the includes above the one being read.
     stack: Vec<PathBuf>,
     /// Every file of the tree so far, the main file too.
     seen: HashSet<PathBuf>,
     /// The files' text and tags, when the source is kept.
-    pub(super) src: Option<SourceBuilder>,
+    pub(crate) src: Option<SourceBuilder>,
     /// The model's folder, which recorded files' paths are relative to.
     main_dir: Option<PathBuf>,
 }
@@ -40,7 +40,7 @@ pub(super) struct Includes {
 impl Includes {
     /// The tree of the main file `main` (its key), in the folder `main_dir`; the
     /// source is recorded if `keep_source`.
-    pub(super) fn new(main: PathBuf, main_dir: Option<PathBuf>, keep_source: bool) -> Includes {
+    pub(crate) fn new(main: PathBuf, main_dir: Option<PathBuf>, keep_source: bool) -> Includes {
         Includes {
             seen: HashSet::from([main.clone()]),
             stack: vec![main],
@@ -53,7 +53,7 @@ impl Includes {
     /// file, as written; `on_disk`: for a file read from disk, what it held) whose
     /// root stands for `stands_for` (the main file's: `None` and `main`). `None` when
     /// the source is not kept.
-    pub(super) fn record_file(
+    pub(crate) fn record_file(
         &mut self,
         shown: Option<&Path>,
         on_disk: Option<Fingerprint>,
@@ -77,7 +77,7 @@ impl Includes {
     }
 
     /// The model read with the source recorded, if it was.
-    pub(super) fn attach_source(&mut self, model: Model) -> Model {
+    pub(crate) fn attach_source(&mut self, model: Model) -> Model {
         match self.src.take() {
             Some(src) => {
                 let source = src.finish(model.clone());
