@@ -19,6 +19,7 @@ use super::ProblemKind;
 use super::walk::{Event, Rule};
 
 mod geom;
+mod mesh;
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -111,6 +112,31 @@ impl<'m> At<'_, 'm> {
         }
     }
 
+    /// `attr`'s own value, as written on the element (its classes' left out).
+    pub(crate) fn own(&self, attr: &str) -> Option<&'m Value> {
+        let node = self.e.node;
+        node.kind().attr_index(attr).and_then(|i| node.attr(i))
+    }
+
+    /// `attr`'s own value as text.
+    pub(crate) fn own_str(&self, attr: &str) -> Option<&'m str> {
+        self.own(attr).and_then(Value::as_str)
+    }
+
+    /// `attr`'s own value as one integer.
+    pub(crate) fn own_int(&self, attr: &str) -> Option<i64> {
+        match self.own(attr)? {
+            Value::Int(i) => Some(*i),
+            Value::Ints(v) if v.len() == 1 => Some(v[0]),
+            _ => None,
+        }
+    }
+
+    /// `attr`'s own numbers.
+    pub(crate) fn own_floats(&self, attr: &str) -> Option<Vec<f64>> {
+        self.own(attr).and_then(numbers)
+    }
+
     /// The name the element has in its model, or `""` (MuJoCo's messages quote it).
     pub(crate) fn name(&self) -> &'m str {
         self.e.node.identifier().unwrap_or("")
@@ -129,7 +155,7 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS];
+const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
@@ -207,6 +233,11 @@ pub(crate) mod on {
         k.spec()
             .parent
             .is_some_and(|p| p.tag() == section && p.spec().parent == Some(ElementKind::ROOT))
+    }
+
+    /// The defaults of `tag` in a default class (`<default><mesh …/>`), at any depth.
+    pub(crate) fn default_of(k: ElementKind, tag: &str) -> bool {
+        k.spec().parent.is_some_and(|p| p.is(Role::DefaultClass) && p.child(tag) == Some(k))
     }
 
     /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`).
