@@ -18,6 +18,7 @@ use crate::value::Value;
 use super::ProblemKind;
 use super::walk::{Event, Rule};
 
+mod assets;
 mod geom;
 mod mesh;
 
@@ -155,7 +156,7 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS];
+const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS, assets::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
