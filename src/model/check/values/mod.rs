@@ -21,6 +21,7 @@ use super::walk::{Event, Rule};
 mod assets;
 mod geom;
 mod mesh;
+mod texture;
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -156,7 +157,7 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS, assets::CHECKS];
+const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS, assets::CHECKS, texture::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
