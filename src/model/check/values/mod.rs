@@ -19,6 +19,7 @@ use super::ProblemKind;
 use super::walk::{Event, Rule};
 
 mod assets;
+mod flex;
 mod geom;
 mod mesh;
 mod texture;
@@ -157,7 +158,8 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS, mesh::CHECKS, assets::CHECKS, texture::CHECKS];
+const TABLES: &[&[Check]] =
+    &[geom::CHECKS, mesh::CHECKS, assets::CHECKS, texture::CHECKS, flex::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
