@@ -5,6 +5,9 @@
 use super::{At, Check, Found, found, found_element, on};
 use crate::schema::{ElementKind, Role};
 
+/// The largest custom numeric MuJoCo 4.0.0 takes.
+const NUMERIC_MAX: i64 = 10_000_000;
+
 /// The roles a material's `<layer>` may have (MuJoCo's `texrole_map`).
 const LAYER_ROLES: &[&str] =
     &["rgb", "occlusion", "roughness", "metallic", "normal", "opacity", "emissive", "rgba", "orm"];
@@ -71,7 +74,7 @@ pub(crate) const CHECKS: &[Check] = &[
         name: "numeric-size",
         on: |k| on::at(k, "custom/numeric"),
         test: numeric_size,
-        fix: "give the numeric a positive size, or data (whose length it then takes)",
+        fix: "give the numeric a size from 1 to 10,000,000, or data (whose length it then takes)",
     },
 ];
 
@@ -92,10 +95,12 @@ fn empty_name(at: &At<'_, '_>) -> Option<Found> {
 }
 
 /// `custom field size must be positive`: a size below 1, or no size and no data to
-/// take it from.
+/// take it from; `custom field size exceeds maximum` past ten million.
 fn numeric_size(at: &At<'_, '_>) -> Option<Found> {
     match at.own_int("size") {
-        Some(size) => (size < 1).then(|| found("size", "custom field size must be positive"))?,
+        Some(size) if size < 1 => found("size", "custom field size must be positive"),
+        Some(size) if size > NUMERIC_MAX => found("size", "custom field size exceeds maximum"),
+        Some(_) => None,
         None => {
             let data = at.own_floats("data").unwrap_or_default();
             data.is_empty().then(|| found_element("custom field size must be positive"))?
@@ -200,6 +205,7 @@ mod tests {
             (numeric(r#"size="0""#), numeric(r#"size="1""#)),
             (numeric(r#"size="-1" data="1""#), numeric(r#"size="501""#)),
             (numeric(""), numeric(r#"data="1 2""#)),
+            (numeric(r#"size="10000001""#), numeric(r#"size="10000000""#)),
         ];
         let pairs: Vec<(&str, &str)> =
             pairs.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();

@@ -155,9 +155,10 @@ fn builtin_message(builtin: &str, p: &[f64]) -> Option<&'static str> {
             if n != 6 {
                 return Some("Square/disc mesh type requires 6 parameters (count[3], spacing[3])");
             }
-            // Only once every count is positive (MuJoCo refuses a count below 1 first).
-            (p[..3].iter().all(|c| c_int(*c) > 0) && c_int(p[2]) != 1)
-                .then_some("Square/disc count[2] must be 1")
+            first(&[
+                (p[..3].iter().any(|c| c_int(*c) < 1), "Count must be positive"),
+                (c_int(p[2]) != 1, "Square/disc count[2] must be 1"),
+            ])
         }
         _ => None,
     }
@@ -242,6 +243,8 @@ mod tests {
             ("ellipsoid", "2 2 1 1 1 1 2.5", "2 2 2 1 1 1 3"),
             ("square", "2 2 1 1 1 1 2", "2 2 1 1 1 1"),
             ("disc", "2 2 2 -1 1 1", "2 2 1 1 1 1"),
+            ("square", "0 2 2 1 1 1", "2 2 1 1 1 1"),
+            ("disc", "-1 2 1 1 1 1", "2 2 1 -1 1 1"),
         ];
         for (shape, bad, good) in pairs {
             let (bad, good) = (builtin(shape, bad), builtin(shape, good));

@@ -20,6 +20,16 @@ pub(crate) const CHECKS: &[Check] = &[
         fix: "give a builtin texture a positive width (and a 2d one a positive height)",
     },
     Check {
+        name: "texture-builtin-channels",
+        on: |k| k.is(Role::Texture),
+        test: |at| {
+            builtin(at)?;
+            (at.int("nchannel").unwrap_or(3) != 3).then_some(())?;
+            found("nchannel", "builtin textures must have 3 channels")
+        },
+        fix: "give a builtin texture nchannel 3 (or leave it out)",
+    },
+    Check {
         name: "texture-source",
         on: |k| k.is(Role::Texture),
         test: source,
@@ -152,6 +162,23 @@ mod tests {
             ),
         ];
         assert_pairs("texture-builtin-size", &pairs_of(&pairs));
+    }
+
+    /// Verdicts MuJoCo 4.0.0's; a class's nchannel counts.
+    #[test]
+    fn builtin_textures_have_three_channels() {
+        let tex = |attrs: &str| {
+            asset(&format!(r#"<texture name="t" type="2d" width="8" height="8" {attrs}/>"#))
+        };
+        let pairs = [
+            (tex(r#"builtin="checker" nchannel="4""#), tex(r#"builtin="checker" nchannel="3""#)),
+            (tex(r#"builtin="flat" nchannel="1""#), tex(r#"builtin="flat""#)),
+            (
+                r#"<mujoco><default><texture nchannel="4"/></default><asset><texture name="t" type="2d" builtin="checker" width="8" height="8"/></asset></mujoco>"#.into(),
+                r#"<mujoco><default><texture nchannel="4"/></default><asset><texture name="t" type="2d" builtin="checker" width="8" height="8" nchannel="3"/></asset></mujoco>"#.into(),
+            ),
+        ];
+        assert_pairs("texture-builtin-channels", &pairs_of(&pairs));
     }
 
     /// Verdicts MuJoCo 4.0.0's (a file given is not read here).
