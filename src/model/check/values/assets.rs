@@ -79,12 +79,16 @@ pub(crate) const CHECKS: &[Check] = &[
 ];
 
 /// `empty name in mesh` (height field, texture, material): an asset with no name and
-/// no file to take one from (a skybox texture needs none).
+/// no file to take one from (a skybox texture needs none), unless the compiler
+/// discards it as visual.
 fn empty_name(at: &At<'_, '_>) -> Option<Found> {
     if !at.name().is_empty() || at.own("file").is_some() {
         return None;
     }
     let what = match at.kind().role() {
+        // MuJoCo drops the visual assets first: every material and texture, and the
+        // meshes no collision geom uses (an unnamed one no geom can use).
+        Some(Role::Mesh | Role::Texture | Role::Material) if at.discard_visual => return None,
         Some(Role::Mesh) => "mesh",
         Some(Role::Hfield) => "height field",
         Some(Role::Texture) if at.str("type").unwrap_or("cube") == "skybox" => return None,
@@ -116,6 +120,11 @@ mod tests {
         format!("<mujoco><asset>{content}</asset></mujoco>")
     }
 
+    /// `content` in the assets of a model whose compiler discards visual assets.
+    fn discarding(content: &str) -> String {
+        format!(r#"<mujoco><compiler discardvisual="true"/><asset>{content}</asset></mujoco>"#)
+    }
+
     const TEX: &str = r#"<texture name="t" type="2d" builtin="checker" width="8" height="8"/>"#;
 
     /// Verdicts MuJoCo 4.0.0's.
@@ -137,6 +146,10 @@ mod tests {
                 r#"<mujoco><default><texture type="skybox"/></default><asset><texture builtin="checker" width="3" height="3"/></asset></mujoco>"#.into(),
             ),
             (asset("<material/>"), asset(r#"<material name="m"/>"#)),
+            (
+                discarding(r#"<hfield nrow="2" ncol="2" size="1 1 1 1"/>"#),
+                discarding(&format!("<material/><texture type=\"2d\" builtin=\"checker\" width=\"2\" height=\"2\"/><mesh {v}/>")),
+            ),
         ];
         let pairs: Vec<(&str, &str)> =
             pairs.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();

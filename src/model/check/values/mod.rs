@@ -11,7 +11,9 @@
 
 use std::sync::OnceLock;
 
+use crate::model::Model;
 use crate::model::layout::{effective, from_classes};
+use crate::model::settings;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
@@ -56,6 +58,10 @@ pub(crate) fn found_element(mujoco: impl Into<String>) -> Option<Found> {
 /// The element a check judges, its values as MuJoCo reads them.
 pub(crate) struct At<'e, 'm> {
     pub(crate) e: &'e Event<'m>,
+    /// The model's compiler discards visual assets (`discardvisual`): MuJoCo then
+    /// drops every material and texture, and the meshes no collision geom uses,
+    /// before it judges them.
+    pub(crate) discard_visual: bool,
 }
 
 impl<'m> At<'_, 'm> {
@@ -178,13 +184,30 @@ fn by_kind() -> &'static Vec<Vec<&'static Check>> {
 }
 
 /// The rule: every check of the element's kind.
-#[derive(Default)]
-pub(super) struct Values;
+pub(super) struct Values {
+    /// The compiler's `discardvisual`, as the model (its settings merged) is written.
+    discard_visual: bool,
+}
+
+impl Values {
+    /// The rule for `model` as written (settings that cannot be merged count as
+    /// discarding visual assets: no check that needs them then fires).
+    pub(super) fn new(model: &Model) -> Values {
+        let compiler = ElementKind::ROOT.child("compiler");
+        let discard_visual = settings::merged(model).map_or(true, |sections| {
+            sections.iter().filter(|n| Some(n.kind()) == compiler).any(|c| {
+                let v = c.kind().attr_index("discardvisual").and_then(|i| c.attr(i));
+                v.and_then(Value::as_str) == Some("true")
+            })
+        });
+        Values { discard_visual }
+    }
+}
 
 impl<'m> Rule<'m> for Values {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
-        let at = At { e };
+        let at = At { e, discard_visual: self.discard_visual };
         for check in checks {
             if let Some(f) = (check.test)(&at) {
                 out.push(ProblemKind::Refused {
@@ -277,7 +300,7 @@ pub(crate) mod tests {
     /// The names of the checks that find a problem in `xml`.
     pub(crate) fn refused(xml: &str) -> Vec<&'static str> {
         let m = Model::from_xml_str(xml).unwrap_or_else(|e| panic!("{e}: {xml}"));
-        kinds_of(&m, Values)
+        kinds_of(&m, Values::new(&m))
             .into_iter()
             .filter_map(|k| match k {
                 ProblemKind::Refused { rule, .. } => Some(rule),

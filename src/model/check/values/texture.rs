@@ -23,6 +23,7 @@ pub(crate) const CHECKS: &[Check] = &[
         name: "texture-builtin-channels",
         on: |k| k.is(Role::Texture),
         test: |at| {
+            compiled(at)?;
             builtin(at)?;
             (at.int("nchannel").unwrap_or(3) != 3).then_some(())?;
             found("nchannel", "builtin textures must have 3 channels")
@@ -97,9 +98,15 @@ fn builtin<'m>(at: &At<'_, 'm>) -> Option<&'m str> {
     at.str("builtin").filter(|b| *b != "none")
 }
 
+/// Whether MuJoCo compiles the texture: not when the compiler discards visual assets.
+fn compiled(at: &At<'_, '_>) -> Option<()> {
+    (!at.discard_visual).then_some(())
+}
+
 /// `Invalid width (height) of builtin texture`: a builtin texture's width below 1 (or
 /// too wide for a cube's six faces), a 2d one's height below 1.
 fn builtin_size(at: &At<'_, '_>) -> Option<Found> {
+    compiled(at)?;
     builtin(at)?;
     let width = at.int("width").unwrap_or(0);
     let ty = texture_type(at);
@@ -113,6 +120,7 @@ fn builtin_size(at: &At<'_, '_>) -> Option<Found> {
 /// A texture with neither a builtin nor a file: a 2d one cannot be made, a cube or
 /// skybox needs a file per face, at least one.
 fn source(at: &At<'_, '_>) -> Option<Found> {
+    compiled(at)?;
     if builtin(at).is_some() || at.own("file").is_some() {
         return None;
     }
@@ -152,6 +160,10 @@ mod tests {
             (tex(r#"type="skybox" width="0""#), tex(r#"type="skybox" width="8""#)),
             (tex(""), tex(r#"width="1""#)),
             (tex(r#"type="cube" width="357913941""#), tex(r#"type="cube" width="8""#)),
+            (
+                tex(r#"type="2d" width="0" height="8""#),
+                r#"<mujoco><compiler discardvisual="true"/><asset><texture name="t" type="2d" builtin="checker" width="0" height="8"/></asset></mujoco>"#.into(),
+            ),
             (
                 class(r#"builtin="checker" width="8" height="0" type="2d""#, ""),
                 class(r#"builtin="checker" width="8" height="8" type="2d""#, ""),
@@ -198,6 +210,10 @@ mod tests {
             (tex(r#"type="cube""#), tex(r#"type="cube" builtin="checker" width="8""#)),
             (tex(""), tex(r#"type="skybox" builtin="checker" width="8""#)),
             (tex(r#"type="skybox" builtin="none""#), tex(r#"builtin="flat" width="8""#)),
+            (
+                tex(""),
+                r#"<mujoco><compiler discardvisual="true"/><asset><texture name="t"/></asset></mujoco>"#.into(),
+            ),
         ];
         assert_pairs("texture-source", &pairs_of(&pairs));
     }
