@@ -11,14 +11,20 @@
 
 use std::sync::OnceLock;
 
+use crate::model::Model;
 use crate::model::layout::{effective, from_classes};
+use crate::model::settings;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
 use super::ProblemKind;
 use super::walk::{Event, Rule};
 
+mod assets;
+mod flex;
 mod geom;
+mod mesh;
+mod texture;
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -52,6 +58,10 @@ pub(crate) fn found_element(mujoco: impl Into<String>) -> Option<Found> {
 /// The element a check judges, its values as MuJoCo reads them.
 pub(crate) struct At<'e, 'm> {
     pub(crate) e: &'e Event<'m>,
+    /// The model's compiler discards visual assets (`discardvisual`): MuJoCo then
+    /// drops every material and texture, and the meshes no collision geom uses,
+    /// before it judges them.
+    pub(crate) discard_visual: bool,
 }
 
 impl<'m> At<'_, 'm> {
@@ -111,6 +121,31 @@ impl<'m> At<'_, 'm> {
         }
     }
 
+    /// `attr`'s own value, as written on the element (its classes' left out).
+    pub(crate) fn own(&self, attr: &str) -> Option<&'m Value> {
+        let node = self.e.node;
+        node.kind().attr_index(attr).and_then(|i| node.attr(i))
+    }
+
+    /// `attr`'s own value as text.
+    pub(crate) fn own_str(&self, attr: &str) -> Option<&'m str> {
+        self.own(attr).and_then(Value::as_str)
+    }
+
+    /// `attr`'s own value as one integer.
+    pub(crate) fn own_int(&self, attr: &str) -> Option<i64> {
+        match self.own(attr)? {
+            Value::Int(i) => Some(*i),
+            Value::Ints(v) if v.len() == 1 => Some(v[0]),
+            _ => None,
+        }
+    }
+
+    /// `attr`'s own numbers.
+    pub(crate) fn own_floats(&self, attr: &str) -> Option<Vec<f64>> {
+        self.own(attr).and_then(numbers)
+    }
+
     /// The name the element has in its model, or `""` (MuJoCo's messages quote it).
     pub(crate) fn name(&self) -> &'m str {
         self.e.node.identifier().unwrap_or("")
@@ -129,7 +164,8 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS];
+const TABLES: &[&[Check]] =
+    &[geom::CHECKS, mesh::CHECKS, assets::CHECKS, texture::CHECKS, flex::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
@@ -148,13 +184,30 @@ fn by_kind() -> &'static Vec<Vec<&'static Check>> {
 }
 
 /// The rule: every check of the element's kind.
-#[derive(Default)]
-pub(super) struct Values;
+pub(super) struct Values {
+    /// The compiler's `discardvisual`, as the model (its settings merged) is written.
+    discard_visual: bool,
+}
+
+impl Values {
+    /// The rule for `model` as written (settings that cannot be merged count as
+    /// discarding visual assets: no check that needs them then fires).
+    pub(super) fn new(model: &Model) -> Values {
+        let compiler = ElementKind::ROOT.child("compiler");
+        let discard_visual = settings::merged(model).map_or(true, |sections| {
+            sections.iter().filter(|n| Some(n.kind()) == compiler).any(|c| {
+                let v = c.kind().attr_index("discardvisual").and_then(|i| c.attr(i));
+                v.and_then(Value::as_str) == Some("true")
+            })
+        });
+        Values { discard_visual }
+    }
+}
 
 impl<'m> Rule<'m> for Values {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
-        let at = At { e };
+        let at = At { e, discard_visual: self.discard_visual };
         for check in checks {
             if let Some(f) = (check.test)(&at) {
                 out.push(ProblemKind::Refused {
@@ -209,6 +262,11 @@ pub(crate) mod on {
             .is_some_and(|p| p.tag() == section && p.spec().parent == Some(ElementKind::ROOT))
     }
 
+    /// The defaults of `tag` in a default class (`<default><mesh …/>`), at any depth.
+    pub(crate) fn default_of(k: ElementKind, tag: &str) -> bool {
+        k.spec().parent.is_some_and(|p| p.is(Role::DefaultClass) && p.child(tag) == Some(k))
+    }
+
     /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`).
     pub(crate) fn at(k: ElementKind, path: &str) -> bool {
         let (parent, tag) = path.rsplit_once('/').unwrap_or(("", path));
@@ -242,7 +300,7 @@ pub(crate) mod tests {
     /// The names of the checks that find a problem in `xml`.
     pub(crate) fn refused(xml: &str) -> Vec<&'static str> {
         let m = Model::from_xml_str(xml).unwrap_or_else(|e| panic!("{e}: {xml}"));
-        kinds_of(&m, Values)
+        kinds_of(&m, Values::new(&m))
             .into_iter()
             .filter_map(|k| match k {
                 ProblemKind::Refused { rule, .. } => Some(rule),
