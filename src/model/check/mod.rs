@@ -23,6 +23,7 @@ use super::{Loc, Model};
 
 mod advice;
 mod arrays;
+mod bodies;
 mod dofs;
 mod expansion;
 mod free_joint;
@@ -53,7 +54,8 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(key_length::KeyLength::new(model, options)),
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
-        Box::new(values::Values),
+        Box::new(values::Values::new(model)),
+        Box::new(bodies::Bodies::new(model)),
     ]
 }
 

@@ -11,14 +11,98 @@
 
 use std::sync::OnceLock;
 
+use crate::model::Model;
 use crate::model::layout::{effective, from_classes};
+use crate::model::settings;
+use crate::model::tree::Node;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
 use super::ProblemKind;
 use super::walk::{Event, Rule};
 
+mod camera;
+mod frame;
 mod geom;
+pub(crate) mod inertial;
+mod joint;
+pub(crate) mod orient;
+mod site;
+mod user;
+
+/// The global settings (the model's merged `<compiler>` and `<size>`) the checks
+/// read, MuJoCo's defaults where none is given.
+#[derive(Clone, Debug)]
+pub(crate) struct Settings {
+    /// `size/nuser_body`, `nuser_jnt`, `nuser_geom`, `nuser_site`, `nuser_cam`, by
+    /// name (-1: as many as the longest `user` needs).
+    pub(crate) nuser: Vec<(&'static str, i64)>,
+    /// `compiler/eulerseq`.
+    pub(crate) eulerseq: String,
+    /// `compiler/inertiafromgeom`: `auto`, `true` or `false`.
+    pub(crate) inertiafromgeom: String,
+    /// `compiler/inertiagrouprange`.
+    pub(crate) inertiagrouprange: [i64; 2],
+    /// `compiler/balanceinertia`.
+    pub(crate) balanceinertia: bool,
+    /// `compiler/boundinertia`.
+    pub(crate) boundinertia: f64,
+    /// `compiler/fusestatic`.
+    pub(crate) fusestatic: bool,
+}
+
+impl Settings {
+    /// The settings of `model` as written (its merged sections).
+    pub(crate) fn of(model: &Model) -> Settings {
+        let sections = settings::merged(model).ok();
+        let section = |tag: &str| {
+            let kind = ElementKind::ROOT.child(tag);
+            sections.as_ref().and_then(|s| s.iter().find(|n| Some(n.kind()) == kind).cloned())
+        };
+        let (compiler, size) = (section("compiler"), section("size"));
+        let get = |n: &Option<Node>, attr: &str| -> Option<Value> {
+            let n = n.as_ref()?;
+            n.attr(n.kind().attr_index(attr)?).cloned()
+        };
+        let text = |attr: &str, default: &str| {
+            get(&compiler, attr)
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or(default.into())
+        };
+        let nuser = ["nuser_body", "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam"]
+            .into_iter()
+            .map(|a| {
+                (
+                    a,
+                    get(&size, a)
+                        .and_then(|v| numbers(&v)?.first().copied())
+                        .map_or(-1, |x| x as i64),
+                )
+            })
+            .collect();
+        let range = get(&compiler, "inertiagrouprange").and_then(|v| numbers(&v));
+        let range = match range.as_deref() {
+            Some([a, b, ..]) => [*a as i64, *b as i64],
+            _ => [0, 5],
+        };
+        Settings {
+            nuser,
+            eulerseq: text("eulerseq", "xyz"),
+            inertiafromgeom: text("inertiafromgeom", "auto"),
+            inertiagrouprange: range,
+            balanceinertia: text("balanceinertia", "false") == "true",
+            boundinertia: get(&compiler, "boundinertia")
+                .and_then(|v| numbers(&v)?.first().copied())
+                .unwrap_or(0.0),
+            fusestatic: text("fusestatic", "false") == "true",
+        }
+    }
+
+    /// `size/NAME` (`nuser_geom`), -1 when not given.
+    pub(crate) fn nuser(&self, name: &str) -> i64 {
+        self.nuser.iter().find(|(n, _)| *n == name).map_or(-1, |(_, v)| *v)
+    }
+}
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -52,6 +136,8 @@ pub(crate) fn found_element(mujoco: impl Into<String>) -> Option<Found> {
 /// The element a check judges, its values as MuJoCo reads them.
 pub(crate) struct At<'e, 'm> {
     pub(crate) e: &'e Event<'m>,
+    /// The model's global settings.
+    pub(crate) settings: &'e Settings,
 }
 
 impl<'m> At<'_, 'm> {
@@ -111,6 +197,32 @@ impl<'m> At<'_, 'm> {
         }
     }
 
+    /// The element's own value of `attr` (not its classes').
+    pub(crate) fn own(&self, attr: &str) -> Option<&'m Value> {
+        let node = self.e.node;
+        node.kind().attr_index(attr).and_then(|i| node.attr(i))
+    }
+
+    /// Where the element's values come from, nearest first: the element, then the
+    /// defaults of its tag in its class and each class above it.
+    pub(crate) fn levels(&self) -> Vec<&'m Node> {
+        let (model, node) = (self.e.model, self.e.node);
+        let mut out = vec![node];
+        let mut cur = self.e.class;
+        while let Some(id) = cur {
+            let Some(class_node) = model.node_by_id(id) else { break };
+            let kind = class_node.kind().child(node.kind().tag());
+            if let Some(d) = kind.and_then(|k| class_node.child_of_kind(k)) {
+                out.push(d);
+            }
+            cur = model
+                .index
+                .parent(id)
+                .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
+        }
+        out
+    }
+
     /// The name the element has in its model, or `""` (MuJoCo's messages quote it).
     pub(crate) fn name(&self) -> &'m str {
         self.e.node.identifier().unwrap_or("")
@@ -118,7 +230,7 @@ impl<'m> At<'_, 'm> {
 }
 
 /// A value's numbers, if it holds numbers.
-fn numbers(v: &Value) -> Option<Vec<f64>> {
+pub(crate) fn numbers(v: &Value) -> Option<Vec<f64>> {
     match v {
         Value::Floats(v) => Some(v.to_vec()),
         Value::Ints(v) => Some(v.iter().map(|i| *i as f64).collect()),
@@ -129,7 +241,16 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS];
+const TABLES: &[&[Check]] = &[
+    geom::CHECKS,
+    orient::CHECKS,
+    user::CHECKS,
+    joint::CHECKS,
+    site::CHECKS,
+    camera::CHECKS,
+    frame::CHECKS,
+    inertial::CHECKS,
+];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
@@ -148,13 +269,21 @@ fn by_kind() -> &'static Vec<Vec<&'static Check>> {
 }
 
 /// The rule: every check of the element's kind.
-#[derive(Default)]
-pub(super) struct Values;
+pub(crate) struct Values {
+    settings: Settings,
+}
+
+impl Values {
+    /// The rule for `model` as written (its merged settings).
+    pub(crate) fn new(model: &Model) -> Values {
+        Values { settings: Settings::of(model) }
+    }
+}
 
 impl<'m> Rule<'m> for Values {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
-        let at = At { e };
+        let at = At { e, settings: &self.settings };
         for check in checks {
             if let Some(f) = (check.test)(&at) {
                 out.push(ProblemKind::Refused {
@@ -185,6 +314,31 @@ pub(crate) mod on {
     /// A `<body>`.
     pub(crate) fn body(k: ElementKind) -> bool {
         k.is(Role::Body)
+    }
+
+    /// A `<frame>`.
+    pub(crate) fn frame(k: ElementKind) -> bool {
+        k.is(Role::Frame)
+    }
+
+    /// The `<inertial>` of a body.
+    pub(crate) fn inertial(k: ElementKind) -> bool {
+        k.is(Role::Inertial)
+    }
+
+    /// A `<camera>` of a body.
+    pub(crate) fn camera(k: ElementKind) -> bool {
+        at(k, "(world)body/camera")
+    }
+
+    /// A `<light>` of a body.
+    pub(crate) fn light(k: ElementKind) -> bool {
+        at(k, "(world)body/light")
+    }
+
+    /// The defaults of a class for the element tag `tag` (`<default><geom>`).
+    pub(crate) fn default_of(k: ElementKind, tag: &str) -> bool {
+        k.tag() == tag && k.spec().parent.is_some_and(|p| p.is(Role::DefaultClass))
     }
 
     /// A `<joint>` of a body.
@@ -242,7 +396,7 @@ pub(crate) mod tests {
     /// The names of the checks that find a problem in `xml`.
     pub(crate) fn refused(xml: &str) -> Vec<&'static str> {
         let m = Model::from_xml_str(xml).unwrap_or_else(|e| panic!("{e}: {xml}"));
-        kinds_of(&m, Values)
+        kinds_of(&m, Values::new(&m))
             .into_iter()
             .filter_map(|k| match k {
                 ProblemKind::Refused { rule, .. } => Some(rule),
