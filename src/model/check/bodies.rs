@@ -170,7 +170,7 @@ fn geom_mass(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
     }
     let density = at.float("density").unwrap_or(1000.0);
     let negative = match at.float("mass").filter(|m| !m.is_nan()) {
-        Some(m) if m == 0.0 => false,
+        Some(0.0) => false,
         Some(m) if m < 0.0 => density < 0.0 || volume(at).is_some_and(|v| v > 1e-12),
         Some(_) => false,
         None => density < 0.0,

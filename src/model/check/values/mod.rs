@@ -347,16 +347,19 @@ pub(crate) mod on {
     }
 
     /// An actuator of any kind.
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn actuator(k: ElementKind) -> bool {
         k.role().is_some_and(Role::is_actuator)
     }
 
     /// A tendon (`<fixed>`, `<spatial>`).
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn tendon(k: ElementKind) -> bool {
         k.is(Role::Tendon)
     }
 
     /// An element of the root's section `section` (`sensor`, `asset`, ...).
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn in_section(k: ElementKind, section: &str) -> bool {
         k.spec()
             .parent
