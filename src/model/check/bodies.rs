@@ -29,6 +29,8 @@ struct Open {
     scale: [f64; 3],
     /// No element since the scale became uneven rotates its content.
     aligned: bool,
+    /// How many frames it is inside (or is) whose own scale is uneven.
+    uneven_frames: usize,
 }
 
 impl Open {
@@ -38,6 +40,7 @@ impl Open {
         scaled: false,
         scale: [1.0; 3],
         aligned: true,
+        uneven_frames: 0,
     };
 }
 
@@ -99,7 +102,10 @@ impl<'m> Rule<'m> for Bodies {
             let own = at.floats("scale").filter(|_| on::frame(k)).unwrap_or(vec![1.0]);
             let s = |i: usize| own.get(i).or(own.first()).copied().unwrap_or(1.0);
             me.scale = [parent.scale[0] * s(0), parent.scale[1] * s(1), parent.scale[2] * s(2)];
-            me.aligned = (parent.aligned || !uneven(&parent.scale)) && !rotates(&at);
+            me.uneven_frames += usize::from(uneven(&[s(0), s(1), s(2)]));
+            // A frame's scale applies in its own axes: its own rotation, or one where
+            // the scale above is even, turns nothing against an uneven scale.
+            me.aligned = !uneven(&parent.scale) || (parent.aligned && !rotates(&at));
         }
         if on::geom(k) {
             geom_mass(&at, &parent, out);
@@ -118,13 +124,12 @@ impl<'m> Rule<'m> for Bodies {
 
 /// `sleep policy only allowed for movable root bodies`: a sleep policy other than
 /// `auto` on a body that does not start a kinematic tree (it has no joints, or a body
-/// above it moves). A static body is let through where the compiler fuses static
-/// bodies.
+/// above it moves), static bodies included where the compiler fuses them.
 fn sleep(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
     let Some(policy) = at.str("sleep") else { return };
     let body = at.e.body;
     let root = body.moves && !parent.body.welded_to_moving;
-    if policy == "auto" || root || (at.settings.fusestatic && !body.welded_to_moving) {
+    if policy == "auto" || root {
         return;
     }
     out.push(refused(
@@ -186,26 +191,32 @@ fn geom_mass(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
 }
 
 /// `a sphere can only be scaled uniformly`, `this shape can only be scaled equally
-/// across its axis`: a sphere, or a capsule or cylinder, in frames whose scales,
-/// multiplied, are uneven (across its axis), with nothing rotating it against them.
+/// across its axis`: a sphere inside one frame scaled unevenly (others even), or in
+/// frames whose scales, multiplied, are uneven with nothing rotating content between
+/// them; a capsule or cylinder whose scales across its axis differ, with nothing
+/// rotating it against them.
 fn scaled_shape(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
     let s = parent.scale;
-    if !uneven(&s) || !parent.aligned || at.has("mesh") {
+    if !uneven(&s) || at.has("mesh") {
         return;
     }
     let turned = ORIENTATIONS[1..].iter().any(|a| at.has(a))
-        || at.floats("quat").is_some_and(|q| q != [1.0, 0.0, 0.0, 0.0]);
-    if turned || at.has("fromto") {
-        return;
-    }
+        || at.floats("quat").is_some_and(|q| q != [1.0, 0.0, 0.0, 0.0])
+        || at.has("fromto");
+    let aligned = parent.aligned && !turned;
     match at.str("type").unwrap_or("sphere") {
-        "sphere" => out.push(refused(
+        "sphere" if parent.uneven_frames == 1 || aligned => out.push(refused(
             "geom-scale-sphere",
             None,
-            "a sphere can only be scaled uniformly; use an ellipsoid instead",
+            // MuJoCo adds its advice only for a sphere aligned with the scale.
+            if aligned {
+                "a sphere can only be scaled uniformly; use an ellipsoid instead"
+            } else {
+                "a sphere can only be scaled uniformly"
+            },
             "use an ellipsoid, or scale the frame the same along every axis",
         )),
-        "capsule" | "cylinder" if uneven(&[s[0], s[1], s[1]]) => out.push(refused(
+        "capsule" | "cylinder" if aligned && uneven(&[s[0], s[1], s[1]]) => out.push(refused(
             "geom-scale-axis",
             None,
             "this shape can only be scaled equally across its axis",
@@ -377,6 +388,13 @@ mod tests {
                 world(&format!(r#"<body>{g}<body sleep="never"><joint/>{g}</body></body>"#)),
             ),
             (
+                with(
+                    r#"<compiler fusestatic="true"/>"#,
+                    &format!(r#"<body sleep="never">{g}</body>"#),
+                ),
+                world(&format!(r#"<body sleep="auto">{g}</body>"#)),
+            ),
+            (
                 world(&format!(r#"<body mocap="true" sleep="never">{g}</body>"#)),
                 world(&format!(
                     r#"<frame><body sleep="init"><frame><joint/></frame>{g}</body></frame>"#
@@ -411,6 +429,30 @@ mod tests {
             ),
         ];
         assert_pairs("geom-scale-sphere", &pairs);
+        // A sphere is scaled unevenly however it or its frames turn; a frame's own
+        // rotation does not turn its content against its own scale.
+        let turned = |scale: &str, frame: &str, inner: &str| {
+            world(&format!(r#"<frame scale="{scale}" scaling="geometry" {frame}>{inner}</frame>"#))
+        };
+        let pairs = [
+            (
+                turned("1 1 2", r#"euler="90 0 0""#, r#"<geom size=".1" euler="10 20 30"/>"#),
+                turned("1 1 2", r#"euler="90 0 0""#, r#"<geom type="capsule" size=".1 .2"/>"#),
+            ),
+            (
+                turned(
+                    "1 2 1",
+                    r#"euler="0 0 90""#,
+                    r#"<body euler="0 0 30"><geom size=".1"/></body>"#,
+                ),
+                turned(
+                    "1 1 2",
+                    "",
+                    r#"<body euler="0 0 30"><geom type="capsule" size=".1 .2"/></body>"#,
+                ),
+            ),
+        ];
+        assert_pairs("geom-scale-sphere", &pairs);
         let pairs = [
             (
                 f("1 2 1", r#"<geom type="capsule" size=".1 .2"/>"#),
@@ -421,6 +463,11 @@ mod tests {
                 f("1 1 2", r#"<geom type="cylinder" size=".1 .2"/>"#),
             ),
         ];
+        assert_pairs("geom-scale-axis", &pairs);
+        let pairs = [(
+            turned("1 2 1", r#"euler="90 0 0""#, r#"<geom type="capsule" size=".1 .2"/>"#),
+            turned("2", r#"euler="90 0 0""#, r#"<geom type="capsule" size=".1 .2"/>"#),
+        )];
         assert_pairs("geom-scale-axis", &pairs);
     }
 }

@@ -44,7 +44,8 @@ pub(crate) const CHECKS: &[Check] = &[
         test: |at| {
             has_sensorsize(at).then_some(())?;
             let r = at.floats("resolution").unwrap_or_default();
-            let value = |i: usize| r.get(i).copied().unwrap_or(0.0);
+            // MuJoCo's resolution is 1 1 unless given.
+            let value = |i: usize| r.get(i).copied().unwrap_or(1.0);
             (value(0) <= 0.0 || value(1) <= 0.0).then_some(())?;
             let message =
                 format!("sensorsize requires positive resolution in camera '{}'", at.name());
@@ -110,6 +111,11 @@ mod tests {
             (
                 world(r#"<camera sensorsize="1 1" resolution="1 0"/>"#),
                 world(r#"<camera sensorsize="1 0"/>"#),
+            ),
+            // MuJoCo's resolution is 1 1 unless given.
+            (
+                world(r#"<camera sensorsize="1 1" resolution="0 0"/>"#),
+                world(r#"<camera sensorsize="1 1"/>"#),
             ),
             (
                 world(r#"<camera sensorsize="1 1" resolution="-1 1"/>"#),

@@ -47,8 +47,6 @@ pub(crate) struct Settings {
     pub(crate) balanceinertia: bool,
     /// `compiler/boundinertia`.
     pub(crate) boundinertia: f64,
-    /// `compiler/fusestatic`.
-    pub(crate) fusestatic: bool,
 }
 
 impl Settings {
@@ -94,7 +92,6 @@ impl Settings {
             boundinertia: get(&compiler, "boundinertia")
                 .and_then(|v| numbers(&v)?.first().copied())
                 .unwrap_or(0.0),
-            fusestatic: text("fusestatic", "false") == "true",
         }
     }
 
