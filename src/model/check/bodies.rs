@@ -141,9 +141,9 @@ fn sleep(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
 }
 
 /// A primitive geom's volume as MuJoCo computes it, where its sizes are its own (not
-/// set by `fromto` or a mesh).
+/// set by `fromto` or a mesh) and its inertia is its volume's (not its shell's).
 fn volume(at: &At<'_, '_>) -> Option<f64> {
-    if at.has("mesh") || at.has("fromto") {
+    if at.has("mesh") || at.has("fromto") || at.str("shellinertia") == Some("true") {
         return None;
     }
     let s = at.floats("size").unwrap_or_default();
@@ -162,8 +162,8 @@ fn volume(at: &At<'_, '_>) -> Option<f64> {
 /// `mass, inertia or density are negative in geom`: a geom of a body (not the world)
 /// whose mass MuJoCo infers (the body has no `<inertial>`, or the compiler's
 /// `inertiafromgeom` is `true`; its group in `inertiagrouprange`) with a negative
-/// density, or a negative mass over a volume (MuJoCo leaves a mass over no volume
-/// unused).
+/// density its mass does not replace (no mass, or a mass over no volume), or a
+/// negative mass over a volume.
 fn geom_mass(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
     let s = at.settings;
     let group = at.int("group").unwrap_or(0);
@@ -177,7 +177,8 @@ fn geom_mass(at: &At<'_, '_>, parent: &Open, out: &mut Vec<ProblemKind>) {
     let negative = match at.float("mass").filter(|m| !m.is_nan()) {
         Some(0.0) => false,
         Some(m) if m < 0.0 => density < 0.0 || volume(at).is_some_and(|v| v > 1e-12),
-        Some(_) => false,
+        // Over no volume MuJoCo keeps the density given.
+        Some(_) => density < 0.0 && volume(at).is_some_and(|v| v < 0.9e-14),
         None => density < 0.0,
     };
     if negative {
@@ -339,6 +340,10 @@ mod tests {
                     r#"<body><geom size=".1"/></body>"#,
                 ),
                 world(r#"<body><geom size=".1" mass="-1" group="6"/></body>"#),
+            ),
+            (
+                world(r#"<body><geom size="1e-5" mass="1" density="-1"/></body>"#),
+                world(r#"<body><geom size="1e-3" mass="1" density="-1"/></body>"#),
             ),
             (
                 world(r#"<body><geom type="plane" size="1 1 1" density="-1"/></body>"#),
