@@ -11,7 +11,8 @@ use super::walk::{Event, Rule};
 
 /// The arrays MuJoCo refuses for their length: shorter than MuJoCo reads (the
 /// table), a geom `size` with fewer numbers than its type needs (counting those its
-/// classes give), mesh data not a multiple of 3 (or 2).
+/// classes give; not for a geom with a mesh, which MuJoCo sizes), mesh data not a
+/// multiple of 3 (or 2).
 #[derive(Default)]
 pub(super) struct ArrayLengths;
 
@@ -35,7 +36,8 @@ impl<'m> Rule<'m> for ArrayLengths {
                 }
             }
         }
-        if kind.is(Role::Geom) {
+        // A geom with a mesh MuJoCo sizes itself (fitting a primitive to the mesh).
+        if kind.is(Role::Geom) && effective(e.model, node, e.class, "mesh").is_none() {
             let (m, class) = (e.model, e.class);
             let ty = effective(m, node, class, "type").and_then(Value::as_str).unwrap_or("sphere");
             let needed = geom_size_needed(ty, effective(m, node, class, "fromto").is_some());
@@ -70,6 +72,27 @@ mod tests {
                 ProblemKind::ArrayTooShort { attribute: "pos", minimum: 3, found: 2 },
                 ProblemKind::ArrayTooShort { attribute: "size", minimum: 3, found: 2 },
             ]
+        );
+    }
+
+    /// Each verdict is MuJoCo 4.0.0's: a primitive fitted to a mesh takes its size
+    /// from the mesh, whatever its own `size` holds.
+    #[test]
+    fn a_geom_fitted_to_a_mesh_needs_no_size_of_its_type() {
+        let mesh = r#"<asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset>"#;
+        let m = |body: &str| {
+            Model::from_xml_str(&format!("<mujoco>{mesh}<worldbody>{body}</worldbody></mujoco>"))
+                .unwrap()
+        };
+        for compiled in [
+            m(r#"<geom type="capsule" mesh="m" size=".1"/>"#),
+            m(r#"<geom type="box" mesh="m" size=".1 .2"/>"#),
+        ] {
+            assert_eq!(kinds_of(&compiled, ArrayLengths), []);
+        }
+        assert_eq!(
+            kinds_of(&m(r#"<geom type="capsule" size=".1"/>"#), ArrayLengths),
+            [ProblemKind::ArrayTooShort { attribute: "size", minimum: 2, found: 1 }]
         );
     }
 }

@@ -23,6 +23,7 @@ use super::{Loc, Model};
 
 mod advice;
 mod arrays;
+mod bodies;
 mod dofs;
 mod expansion;
 mod free_joint;
@@ -54,6 +55,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
         Box::new(values::Values::new(model)),
+        Box::new(bodies::Bodies::new(model)),
     ]
 }
 

@@ -88,7 +88,9 @@ fn empty_name(at: &At<'_, '_>) -> Option<Found> {
     let what = match at.kind().role() {
         // MuJoCo drops the visual assets first: every material and texture, and the
         // meshes no collision geom uses (an unnamed one no geom can use).
-        Some(Role::Mesh | Role::Texture | Role::Material) if at.discard_visual => return None,
+        Some(Role::Mesh | Role::Texture | Role::Material) if at.settings.discard_visual => {
+            return None;
+        }
         Some(Role::Mesh) => "mesh",
         Some(Role::Hfield) => "height field",
         Some(Role::Texture) if at.str("type").unwrap_or("cube") == "skybox" => return None,

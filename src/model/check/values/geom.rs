@@ -81,6 +81,34 @@ pub(crate) const CHECKS: &[Check] = &[
         },
         fix: "give fromto two distinct points",
     },
+    Check {
+        name: "geom-mesh-missing",
+        on: on::geom,
+        test: |at| {
+            (matches!(geom_type(at), "mesh" | "sdf") && !at.has("mesh")).then_some(())?;
+            found("type", format!("mesh geom '{}' must have valid meshid", at.name()))
+        },
+        fix: "give the geom a mesh, or another type",
+    },
+    Check {
+        name: "geom-hfield-missing",
+        on: on::geom,
+        test: |at| {
+            ((geom_type(at) == "hfield") != at.has("hfield")).then_some(())?;
+            found("hfield", format!("hfield geom '{}' must have valid hfieldid", at.name()))
+        },
+        fix: "give an hfield geom its hfield, and an hfield only to an hfield geom",
+    },
+    Check {
+        name: "geom-mesh-shellinertia",
+        on: on::geom,
+        test: |at| {
+            (matches!(geom_type(at), "mesh" | "sdf") && at.has("mesh")).then_some(())?;
+            (at.str("shellinertia")? == "true").then_some(())?;
+            found("shellinertia", "for mesh geoms, inertia should be specified in the mesh asset")
+        },
+        fix: "remove shellinertia; set the mesh asset's inertia instead",
+    },
 ];
 
 /// `size 1 must be positive in geom`, `plane size(3) must be positive`: the numbers
@@ -162,5 +190,26 @@ mod tests {
             world(r#"<geom type="capsule" fromto="0 0 0 0 0 1e-6" size=".1"/>"#),
         );
         assert_pairs("geom-fromto-too-close", &[(&bad, &good)]);
+    }
+
+    /// Each pair's verdicts are MuJoCo 4.0.0's.
+    #[test]
+    fn mesh_and_hfield_geoms_need_their_asset() {
+        let assets = r#"<asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/><hfield name="h" nrow="2" ncol="2" size="1 1 1 1"/></asset>"#;
+        let m = |body: &str| format!("<mujoco>{assets}<worldbody>{body}</worldbody></mujoco>");
+        let (bad, good) = (m(r#"<geom type="sdf"/>"#), m(r#"<geom mesh="m"/>"#));
+        assert_pairs("geom-mesh-missing", &[(&bad, &good)]);
+        let (bad, good) = (
+            m(r#"<geom type="box" size="1 1 1" hfield="h"/>"#),
+            m(r#"<geom type="hfield" hfield="h"/>"#),
+        );
+        assert_pairs("geom-hfield-missing", &[(&bad, &good)]);
+        let (bad, good) = (
+            format!(
+                r#"<mujoco>{assets}<default><geom shellinertia="true"/></default><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#
+            ),
+            m(r#"<geom type="box" mesh="m" shellinertia="true"/>"#),
+        );
+        assert_pairs("geom-mesh-shellinertia", &[(&bad, &good)]);
     }
 }

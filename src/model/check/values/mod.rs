@@ -14,6 +14,7 @@ use std::sync::OnceLock;
 use crate::model::Model;
 use crate::model::layout::{effective, from_classes};
 use crate::model::settings;
+use crate::model::tree::Node;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
@@ -21,10 +22,93 @@ use super::ProblemKind;
 use super::walk::{Event, Rule};
 
 mod assets;
+mod camera;
 mod flex;
+mod frame;
 mod geom;
+pub(crate) mod inertial;
+mod joint;
 mod mesh;
+pub(crate) mod orient;
+mod site;
 mod texture;
+mod user;
+
+/// The global settings (the model's merged `<compiler>` and `<size>`) the checks
+/// read, MuJoCo's defaults where none is given.
+#[derive(Clone, Debug)]
+pub(crate) struct Settings {
+    /// `size/nuser_body`, `nuser_jnt`, `nuser_geom`, `nuser_site`, `nuser_cam`, by
+    /// name (-1: as many as the longest `user` needs).
+    pub(crate) nuser: Vec<(&'static str, i64)>,
+    /// `compiler/eulerseq`.
+    pub(crate) eulerseq: String,
+    /// `compiler/inertiafromgeom`: `auto`, `true` or `false`.
+    pub(crate) inertiafromgeom: String,
+    /// `compiler/inertiagrouprange`.
+    pub(crate) inertiagrouprange: [i64; 2],
+    /// `compiler/balanceinertia`.
+    pub(crate) balanceinertia: bool,
+    /// `compiler/boundinertia`.
+    pub(crate) boundinertia: f64,
+    /// `compiler/discardvisual`: MuJoCo then drops every material and texture, and
+    /// the meshes no collision geom uses, before it judges them (settings that
+    /// cannot be merged count as discarding: no check that needs them then fires).
+    pub(crate) discard_visual: bool,
+}
+
+impl Settings {
+    /// The settings of `model` as written (its merged sections).
+    pub(crate) fn of(model: &Model) -> Settings {
+        let sections = settings::merged(model).ok();
+        let section = |tag: &str| {
+            let kind = ElementKind::ROOT.child(tag);
+            sections.as_ref().and_then(|s| s.iter().find(|n| Some(n.kind()) == kind).cloned())
+        };
+        let (compiler, size) = (section("compiler"), section("size"));
+        let get = |n: &Option<Node>, attr: &str| -> Option<Value> {
+            let n = n.as_ref()?;
+            n.attr(n.kind().attr_index(attr)?).cloned()
+        };
+        let text = |attr: &str, default: &str| {
+            get(&compiler, attr)
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or(default.into())
+        };
+        let nuser = ["nuser_body", "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam"]
+            .into_iter()
+            .map(|a| {
+                (
+                    a,
+                    get(&size, a)
+                        .and_then(|v| numbers(&v)?.first().copied())
+                        .map_or(-1, |x| x as i64),
+                )
+            })
+            .collect();
+        let range = get(&compiler, "inertiagrouprange").and_then(|v| numbers(&v));
+        let range = match range.as_deref() {
+            Some([a, b, ..]) => [*a as i64, *b as i64],
+            _ => [0, 5],
+        };
+        Settings {
+            nuser,
+            eulerseq: text("eulerseq", "xyz"),
+            inertiafromgeom: text("inertiafromgeom", "auto"),
+            inertiagrouprange: range,
+            balanceinertia: text("balanceinertia", "false") == "true",
+            boundinertia: get(&compiler, "boundinertia")
+                .and_then(|v| numbers(&v)?.first().copied())
+                .unwrap_or(0.0),
+            discard_visual: sections.is_none() || text("discardvisual", "false") == "true",
+        }
+    }
+
+    /// `size/NAME` (`nuser_geom`), -1 when not given.
+    pub(crate) fn nuser(&self, name: &str) -> i64 {
+        self.nuser.iter().find(|(n, _)| *n == name).map_or(-1, |(_, v)| *v)
+    }
+}
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -58,10 +142,8 @@ pub(crate) fn found_element(mujoco: impl Into<String>) -> Option<Found> {
 /// The element a check judges, its values as MuJoCo reads them.
 pub(crate) struct At<'e, 'm> {
     pub(crate) e: &'e Event<'m>,
-    /// The model's compiler discards visual assets (`discardvisual`): MuJoCo then
-    /// drops every material and texture, and the meshes no collision geom uses,
-    /// before it judges them.
-    pub(crate) discard_visual: bool,
+    /// The model's global settings.
+    pub(crate) settings: &'e Settings,
 }
 
 impl<'m> At<'_, 'm> {
@@ -121,7 +203,7 @@ impl<'m> At<'_, 'm> {
         }
     }
 
-    /// `attr`'s own value, as written on the element (its classes' left out).
+    /// The element's own value of `attr` (not its classes').
     pub(crate) fn own(&self, attr: &str) -> Option<&'m Value> {
         let node = self.e.node;
         node.kind().attr_index(attr).and_then(|i| node.attr(i))
@@ -146,6 +228,26 @@ impl<'m> At<'_, 'm> {
         self.own(attr).and_then(numbers)
     }
 
+    /// Where the element's values come from, nearest first: the element, then the
+    /// defaults of its tag in its class and each class above it.
+    pub(crate) fn levels(&self) -> Vec<&'m Node> {
+        let (model, node) = (self.e.model, self.e.node);
+        let mut out = vec![node];
+        let mut cur = self.e.class;
+        while let Some(id) = cur {
+            let Some(class_node) = model.node_by_id(id) else { break };
+            let kind = class_node.kind().child(node.kind().tag());
+            if let Some(d) = kind.and_then(|k| class_node.child_of_kind(k)) {
+                out.push(d);
+            }
+            cur = model
+                .index
+                .parent(id)
+                .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
+        }
+        out
+    }
+
     /// The name the element has in its model, or `""` (MuJoCo's messages quote it).
     pub(crate) fn name(&self) -> &'m str {
         self.e.node.identifier().unwrap_or("")
@@ -153,7 +255,7 @@ impl<'m> At<'_, 'm> {
 }
 
 /// A value's numbers, if it holds numbers.
-fn numbers(v: &Value) -> Option<Vec<f64>> {
+pub(crate) fn numbers(v: &Value) -> Option<Vec<f64>> {
     match v {
         Value::Floats(v) => Some(v.to_vec()),
         Value::Ints(v) => Some(v.iter().map(|i| *i as f64).collect()),
@@ -164,8 +266,20 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] =
-    &[geom::CHECKS, mesh::CHECKS, assets::CHECKS, texture::CHECKS, flex::CHECKS];
+const TABLES: &[&[Check]] = &[
+    geom::CHECKS,
+    orient::CHECKS,
+    user::CHECKS,
+    joint::CHECKS,
+    site::CHECKS,
+    camera::CHECKS,
+    frame::CHECKS,
+    inertial::CHECKS,
+    mesh::CHECKS,
+    assets::CHECKS,
+    texture::CHECKS,
+    flex::CHECKS,
+];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
@@ -184,30 +298,21 @@ fn by_kind() -> &'static Vec<Vec<&'static Check>> {
 }
 
 /// The rule: every check of the element's kind.
-pub(super) struct Values {
-    /// The compiler's `discardvisual`, as the model (its settings merged) is written.
-    discard_visual: bool,
+pub(crate) struct Values {
+    settings: Settings,
 }
 
 impl Values {
-    /// The rule for `model` as written (settings that cannot be merged count as
-    /// discarding visual assets: no check that needs them then fires).
-    pub(super) fn new(model: &Model) -> Values {
-        let compiler = ElementKind::ROOT.child("compiler");
-        let discard_visual = settings::merged(model).map_or(true, |sections| {
-            sections.iter().filter(|n| Some(n.kind()) == compiler).any(|c| {
-                let v = c.kind().attr_index("discardvisual").and_then(|i| c.attr(i));
-                v.and_then(Value::as_str) == Some("true")
-            })
-        });
-        Values { discard_visual }
+    /// The rule for `model` as written (its merged settings).
+    pub(crate) fn new(model: &Model) -> Values {
+        Values { settings: Settings::of(model) }
     }
 }
 
 impl<'m> Rule<'m> for Values {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
-        let at = At { e, discard_visual: self.discard_visual };
+        let at = At { e, settings: &self.settings };
         for check in checks {
             if let Some(f) = (check.test)(&at) {
                 out.push(ProblemKind::Refused {
@@ -240,22 +345,45 @@ pub(crate) mod on {
         k.is(Role::Body)
     }
 
+    /// A `<frame>`.
+    pub(crate) fn frame(k: ElementKind) -> bool {
+        k.is(Role::Frame)
+    }
+
+    /// The `<inertial>` of a body.
+    pub(crate) fn inertial(k: ElementKind) -> bool {
+        k.is(Role::Inertial)
+    }
+
+    /// A `<camera>` of a body.
+    pub(crate) fn camera(k: ElementKind) -> bool {
+        at(k, "(world)body/camera")
+    }
+
+    /// A `<light>` of a body.
+    pub(crate) fn light(k: ElementKind) -> bool {
+        at(k, "(world)body/light")
+    }
+
     /// A `<joint>` of a body.
     pub(crate) fn joint(k: ElementKind) -> bool {
         k.is(Role::Joint)
     }
 
     /// An actuator of any kind.
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn actuator(k: ElementKind) -> bool {
         k.role().is_some_and(Role::is_actuator)
     }
 
     /// A tendon (`<fixed>`, `<spatial>`).
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn tendon(k: ElementKind) -> bool {
         k.is(Role::Tendon)
     }
 
     /// An element of the root's section `section` (`sensor`, `asset`, ...).
+    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn in_section(k: ElementKind, section: &str) -> bool {
         k.spec()
             .parent

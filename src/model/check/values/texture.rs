@@ -100,7 +100,7 @@ fn builtin<'m>(at: &At<'_, 'm>) -> Option<&'m str> {
 
 /// Whether MuJoCo compiles the texture: not when the compiler discards visual assets.
 fn compiled(at: &At<'_, '_>) -> Option<()> {
-    (!at.discard_visual).then_some(())
+    (!at.settings.discard_visual).then_some(())
 }
 
 /// `Invalid width (height) of builtin texture`: a builtin texture's width below 1 (or
