@@ -44,7 +44,6 @@ use super::tag::Tag;
 use super::{Output, Outputs, SaveError, SourceText, unescape};
 use crate::error::WriteError;
 use crate::files::write::{self, OnDisk};
-use crate::model::settings;
 use crate::model::source::Source;
 use crate::model::tree::{ElementId, Node};
 use crate::model::{Index, Model};
@@ -52,7 +51,7 @@ use crate::schema::{ElementKind, Namespace, Role};
 use crate::seq::Seq;
 use crate::value::{FileAsset, Reference, Value};
 use crate::xml::scene::{
-    attrs_of, file_stem, frame_as_body, frame_joint_names, part_options, world_level, write_part,
+    SpellError, Spelling, attrs_of, file_stem, part_options, spell as spell_scene, write_part,
 };
 
 /// A model with attachments, spelled as its scene file is (see the module
@@ -344,7 +343,8 @@ fn attach_of(body: &Node) -> Option<(&Node, ElementId)> {
     })
 }
 
-/// The spelled tree (see the module documentation).
+/// The spelled tree (see the module documentation): the scene's walk
+/// (`xml::scene::spell`) keeping the nodes read where nothing changed.
 fn spell_tree(
     model: &Model,
     src: &Source,
@@ -352,47 +352,32 @@ fn spell_tree(
     reused: &HashSet<ElementId>,
     new_assets: &[Node],
 ) -> Result<Node, SaveError> {
-    let (read, lit) = (&src.read, src.spelled());
-    let merged = settings::merged(model).map_err(|k| conflict(&k.to_string()))?;
-    let joint_names = frame_joint_names(model);
-    let world: HashSet<ElementId> = world_level(model).into_iter().collect();
-    let mut missing = false;
-    let root = model.root.rebuild(|n, children| {
-        let parent_world = world.contains(&n.id());
-        let mut kids: Vec<Node> = Vec::with_capacity(children.len());
-        for new in children.iter() {
-            if new.attached().is_none() {
-                kids.push(new.clone());
-                continue;
-            }
-            let frame = spell_frame(new, read, lit, asset_of, |f| {
-                frame_as_body(f, n.kind(), parent_world, &joint_names, asset_of)
-            });
-            kids.push(frame.unwrap_or_else(|| {
-                missing = true;
-                new.clone()
-            }));
-        }
-        if n.kind() == ElementKind::ROOT {
-            for c in kids.iter_mut() {
-                if settings::is_settings_section(c.kind()) {
-                    if let Some(m) = merged.iter().find(|m| m.kind() == c.kind()) {
-                        *c = m.clone();
-                    }
-                } else if c.kind() == ElementKind::ASSET {
-                    *c = spell_assets(c, lit, reused, new_assets);
-                }
-            }
-        }
-        if kids.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b)) {
-            return n.clone();
-        }
-        literal_if_same(n, kids, lit)
-    });
-    if missing {
-        return Err(conflict("an attached model has no part"));
+    struct KeepRead<'a> {
+        read: &'a Model,
+        lit: &'a Model,
+        asset_of: &'a [(&'a Model, ElementId)],
+        reused: &'a HashSet<ElementId>,
+        new_assets: &'a [Node],
     }
-    Ok(root)
+    impl Spelling for KeepRead<'_> {
+        fn frame(&mut self, frame: &Node, written: Node) -> Option<Node> {
+            spell_frame(frame, self.read, self.lit, self.asset_of, written)
+        }
+        fn assets(&mut self, section: &Node) -> Node {
+            spell_assets(section, self.lit, self.reused, self.new_assets)
+        }
+        fn node(&mut self, n: &Node, kids: Vec<Node>) -> Node {
+            if kids.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b)) {
+                return n.clone();
+            }
+            literal_if_same(n, kids, self.lit)
+        }
+    }
+    let mut how = KeepRead { read: &src.read, lit: src.spelled(), asset_of, reused, new_assets };
+    spell_scene(model, asset_of, &mut how).map_err(|e| match e {
+        SpellError::Settings(k) => conflict(&k),
+        SpellError::NoPart => conflict("an attached model has no part"),
+    })
 }
 
 /// `n` with the children `kids`: the node of the model as read (`lit`) where that is
@@ -410,17 +395,16 @@ fn literal_if_same(n: &Node, kids: Vec<Node>, lit: &Model) -> Node {
 }
 
 /// The attachment frame `frame` spelled: the body read where nothing of it changed,
-/// else `body(frame)` (a new body holding an `<attach>`), keeping the tags read.
+/// else `new` (a new body holding an `<attach>`), keeping the tags read.
 fn spell_frame(
     frame: &Node,
     read: &Model,
     lit: &Model,
     asset_of: &[(&Model, ElementId)],
-    body: impl FnOnce(&Node) -> Option<Node>,
+    new: Node,
 ) -> Option<Node> {
     let a = frame.attached()?;
     let asset = asset_of.iter().find(|(m, _)| m.ptr_eq(&a.model))?.1;
-    let new = body(frame)?;
     let was = lit.node_by_id(frame.id());
     if let (Some(r), Some(l)) = (read.node_by_id(frame.id()), was) {
         let same = l.kind() == new.kind()

@@ -55,7 +55,7 @@
 //! back as that class inside an unnamed root class (MuJoCo compiles it the same).
 //! The README's "Scenes" gives the figures (`mjcf-mujoco/tests/scenes.rs`).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use smol_str::SmolStr;
@@ -420,8 +420,6 @@ pub(crate) fn frame_joint_names(model: &Model) -> HashMap<ElementId, String> {
 /// `<model>` per distinct attached model (`children`: each with its file), and each
 /// attachment frame a body (or MuJoCo `<frame>`) holding an `<attach>`.
 fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, WriteError> {
-    let merged = settings::merged(model).map_err(|k| WriteError::Conflict(k.to_string()))?;
-    let joint_names = frame_joint_names(model);
     // The asset `<model>`s, named after their files, each free in this model.
     let model_kind = ElementKind::ASSET.child_of_role(Role::AssetModel);
     let mut assets: Vec<Node> = Vec::new();
@@ -447,57 +445,26 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
             asset_of.push((child, id));
         }
     }
-    let world_level = world_level(model);
-    // Set if a frame's model has no asset (every attached value has one).
-    let mut missing = false;
-    let root = model.root.rebuild(|n, children| {
-        let parent_world = world_level.contains(&n.id());
-        let mut changed = false;
-        let children: crate::seq::Seq<Node> = children
-            .iter()
-            .zip(n.children().iter())
-            .map(|(new, old)| {
-                changed |= !new.ptr_eq(old);
-                match new.attached() {
-                    Some(_) => {
-                        changed = true;
-                        frame_as_body(new, n.kind(), parent_world, &joint_names, &asset_of)
-                            .unwrap_or_else(|| {
-                                missing = true;
-                                new.clone()
-                            })
-                    }
-                    None => new.clone(),
-                }
-            })
-            .collect();
-        if n.kind() == ElementKind::ROOT {
-            let children = children
-                .iter()
-                .map(|c| {
-                    if settings::is_settings_section(c.kind()) {
-                        merged.iter().find(|m| m.kind() == c.kind()).cloned().unwrap_or(c.clone())
-                    } else if c.kind() == ElementKind::ASSET && !assets.is_empty() {
-                        let mut own = c.children().clone();
-                        for a in &assets {
-                            own.push_back(a.clone());
-                        }
-                        c.with_children(own)
-                    } else {
-                        c.clone()
-                    }
-                })
-                .collect();
-            return n.with_children(children);
+    /// The whole scene written anew.
+    struct Anew<'a>(&'a [Node]);
+    impl Spelling for Anew<'_> {
+        fn assets(&mut self, section: &Node) -> Node {
+            if self.0.is_empty() {
+                return section.clone();
+            }
+            let mut own = section.children().clone();
+            for a in self.0 {
+                own.push_back(a.clone());
+            }
+            section.with_children(own)
         }
-        if changed { n.with_children(children) } else { n.clone() }
-    });
-    if missing {
-        return Err(WriteError::Conflict(format!(
-            "a model attached to '{}' has no part",
-            model.name()
-        )));
     }
+    let root = spell(model, &asset_of, &mut Anew(&assets)).map_err(|e| {
+        WriteError::Conflict(match e {
+            SpellError::Settings(k) => k,
+            SpellError::NoPart => format!("a model attached to '{}' has no part", model.name()),
+        })
+    })?;
     let mut index = Index::default();
     index.insert_subtree(None, &root, 0).map_err(|d| {
         WriteError::Conflict(format!(
@@ -507,6 +474,85 @@ fn transform(model: &Model, children: &[(&Model, FileAsset)]) -> Result<Model, W
         ))
     })?;
     Ok(Model::from_parts(root, index, crate::files::FileContext::clone(&model.files)))
+}
+
+/// How a walk of [`spell`] spells a composed model as a scene: [`Model::save_scene`]
+/// writes everything anew; the lossless save keeps the nodes it read where nothing
+/// changed.
+pub(crate) trait Spelling {
+    /// The attachment frame `frame`, to be written as `written` (the body, or MuJoCo
+    /// `<frame>`, holding its `<attach>`): what is written (`None`: it cannot be).
+    fn frame(&mut self, frame: &Node, written: Node) -> Option<Node> {
+        let _ = frame;
+        Some(written)
+    }
+
+    /// The `<asset>` section with the scene's asset `<model>`s.
+    fn assets(&mut self, section: &Node) -> Node;
+
+    /// `n` with its children spelled as `kids`.
+    fn node(&mut self, n: &Node, kids: Vec<Node>) -> Node {
+        if kids.iter().zip(n.children().iter()).all(|(a, b)| a.ptr_eq(b)) {
+            return n.clone();
+        }
+        n.with_children(kids.into_iter().collect())
+    }
+}
+
+/// Why [`spell`] failed.
+pub(crate) enum SpellError {
+    /// The attached models' settings cannot be merged (what conflicts).
+    Settings(String),
+    /// An attached model has no asset `<model>` (no part).
+    NoPart,
+}
+
+/// `model` spelled as a scene, the one walk of both saves: every attachment frame a
+/// body (or MuJoCo `<frame>`) holding `<attach model="M" prefix="scope/"/>`, `M` its
+/// model's asset in `asset_of`; the global settings sections the merged ones; the
+/// `<asset>` section as `how` gives it.
+///
+/// Time: O(n) for the `n` elements of the model, plus `how`'s.
+pub(crate) fn spell(
+    model: &Model,
+    asset_of: &[(&Model, ElementId)],
+    how: &mut impl Spelling,
+) -> Result<Node, SpellError> {
+    let merged = settings::merged(model).map_err(|k| SpellError::Settings(k.to_string()))?;
+    let joint_names = frame_joint_names(model);
+    let world: HashSet<ElementId> = world_level(model).into_iter().collect();
+    let mut missing = false;
+    let root = model.root.rebuild(|n, children| {
+        let parent_world = world.contains(&n.id());
+        let mut kids: Vec<Node> = Vec::with_capacity(children.len());
+        for new in children.iter() {
+            if new.attached().is_none() {
+                kids.push(new.clone());
+                continue;
+            }
+            let written = frame_as_body(new, n.kind(), parent_world, &joint_names, asset_of);
+            kids.push(written.and_then(|w| how.frame(new, w)).unwrap_or_else(|| {
+                missing = true;
+                new.clone()
+            }));
+        }
+        if n.kind() == ElementKind::ROOT {
+            for c in kids.iter_mut() {
+                if settings::is_settings_section(c.kind()) {
+                    if let Some(m) = merged.iter().find(|m| m.kind() == c.kind()) {
+                        *c = m.clone();
+                    }
+                } else if c.kind() == ElementKind::ASSET {
+                    *c = how.assets(c);
+                }
+            }
+        }
+        how.node(n, kids)
+    });
+    if missing {
+        return Err(SpellError::NoPart);
+    }
+    Ok(root)
 }
 
 /// The world-level containers of `model`: the worldbody and the MuJoCo `<frame>`s in
