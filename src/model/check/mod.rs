@@ -33,6 +33,7 @@ mod massless;
 mod mocap;
 mod plane;
 mod references;
+mod target;
 mod values;
 mod walk;
 

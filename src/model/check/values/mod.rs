@@ -18,7 +18,11 @@ use crate::value::Value;
 use super::ProblemKind;
 use super::walk::{Event, Rule};
 
+mod custom;
 mod geom;
+mod links;
+mod sensor;
+mod tendon;
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -129,7 +133,8 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS];
+const TABLES: &[&[Check]] =
+    &[geom::CHECKS, tendon::CHECKS, sensor::CHECKS, links::CHECKS, custom::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
