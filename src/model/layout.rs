@@ -282,18 +282,19 @@ pub(crate) fn effective<'m>(
 }
 
 /// The value of `attr` the defaults of `kind`'s tag in `class` and the classes above it
-/// give.
+/// give (a tendon's, `<fixed>` or `<spatial>`, are the class's `<tendon>`).
 pub(crate) fn from_classes<'m>(
     model: &'m Model,
     kind: ElementKind,
     class: Option<ElementId>,
     attr: &str,
 ) -> Option<&'m Value> {
+    let tag = if kind.is(Role::Tendon) { "tendon" } else { kind.tag() };
     let mut cur = class;
     while let Some(id) = cur {
         let class_node = model.node_by_id(id)?;
         // The class's defaults of the element's tag.
-        let default = class_node.kind().child(kind.tag()).and_then(|k| class_node.child_of_kind(k));
+        let default = class_node.kind().child(tag).and_then(|k| class_node.child_of_kind(k));
         if let Some(v) = default.and_then(|d| d.attr(d.kind().attr_index(attr)?)) {
             return Some(v);
         }

@@ -34,6 +34,7 @@ mod mocap;
 mod plane;
 mod references;
 mod target;
+mod user_data;
 mod values;
 mod walk;
 
@@ -55,6 +56,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
         Box::new(values::Values),
+        Box::new(user_data::UserData::new(model)),
     ]
 }
 

@@ -264,14 +264,22 @@ mod tests {
     }
 
     /// A class's springlength of two numbers under the tendon's own one number is the
-    /// tendon's one number, both ends (MuJoCo 4.0.0 compiles it).
+    /// tendon's one number, both ends; a class's width counts (MuJoCo 4.0.0's verdicts).
     #[test]
-    fn one_springlength_number_is_both_ends_whatever_the_class_gives() {
+    fn a_tendon_s_class_is_its_default_class_s_tendon() {
         let text = format!(
             r#"<mujoco><default><tendon springlength="0 1"/></default><worldbody><site name="s"/>
             <site name="t" pos="1 0 0"/></worldbody><tendon><spatial springlength="2">{ST}</spatial></tendon></mujoco>"#
         );
         assert_eq!(super::super::tests::refused(&text), Vec::<&str>::new());
+        // A tendon's class is the class's `<tendon>`.
+        let width = |w: &str| {
+            format!(
+                r#"<mujoco><default><tendon width="{w}"/></default><worldbody><site name="s"/>
+                <site name="t" pos="1 0 0"/></worldbody><tendon><spatial>{ST}</spatial></tendon></mujoco>"#
+            )
+        };
+        assert_pairs("tendon-width", &[(&width("0"), &width("0.01"))]);
     }
 
     #[test]
