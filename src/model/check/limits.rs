@@ -6,8 +6,8 @@
 //! (its own or its classes') `true`; `auto` or unset with the compiler's
 //! `autolimits` on (the default) when the range is given with its low end below its
 //! high end (so `range="1 0"` alone is simply not a limit). With `autolimits` off, a
-//! range given without `limited` is refused. A limit without a range is the range
-//! `0 0`. A sensor of a joint's or tendon's limit needs the joint or tendon limited.
+//! range given without `limited` is refused. A joint's or tendon's limit without a
+//! range is the range `0 0`. A sensor of a joint's or tendon's limit needs the joint or tendon limited.
 
 use crate::model::Model;
 use crate::model::layout::{JointType, effective, joint_type};
@@ -146,7 +146,12 @@ impl Limits {
                 limited: limit.limited,
             });
         };
-        // A limit without a range is the range `0 0`.
+        // A limit without a range is the range `0 0`; but an actuator's range may come
+        // from a class's default of another actuator tag (MuJoCo's actuator defaults
+        // are one for all tags), which is not read here: not judged.
+        if range.is_none() && e.node.kind().role().is_some_and(Role::is_actuator) {
+            return None;
+        }
         let r = range.map_or([0.0, 0.0], |r| [r[0], r[1]]);
         let wrong = match limit.must {
             Must::Increase => r[0] >= r[1],
@@ -268,7 +273,6 @@ mod tests {
             // A limit without a range is `0 0`.
             ("", r#"limited="true""#, ""),
             ("", r#"actuatorfrclimited="true""#, ""),
-            ("", "", r#"<actuator><motor joint="j" forcelimited="true"/></actuator>"#),
             (
                 "",
                 "",
@@ -307,6 +311,17 @@ mod tests {
         for (compiler, body, sections) in &compiled {
             assert_eq!(problems(compiler, body, sections), [], "{compiler} {body} {sections}");
         }
+    }
+
+    /// MuJoCo 4.0.0 compiles it: its actuator defaults are one for every actuator tag,
+    /// so a `<motor>` is limited by its class's `<general>` range.
+    #[test]
+    fn an_actuator_limit_without_its_own_range_is_not_judged() {
+        let text = r#"<mujoco><default><general ctrlrange="-1 1"/></default><worldbody><body>
+            <joint name="j"/><geom size=".1"/></body></worldbody>
+            <actuator><motor joint="j" ctrllimited="true"/></actuator></mujoco>"#;
+        let m = Model::from_xml_str(text).unwrap();
+        assert_eq!(kinds_of(&m, Limits::new(&m)), []);
     }
 
     #[test]

@@ -190,7 +190,9 @@ pub enum ProblemKind {
     },
     /// Something else MuJoCo refuses in the element's own values (an attribute out
     /// of its range, a zero axis, two attributes that exclude each other, a keyword
-    /// another one rules out), found by one of the checks of the `values` rule, in
+    /// another one rules out), or in what it names (a sensor's joint of the wrong
+    /// type, a tendon's path), found by one of the checks of the `values` rule (or of
+    /// a rule that needs the model's settings: `user` lengths, limit sensors), in
     /// MuJoCo 4.0.0's words.
     Refused {
         /// The check's name, stable (`geom-size-positive`).
