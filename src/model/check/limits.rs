@@ -17,6 +17,7 @@ use crate::value::Value;
 
 use super::ProblemKind;
 use super::target::{Target, named};
+use super::values::on;
 use super::walk::{Event, Rule};
 
 /// What a limited range must be.
@@ -168,10 +169,14 @@ impl Limits {
     /// A sensor of a joint's or tendon's limit whose joint or tendon is not limited
     /// (a free joint never is).
     fn sensor(&self, e: &Event<'_>) -> Option<ProblemKind> {
-        let tag = e.node.kind().tag();
-        let (attr, mujoco) = if tag.starts_with("jointlimit") {
+        let is = |of: &str| {
+            ["pos", "vel", "frc"]
+                .iter()
+                .any(|q| on::at(e.node.kind(), &format!("sensor/{of}limit{q}")))
+        };
+        let (attr, mujoco) = if is("joint") {
             ("joint", "joint must be limited in sensor")
-        } else if tag.starts_with("tendonlimit") {
+        } else if is("tendon") {
             ("tendon", "tendon must be limited in sensor")
         } else {
             return None;

@@ -45,11 +45,7 @@ impl UserData {
 fn which(kind: ElementKind) -> Option<usize> {
     if kind.is(Role::Tendon) {
         Some(0)
-    } else if kind
-        .spec()
-        .parent
-        .is_some_and(|p| p.tag() == "sensor" && p.spec().parent == Some(ElementKind::ROOT))
-    {
+    } else if super::values::on::in_section(kind, "sensor") {
         Some(1)
     } else {
         None

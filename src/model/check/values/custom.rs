@@ -12,9 +12,9 @@ const OBJECT_TYPES: [&str; 26] = [
     "numeric", "text", "tuple", "key", "plugin", "frame",
 ];
 
-/// An `<element>` of a tuple.
+/// An `<element>` of a tuple (a tuple's only child kind).
 fn tuple_element(k: ElementKind) -> bool {
-    k.tag() == "element" && k.spec().parent.is_some_and(|p| on::at(p, "custom/tuple"))
+    k.spec().parent.is_some_and(|p| on::at(p, "custom/tuple"))
 }
 
 pub(crate) const CHECKS: &[Check] = &[

@@ -154,11 +154,13 @@ fn interval(at: &At<'_, '_>) -> Option<Found> {
 /// Whether the sensor's data is an axis or a quaternion (a `<user>` sensor's by its
 /// `datatype`; a normal's axis is exempt).
 fn axis_or_quaternion(at: &At<'_, '_>) -> bool {
-    match at.kind().tag() {
-        "framequat" | "ballquat" | "framexaxis" | "frameyaxis" | "framezaxis" => true,
-        "user" => matches!(at.str("datatype"), Some("axis" | "quaternion")),
-        _ => false,
+    let k = at.kind();
+    if on::at(k, "sensor/user") {
+        return matches!(at.str("datatype"), Some("axis" | "quaternion"));
     }
+    ["framequat", "ballquat", "framexaxis", "frameyaxis", "framezaxis"]
+        .iter()
+        .any(|t| on::at(k, &format!("sensor/{t}")))
 }
 
 /// A `<user>` sensor's `dim`: not negative, 3 for an axis, 4 for a quaternion.
@@ -176,10 +178,13 @@ fn user_dim(at: &At<'_, '_>) -> Option<Found> {
 /// A joint sensor's joint of a type it cannot read (its type its own or its
 /// classes').
 fn joint_kind(at: &At<'_, '_>) -> Option<Found> {
-    let ball = match at.kind().tag() {
-        "jointpos" | "jointvel" | "jointactuatorfrc" => false,
-        "ballquat" | "ballangvel" => true,
-        _ => return None,
+    let is = |tags: &[&str]| tags.iter().any(|t| on::at(at.kind(), &format!("sensor/{t}")));
+    let ball = if is(&["jointpos", "jointvel", "jointactuatorfrc"]) {
+        false
+    } else if is(&["ballquat", "ballangvel"]) {
+        true
+    } else {
+        return None;
     };
     let j = named(at.e.model, at.e.node, at.e.class, "joint")?;
     let ty = joint_type(j.model, j.node, j.class);
@@ -197,7 +202,8 @@ const RAY_DATA: [&str; 6] = ["dist", "dir", "origin", "point", "normal", "depth"
 
 /// `data` keywords, each known and said once, out of MuJoCo's order.
 fn data_order(at: &At<'_, '_>) -> Option<Found> {
-    let keys: &[&str] = if at.kind().tag() == "contact" { &CONTACT_DATA } else { &RAY_DATA };
+    let contact = on::at(at.kind(), "sensor/contact");
+    let keys: &[&str] = if contact { &CONTACT_DATA } else { &RAY_DATA };
     let positions: Vec<usize> = at
         .str("data")?
         .split_whitespace()

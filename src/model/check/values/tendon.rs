@@ -4,6 +4,7 @@
 use crate::model::check::target::{named, same};
 use crate::model::layout::effective;
 use crate::model::tree::Node;
+use crate::schema::ElementKind;
 use crate::value::Value;
 
 use super::{At, Check, Found, found, found_element, on};
@@ -92,18 +93,23 @@ enum Wrap {
     Joint,
 }
 
-fn wrap(n: &Node) -> Wrap {
-    match n.kind().tag() {
-        "site" => Wrap::Site,
-        "geom" => Wrap::Geom,
-        "pulley" => Wrap::Pulley,
-        _ => Wrap::Joint,
+/// The kind of wrap `n` is, a child of the tendon `tendon` (its schema kind).
+fn wrap(tendon: ElementKind, n: &Node) -> Wrap {
+    let k = Some(n.kind());
+    if k == tendon.child("site") {
+        Wrap::Site
+    } else if k == tendon.child("geom") {
+        Wrap::Geom
+    } else if k == tendon.child("pulley") {
+        Wrap::Pulley
+    } else {
+        Wrap::Joint
     }
 }
 
 /// A spatial tendon, as MuJoCo decides it: its path's first wrap is not a joint.
 fn spatial(at: &At<'_, '_>) -> bool {
-    at.e.node.children().iter().next().is_some_and(|c| wrap(c) != Wrap::Joint)
+    at.e.node.children().iter().next().is_some_and(|c| wrap(at.kind(), c) != Wrap::Joint)
 }
 
 /// A wrapping geom that is not a sphere or cylinder (its type its own or its
@@ -111,7 +117,7 @@ fn spatial(at: &At<'_, '_>) -> bool {
 fn wrap_geom_type(at: &At<'_, '_>) -> Option<Found> {
     let model = at.e.model;
     for (i, c) in at.e.node.children().iter().enumerate() {
-        if wrap(c) != Wrap::Geom {
+        if wrap(at.kind(), c) != Wrap::Geom {
             continue;
         }
         let Some(geom) = named(model, c, None, "geom") else { continue };
@@ -136,7 +142,7 @@ fn spatial_path<'m>(at: &At<'_, 'm>) -> Option<Found> {
         return None;
     }
     let nodes: Vec<&'m Node> = at.e.node.children().iter().collect();
-    let kinds: Vec<Wrap> = nodes.iter().map(|n| wrap(n)).collect();
+    let kinds: Vec<Wrap> = nodes.iter().map(|n| wrap(at.kind(), n)).collect();
     let sz = kinds.len();
     let name = at.name();
     let prev = |i: usize| (i > 0).then(|| kinds[i - 1]);
