@@ -26,6 +26,7 @@ mod arrays;
 mod dofs;
 mod expansion;
 mod free_joint;
+mod history;
 pub(crate) use free_joint::top_level_floating;
 mod key_length;
 mod limits;
@@ -57,6 +58,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(limits::Limits::new(model)),
         Box::new(values::Values),
         Box::new(user_data::UserData::new(model)),
+        Box::new(history::History::new(model)),
     ]
 }
 

@@ -112,13 +112,18 @@ pub(crate) const CHECKS: &[Check] = &[
         fix: "name two different objects, neither a height field",
     },
     Check {
-        name: "sensor-rangefinder-camera-resolution",
-        on: |k| on::at(k, "sensor/rangefinder"),
+        name: "sensor-camera-resolution",
+        on: |k| on::at(k, "sensor/rangefinder") || on::at(k, "sensor/camprojection"),
         test: |at| {
             let camera = named(at.e.model, at.e.node, at.e.class, "camera")?;
             let r = camera.get("resolution").map(numbers).unwrap_or_else(|| vec![1.0, 1.0]);
             r.iter().take(2).any(|x| *x <= 0.0).then_some(())?;
-            found("camera", "rangefinder camera sensor requires positive camera resolution")
+            let message = if on::at(at.kind(), "sensor/rangefinder") {
+                "rangefinder camera sensor requires positive camera resolution"
+            } else {
+                "camera projection sensor requires camera resolution"
+            };
+            found("camera", message)
         },
         fix: "give the camera a positive resolution",
     },
@@ -356,9 +361,17 @@ mod tests {
             )
         };
         let (bad, good) = (camera(r#"resolution="0 4""#), camera(""));
-        assert_pairs("sensor-rangefinder-camera-resolution", &[(&bad, &good)]);
+        assert_pairs("sensor-camera-resolution", &[(&bad, &good)]);
         let (bad, good) = (camera(r#"resolution="4 -1""#), camera(r#"resolution="4 4""#));
-        assert_pairs("sensor-rangefinder-camera-resolution", &[(&bad, &good)]);
+        assert_pairs("sensor-camera-resolution", &[(&bad, &good)]);
+        let projection = |res: &str| {
+            format!(
+                r#"<mujoco><worldbody><site name="s"/><camera name="c" {res}/></worldbody>
+                <sensor><camprojection site="s" camera="c"/></sensor></mujoco>"#
+            )
+        };
+        let (bad, good) = (projection(r#"resolution="-1 4""#), projection(""));
+        assert_pairs("sensor-camera-resolution", &[(&bad, &good)]);
     }
 
     /// A joint's type given by the class in force where it is (a `childclass`).
