@@ -82,10 +82,10 @@ pub(crate) const CHECKS: &[Check] = &[
         fix: "name a joint of the type the sensor reads",
     },
     Check {
-        name: "sensor-data-order",
+        name: "sensor-data",
         on: |k| on::at(k, "sensor/contact") || on::at(k, "sensor/rangefinder"),
         test: data_order,
-        fix: "list the data keywords in the order MuJoCo gives",
+        fix: "list known data keywords, each once, in the order MuJoCo gives",
     },
     Check {
         name: "sensor-contact-num",
@@ -205,18 +205,21 @@ const CONTACT_DATA: [&str; 9] =
     ["found", "force", "torque", "dist", "pos", "normal", "tangent", "linvel", "angvel"];
 const RAY_DATA: [&str; 6] = ["dist", "dir", "origin", "point", "normal", "depth"];
 
-/// `data` keywords, each known and said once, out of MuJoCo's order.
+/// `data`'s first fault, as MuJoCo's reader finds it: a keyword said twice, one it
+/// does not know (each in the order written), then the keywords out of its order.
 fn data_order(at: &At<'_, '_>) -> Option<Found> {
     let contact = on::at(at.kind(), "sensor/contact");
     let keys: &[&str] = if contact { &CONTACT_DATA } else { &RAY_DATA };
-    let positions: Vec<usize> = at
-        .str("data")?
-        .split_whitespace()
-        .map(|w| keys.iter().position(|k| *k == w))
-        .collect::<Option<_>>()?;
-    let distinct = positions.iter().collect::<std::collections::HashSet<_>>().len();
-    if positions.len() > keys.len() || distinct < positions.len() {
-        return None; // MuJoCo refuses these with other words
+    let mut positions: Vec<usize> = Vec::new();
+    let words: Vec<&str> = at.str("data")?.split_whitespace().collect();
+    for (n, w) in words.iter().enumerate() {
+        if words[..n].contains(w) {
+            return found("data", format!("duplicate keyword: '{w}'"));
+        }
+        match keys.iter().position(|k| k == w) {
+            Some(p) => positions.push(p),
+            None => return found("data", format!("invalid keyword: '{w}'")),
+        }
     }
     positions.windows(2).any(|w| w[1] <= w[0]).then_some(())?;
     found("data", format!("data attributes must be in order: {}", keys.join(", ")))
@@ -312,7 +315,7 @@ mod tests {
             pairs("sensor-user-dim", &[(&user(bad), &user(good))]);
         }
         pairs(
-            "sensor-data-order",
+            "sensor-data",
             &[
                 (
                     r#"<contact site="s" data="force found"/>"#,
@@ -321,6 +324,15 @@ mod tests {
                 (
                     r#"<rangefinder site="s" data="dir dist"/>"#,
                     r#"<rangefinder site="s" data="dist dir origin point normal depth"/>"#,
+                ),
+                (
+                    r#"<contact site="s" data="found found"/>"#,
+                    r#"<contact site="s" data="  force   torque "/>"#,
+                ),
+                (r#"<contact site="s" data="force nope"/>"#, r#"<contact site="s" data="found"/>"#),
+                (
+                    r#"<rangefinder site="s" data="dist dist"/>"#,
+                    r#"<rangefinder site="s" data=""/>"#,
                 ),
             ],
         );
