@@ -133,7 +133,8 @@ fn wrap_geom_type(at: &At<'_, '_>) -> Option<Found> {
     None
 }
 
-/// The first fault of a spatial path, in MuJoCo's order: a pulley after a pulley or
+/// The first fault of a spatial path, in MuJoCo's order: pulleys alone, a pulley
+/// after a pulley or
 /// last, a site with pulleys (or the path's ends) on both sides, a site repeated next
 /// to itself, a geom not between two sites, a geom with a tendon armature.
 fn spatial_path<'m>(at: &At<'_, 'm>) -> Option<Found> {
@@ -145,6 +146,10 @@ fn spatial_path<'m>(at: &At<'_, 'm>) -> Option<Found> {
     let kinds: Vec<Wrap> = nodes.iter().map(|n| wrap(at.kind(), n)).collect();
     let sz = kinds.len();
     let name = at.name();
+    // Pulleys alone name nothing MuJoCo can find.
+    if kinds.iter().all(|k| *k == Wrap::Pulley) {
+        return found_element(format!("tendon '{name}': no attached reference found"));
+    }
     let prev = |i: usize| (i > 0).then(|| kinds[i - 1]);
     let next = |i: usize| kinds.get(i + 1).copied();
     for i in 0..sz {
@@ -329,6 +334,11 @@ mod tests {
             (
                 r#"<spatial><geom geom="g"/><site site="t"/></spatial>"#,
                 r#"<spatial><site site="u"/><site site="t"/></spatial>"#,
+            ),
+            // Pulleys alone; a pulley between sites.
+            (
+                r#"<spatial><pulley divisor="1"/><pulley divisor="1"/></spatial>"#,
+                r#"<spatial><site site="u"/><site site="t"/><pulley divisor="1"/><site site="s"/><site site="t"/></spatial>"#,
             ),
             // A wrapping geom with a tendon armature; an armature without one.
             (
