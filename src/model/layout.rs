@@ -300,27 +300,35 @@ pub(crate) fn effective<'m>(
 }
 
 /// The value of `attr` the defaults of `kind`'s tag in `class` and the classes above it
-/// give.
+/// give (a tendon's, `<fixed>` or `<spatial>`, are the class's `<tendon>`).
 pub(crate) fn from_classes<'m>(
     model: &'m Model,
     kind: ElementKind,
     class: Option<ElementId>,
     attr: &str,
 ) -> Option<&'m Value> {
-    let mut cur = class;
-    while let Some(id) = cur {
-        let class_node = model.node_by_id(id)?;
-        // The class's defaults of the element's tag.
-        let default = class_node.kind().child(kind.tag()).and_then(|k| class_node.child_of_kind(k));
-        if let Some(v) = default.and_then(|d| d.attr(d.kind().attr_index(attr)?)) {
-            return Some(v);
-        }
-        cur = model
+    class_defaults(model, kind, class).find_map(|d| d.attr(d.kind().attr_index(attr)?))
+}
+
+/// The defaults an element of `kind` takes from `class` and the classes above it,
+/// nearest first: each class's element of its tag (a tendon's, `<fixed>` or
+/// `<spatial>`, is the class's `<tendon>`).
+pub(crate) fn class_defaults<'m>(
+    model: &'m Model,
+    kind: ElementKind,
+    class: Option<ElementId>,
+) -> impl Iterator<Item = &'m Node> + 'm {
+    let tag = if kind.is(Role::Tendon) { "tendon" } else { kind.tag() };
+    let classes = std::iter::successors(class, move |id| {
+        model
             .index
-            .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
-    }
-    None
+            .parent(*id)
+            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)))
+    });
+    classes.filter_map(move |id| {
+        let class_node = model.node_by_id(id)?;
+        class_node.kind().child(tag).and_then(|k| class_node.child_of_kind(k))
+    })
 }
 
 /// The joint type of a joint element, as written or as its classes set it: `free`,

@@ -27,6 +27,7 @@ mod bodies;
 mod dofs;
 mod expansion;
 mod free_joint;
+mod history;
 pub(crate) use free_joint::top_level_floating;
 mod key_length;
 mod limits;
@@ -34,6 +35,7 @@ mod massless;
 mod mocap;
 mod plane;
 mod references;
+mod target;
 mod values;
 mod walk;
 
@@ -56,6 +58,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(limits::Limits::new(model)),
         Box::new(values::Values::new(model)),
         Box::new(bodies::Bodies::new(model)),
+        Box::new(history::History::new(model)),
     ]
 }
 
@@ -189,7 +192,9 @@ pub enum ProblemKind {
     },
     /// Something else MuJoCo refuses in the element's own values (an attribute out
     /// of its range, a zero axis, two attributes that exclude each other, a keyword
-    /// another one rules out), found by one of the checks of the `values` rule, in
+    /// another one rules out), or in what it names (a sensor's joint of the wrong
+    /// type, a tendon's path), found by one of the checks of the `values` rule (or of
+    /// a rule that needs the model's settings: `user` lengths, limit sensors), in
     /// MuJoCo 4.0.0's words.
     Refused {
         /// The check's name, stable (`geom-size-positive`).

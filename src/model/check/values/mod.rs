@@ -12,7 +12,7 @@
 use std::sync::OnceLock;
 
 use crate::model::Model;
-use crate::model::layout::{effective, from_classes};
+use crate::model::layout::{class_defaults, effective, from_classes};
 use crate::model::settings;
 use crate::model::tree::Node;
 use crate::schema::{ElementKind, Role};
@@ -23,14 +23,18 @@ use super::walk::{Event, Rule};
 
 mod assets;
 mod camera;
+mod custom;
 mod flex;
 mod frame;
 mod geom;
 pub(crate) mod inertial;
 mod joint;
+mod links;
 mod mesh;
 pub(crate) mod orient;
+mod sensor;
 mod site;
+mod tendon;
 mod texture;
 mod user;
 
@@ -38,8 +42,9 @@ mod user;
 /// read, MuJoCo's defaults where none is given.
 #[derive(Clone, Debug)]
 pub(crate) struct Settings {
-    /// `size/nuser_body`, `nuser_jnt`, `nuser_geom`, `nuser_site`, `nuser_cam`, by
-    /// name (-1: as many as the longest `user` needs).
+    /// `size/nuser_body`, `nuser_jnt`, `nuser_geom`, `nuser_site`, `nuser_cam`,
+    /// `nuser_tendon`, `nuser_actuator`, `nuser_sensor`, by name (-1: as many as the
+    /// longest `user` needs).
     pub(crate) nuser: Vec<(&'static str, i64)>,
     /// `compiler/eulerseq`.
     pub(crate) eulerseq: String,
@@ -75,17 +80,21 @@ impl Settings {
                 .and_then(|v| v.as_str().map(str::to_string))
                 .unwrap_or(default.into())
         };
-        let nuser = ["nuser_body", "nuser_jnt", "nuser_geom", "nuser_site", "nuser_cam"]
-            .into_iter()
-            .map(|a| {
-                (
-                    a,
-                    get(&size, a)
-                        .and_then(|v| numbers(&v)?.first().copied())
-                        .map_or(-1, |x| x as i64),
-                )
-            })
-            .collect();
+        let nuser = [
+            "nuser_body",
+            "nuser_jnt",
+            "nuser_geom",
+            "nuser_site",
+            "nuser_cam",
+            "nuser_tendon",
+            "nuser_actuator",
+            "nuser_sensor",
+        ]
+        .into_iter()
+        .map(|a| {
+            (a, get(&size, a).and_then(|v| numbers(&v)?.first().copied()).map_or(-1, |x| x as i64))
+        })
+        .collect();
         let range = get(&compiler, "inertiagrouprange").and_then(|v| numbers(&v));
         let range = match range.as_deref() {
             Some([a, b, ..]) => [*a as i64, *b as i64],
@@ -232,20 +241,7 @@ impl<'m> At<'_, 'm> {
     /// defaults of its tag in its class and each class above it.
     pub(crate) fn levels(&self) -> Vec<&'m Node> {
         let (model, node) = (self.e.model, self.e.node);
-        let mut out = vec![node];
-        let mut cur = self.e.class;
-        while let Some(id) = cur {
-            let Some(class_node) = model.node_by_id(id) else { break };
-            let kind = class_node.kind().child(node.kind().tag());
-            if let Some(d) = kind.and_then(|k| class_node.child_of_kind(k)) {
-                out.push(d);
-            }
-            cur = model
-                .index
-                .parent(id)
-                .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
-        }
-        out
+        std::iter::once(node).chain(class_defaults(model, node.kind(), self.e.class)).collect()
     }
 
     /// The name the element has in its model, or `""` (MuJoCo's messages quote it).
@@ -279,6 +275,10 @@ const TABLES: &[&[Check]] = &[
     assets::CHECKS,
     texture::CHECKS,
     flex::CHECKS,
+    tendon::CHECKS,
+    sensor::CHECKS,
+    links::CHECKS,
+    custom::CHECKS,
 ];
 
 /// The checks of each element kind (by kind index), gathered once.

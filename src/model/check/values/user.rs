@@ -1,5 +1,6 @@
 //! The checks of an element's `user` numbers against `<size nuser_*>` (MuJoCo's
-//! `Compile` of bodies, joints, geoms, sites and cameras).
+//! `Compile` of bodies, joints, geoms, sites, cameras, tendons, actuators and
+//! sensors).
 
 use crate::schema::{ElementKind, Role};
 
@@ -17,6 +18,12 @@ fn limit_of(k: ElementKind) -> Option<(&'static str, &'static str)> {
         Some(("nuser_site", "site"))
     } else if on::camera(k) {
         Some(("nuser_cam", "camera"))
+    } else if on::tendon(k) {
+        Some(("nuser_tendon", "tendon"))
+    } else if on::actuator(k) {
+        Some(("nuser_actuator", "actuator"))
+    } else if on::in_section(k, "sensor") {
+        Some(("nuser_sensor", "sensor"))
     } else {
         None
     }
@@ -51,7 +58,9 @@ fn too_long(at: &At<'_, '_>) -> Option<Found> {
         .map_or(0, |v| v.len());
     (len as i64 > n).then_some(())?;
     let message = match what {
-        "geom" => format!("user has more values than {setting} in geom '{}'", at.name()),
+        "geom" | "actuator" => {
+            format!("user has more values than {setting} in {what} '{}'", at.name())
+        }
         _ => format!("user has more values than {setting} in {what}"),
     };
     found("user", message)
@@ -80,6 +89,57 @@ mod tests {
             (
                 r#"<mujoco><size nuser_jnt="0"/><default><joint user="1"/></default><worldbody><body><joint/><geom size=".1"/></body></worldbody></mujoco>"#.into(),
                 r#"<mujoco><size nuser_jnt="1"/><default><joint user="1 2"/></default><worldbody><body><joint user="3"/><geom size=".1"/></body></worldbody></mujoco>"#.into(),
+            ),
+        ];
+        let pairs: Vec<(&str, &str)> =
+            pairs.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+        assert_pairs("user-too-long", &pairs);
+    }
+
+    /// Tendons, actuators and sensors, by their own numbers or a class's; the last
+    /// `<size>` giving a setting wins. Each verdict is MuJoCo 4.0.0's.
+    #[test]
+    fn tendon_actuator_and_sensor_user_numbers_must_fit_too() {
+        let with = |size: &str, defaults: &str, tendon: &str, actuator: &str, sensor: &str| {
+            format!(
+                r#"<mujoco>{size}<default>{defaults}</default><worldbody><body name="b"><joint name="j"/><geom size=".1"/></body></worldbody>
+                <tendon><fixed {tendon}><joint joint="j" coef="1"/></fixed></tendon>
+                <actuator><motor joint="j" {actuator}/></actuator>
+                <sensor><jointpos joint="j" {sensor}/></sensor></mujoco>"#
+            )
+        };
+        let pairs = [
+            (
+                with(r#"<size nuser_tendon="1"/>"#, "", r#"user="1 2""#, "", ""),
+                with(r#"<size nuser_tendon="1"/>"#, "", r#"user="1""#, "", ""),
+            ),
+            (
+                with(r#"<size nuser_sensor="0"/>"#, "", "", "", r#"user="1""#),
+                with(r#"<size nuser_sensor="-1"/>"#, "", "", "", r#"user="1 2 3""#),
+            ),
+            (
+                with(
+                    r#"<size nuser_sensor="2"/><size nuser_sensor="1"/>"#,
+                    "",
+                    "",
+                    "",
+                    r#"user="1 2""#,
+                ),
+                with(
+                    r#"<size nuser_sensor="1"/><size nuser_sensor="2"/>"#,
+                    "",
+                    "",
+                    "",
+                    r#"user="1 2""#,
+                ),
+            ),
+            (
+                with(r#"<size nuser_actuator="1"/>"#, "", "", r#"user="1 2""#, ""),
+                with(r#"<size nuser_actuator="2"/>"#, "", "", r#"user="1 2""#, ""),
+            ),
+            (
+                with(r#"<size nuser_tendon="1"/>"#, r#"<tendon user="1 2"/>"#, "", "", ""),
+                with(r#"<size nuser_tendon="2"/>"#, r#"<tendon user="1 2"/>"#, "", "", ""),
             ),
         ];
         let pairs: Vec<(&str, &str)> =
