@@ -103,9 +103,9 @@ impl<'m> Rule<'m> for Bodies {
             let s = |i: usize| own.get(i).or(own.first()).copied().unwrap_or(1.0);
             me.scale = [parent.scale[0] * s(0), parent.scale[1] * s(1), parent.scale[2] * s(2)];
             me.uneven_frames += usize::from(uneven(&[s(0), s(1), s(2)]));
-            // A frame's scale applies in its own axes: its own rotation, or one where
-            // the scale above is even, turns nothing against an uneven scale.
-            me.aligned = !uneven(&parent.scale) || (parent.aligned && !rotates(&at));
+            // A frame's scale applies in its own axes: its own rotation, or one with
+            // no uneven scale above, turns nothing against an uneven scale.
+            me.aligned = parent.uneven_frames == 0 || (parent.aligned && !rotates(&at));
         }
         if on::geom(k) {
             geom_mass(&at, &parent, out);
