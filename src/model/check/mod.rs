@@ -53,7 +53,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(key_length::KeyLength::new(model, options)),
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
-        Box::new(values::Values),
+        Box::new(values::Values::new(model)),
     ]
 }
 

@@ -46,6 +46,7 @@ use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
 use crate::xml::source::{NO_RECORD, RecordKind};
 
+mod cdata;
 mod events;
 mod finish;
 mod include;
@@ -467,6 +468,8 @@ struct Reader<'t> {
     /// The class `/` folded into the root class (`finish::hoist_root_class`): its
     /// element and the root class's.
     hoisted: Option<(ElementId, ElementId)>,
+    /// The `<text>`s read, for their CDATA (`cdata`).
+    text_fields: cdata::TextFields,
 }
 
 /// How a text's tags are recorded: its file in the source, and what its root tag
@@ -675,6 +678,10 @@ fn parse(
                 continue;
             }
             Event::Eof => break,
+            Event::CData(t) => {
+                cdata::read(r, stack.last(), t.as_ref(), offset)?;
+                continue;
+            }
             Event::Text(t) => {
                 if stack.is_empty() && !t.as_ref().trim().is_empty() {
                     return Err(
@@ -801,6 +808,9 @@ fn read_tag(
         return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
     }
     let index = read_element(r, tag, (parent, at.parent_tag), kind, offset)?;
+    if kind.is(crate::schema::Role::TextField) {
+        r.text_fields.opened(index, tag);
+    }
     let rec = record(r, tree, RecordKind::Element, r.arena[index].id, at);
     Ok(Open { entry: index, rec, tag: r.next_tag() })
 }
@@ -913,6 +923,7 @@ fn read_literal(
         scratch: Vec::new(),
         src,
         hoisted: None,
+        text_fields: cdata::TextFields::default(),
     };
     let first = tree.src.as_ref().map_or(0, |s| s.records.len());
     let model_name = parse(&mut r, Place::Root, max_depth, tree)?;

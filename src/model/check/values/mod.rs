@@ -9,9 +9,12 @@
 //! judged (MuJoCo judges the elements that use them). Each check is proved by the
 //! refused model and twin of `mjcf-mujoco/refusals` that carry its message.
 
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
+use crate::model::Model;
 use crate::model::layout::{effective, from_classes};
+use crate::model::settings;
+use crate::model::tree::Node;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
@@ -19,6 +22,9 @@ use super::ProblemKind;
 use super::walk::{Event, Rule};
 
 mod geom;
+mod global;
+mod presence;
+mod reader;
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
@@ -68,6 +74,11 @@ impl<'m> At<'_, 'm> {
     /// Whether `attr` is given (by the element or its classes).
     pub(crate) fn has(&self, attr: &str) -> bool {
         self.get(attr).is_some()
+    }
+
+    /// Whether the element itself gives `attr` (its classes aside).
+    pub(crate) fn own(&self, attr: &str) -> bool {
+        self.kind().attr_index(attr).is_some_and(|i| self.e.node.attr(i).is_some())
     }
 
     /// `attr` as text (a keyword, string or name).
@@ -129,7 +140,7 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS];
+const TABLES: &[&[Check]] = &[geom::CHECKS, global::CHECKS, presence::CHECKS, reader::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
@@ -147,24 +158,92 @@ fn by_kind() -> &'static Vec<Vec<&'static Check>> {
     })
 }
 
-/// The rule: every check of the element's kind.
-#[derive(Default)]
-pub(super) struct Values;
+/// The rule: every check of the element's kind. The global settings are judged as
+/// written: the sections merged across attachments (where the models give an
+/// attribute different values, the fold takes one: the least `znear`, the greatest
+/// `njmax`), each with its sub-elements, said on the outermost model's section (or on
+/// its root, for a section only attachments give).
+pub(super) struct Values<'m> {
+    /// The model checked (the outermost).
+    model: &'m Model,
+    /// Its settings sections as written, once asked.
+    merged: Option<Arc<[Node]>>,
+}
 
-impl<'m> Rule<'m> for Values {
-    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
-        let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
-        let at = At { e };
-        for check in checks {
-            if let Some(f) = (check.test)(&at) {
-                out.push(ProblemKind::Refused {
-                    rule: check.name,
-                    attribute: f.attribute,
-                    mujoco: f.mujoco,
-                    fix: check.fix,
-                });
-            }
+impl<'m> Values<'m> {
+    /// The rule for `model`.
+    pub(super) fn new(model: &'m Model) -> Values<'m> {
+        Values { model, merged: None }
+    }
+
+    /// The settings sections as written (a conflict, which attaching refuses, leaves
+    /// none to judge).
+    fn merged(&mut self) -> Arc<[Node]> {
+        let model = self.model;
+        self.merged
+            .get_or_insert_with(|| settings::merged(model).unwrap_or_else(|_| Arc::from([])))
+            .clone()
+    }
+}
+
+/// Whether `kind` is a settings section or inside one.
+fn in_settings(kind: ElementKind) -> bool {
+    let mut k = Some(kind);
+    while let Some(kind) = k {
+        if kind.is(Role::SettingsSection) {
+            return true;
         }
+        k = kind.spec().parent;
+    }
+    false
+}
+
+/// Every check of `e`'s element's kind.
+fn judge(e: &Event<'_>, out: &mut Vec<ProblemKind>) {
+    let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
+    let at = At { e };
+    for check in checks {
+        if let Some(f) = (check.test)(&at) {
+            out.push(ProblemKind::Refused {
+                rule: check.name,
+                attribute: f.attribute,
+                mujoco: f.mujoco,
+                fix: check.fix,
+            });
+        }
+    }
+}
+
+/// [`judge`] of the written settings element `node` and each element inside it, as
+/// if the walk were at `e`.
+fn judge_written(e: &Event<'_>, node: &Node, out: &mut Vec<ProblemKind>) {
+    let at = Event { node, class: None, ..*e };
+    judge(&at, out);
+    for c in node.children().iter() {
+        judge_written(e, c, out);
+    }
+}
+
+impl<'m> Rule<'m> for Values<'m> {
+    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+        let kind = e.node.kind();
+        if e.inst == 0 && kind == ElementKind::ROOT {
+            // The sections only attachments give.
+            let merged = self.merged();
+            let own = |k: ElementKind| e.node.child_of_kind(k).is_some();
+            for section in merged.iter().filter(|s| !own(s.kind())) {
+                judge_written(e, section, out);
+            }
+        } else if in_settings(kind) {
+            if e.inst == 0 && kind.is(Role::SettingsSection) {
+                let merged = self.merged();
+                if let Some(section) = merged.iter().find(|s| s.kind() == kind) {
+                    judge_written(e, section, out);
+                }
+            }
+            return;
+        }
+        judge(e, out);
     }
 }
 
@@ -209,7 +288,8 @@ pub(crate) mod on {
             .is_some_and(|p| p.tag() == section && p.spec().parent == Some(ElementKind::ROOT))
     }
 
-    /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`).
+    /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`;
+    /// `default/camera` in any default class).
     pub(crate) fn at(k: ElementKind, path: &str) -> bool {
         let (parent, tag) = path.rsplit_once('/').unwrap_or(("", path));
         if k.tag() != tag {
@@ -218,6 +298,7 @@ pub(crate) mod on {
         let p = k.spec().parent;
         match parent {
             "" => p == Some(ElementKind::ROOT),
+            "default" => p.is_some_and(|p| p.is(Role::DefaultClass)),
             "(world)body" => p.is_some_and(|p| {
                 p.is(Role::Body)
                     || p.is(Role::Worldbody)
@@ -242,7 +323,7 @@ pub(crate) mod tests {
     /// The names of the checks that find a problem in `xml`.
     pub(crate) fn refused(xml: &str) -> Vec<&'static str> {
         let m = Model::from_xml_str(xml).unwrap_or_else(|e| panic!("{e}: {xml}"));
-        kinds_of(&m, Values)
+        kinds_of(&m, Values::new(&m))
             .into_iter()
             .filter_map(|k| match k {
                 ProblemKind::Refused { rule, .. } => Some(rule),
