@@ -1,6 +1,8 @@
 //! The checks of single elements that MuJoCo's XML reader makes as it reads them: a
-//! `<text>` without data, the top-level default class renamed, text attributes of
-//! a fixed number of characters, and keyword lists given a keyword twice.
+//! `<text>` without data, text attributes of a fixed number of characters, and
+//! keyword lists given a keyword twice. (A top-level default class with a name other
+//! than `main`, which MuJoCo's reader refuses, is not one: the writer writes it as a
+//! class inside an unnamed top-level `<default>`, which MuJoCo compiles.)
 
 use crate::schema::Role;
 use crate::value::Value;
@@ -34,18 +36,6 @@ pub(crate) const CHECKS: &[Check] = &[
         on: |k| k.is(Role::TextField),
         test: |at| (!at.own("data")).then(|| found_element("text field cannot be empty"))?,
         fix: "give the text its data (data=\"...\", or one CDATA section)",
-    },
-    Check {
-        name: "default-main-renamed",
-        on: |k| {
-            k.is(Role::DefaultClass) && k.spec().parent.is_some_and(|p| !p.is(Role::DefaultClass))
-        },
-        test: |at| {
-            let name = own_text(at, "class")?;
-            (!name.is_empty() && name != "main").then_some(())?;
-            found("class", "top-level default class 'main' cannot be renamed")
-        },
-        fix: "name the top-level default class 'main', or leave it unnamed",
     },
     Check {
         name: "texture-gridlayout",
@@ -127,13 +117,6 @@ mod tests {
                         custom(r#"<text name="t"> <![CDATA[ ]]> </text>"#),
                     ),
                 ],
-            ),
-            (
-                "default-main-renamed",
-                vec![(
-                    r#"<mujoco><default class="top"/></mujoco>"#.to_string(),
-                    r#"<mujoco><default class="main"><default class="top"/></default></mujoco>"#.to_string(),
-                )],
             ),
             (
                 "texture-gridlayout",
