@@ -23,6 +23,7 @@ use super::walk::{Event, Rule};
 
 mod geom;
 mod global;
+mod numbers;
 mod presence;
 mod reader;
 
@@ -140,7 +141,8 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 }
 
 /// Every table of checks, one per file.
-const TABLES: &[&[Check]] = &[geom::CHECKS, global::CHECKS, presence::CHECKS, reader::CHECKS];
+const TABLES: &[&[Check]] =
+    &[geom::CHECKS, global::CHECKS, presence::CHECKS, reader::CHECKS, numbers::CHECKS];
 
 /// The checks of each element kind (by kind index), gathered once.
 fn by_kind() -> &'static Vec<Vec<&'static Check>> {
