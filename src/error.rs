@@ -72,10 +72,6 @@ pub enum ValueError {
     /// A mesh file whose extension MuJoCo does not read.
     #[error("mesh files must end in .stl, .msh or .obj")]
     MeshExtension,
-    /// A number written beyond what a double holds (`1e400`; `inf` is written
-    /// `inf`): MuJoCo refuses it ("number is too large").
-    #[error("number is too large for a double (write inf for an infinity)")]
-    TooLarge,
 }
 
 /// Why reading or editing failed.
