@@ -112,10 +112,12 @@ pub(super) fn attached_part(m: &Model, model: Option<&Value>) -> Option<Rc<Model
     })
 }
 
+/// The parts read, by the address and length of their file's bytes.
+type Parts = HashMap<(usize, usize), Option<Rc<Model>>>;
+
 thread_local! {
-    /// The parts read while [`parts_read_once`] runs, by their file's bytes.
-    static PARTS: RefCell<Option<HashMap<(usize, usize), Option<Rc<Model>>>>> =
-        const { RefCell::new(None) };
+    /// The parts read while [`parts_read_once`] runs.
+    static PARTS: RefCell<Option<Parts>> = const { RefCell::new(None) };
 }
 
 /// Runs `f` (one [`Model::check`]) with each attached part's file read once: the

@@ -2,7 +2,8 @@
 //!
 //! What is kept and what is dropped:
 //! - comments, processing instructions, the XML declaration, a DOCTYPE and text are
-//!   dropped; entities other than XML's five and character references are errors
+//!   dropped, and CDATA but a `<text>`'s, which is its data as MuJoCo reads it
+//!   (`cdata`); entities other than XML's five and character references are errors
 //!   (nothing is ever expanded);
 //! - on the root only `model` is read (the tag may be anything starting with
 //!   `mujoco`, as in the reference);
@@ -218,6 +219,9 @@ impl ReadOptions {
     ///   their path as written, normalised), as MuJoCo refuses it;
     /// - [`ErrorKind::TooManyFiles`]: an asset `<model>` file that brings more than
     ///   100,000 files (counting the model files it names, each path once);
+    /// - [`ErrorKind::TextDataTwice`], [`ErrorKind::TextCdataTwice`]: a `<text>` of
+    ///   `<custom>` whose data is given both as `data` and as CDATA, or as two CDATA
+    ///   sections, as MuJoCo refuses them;
     /// - [`ErrorKind::TooDeep`]: elements nested deeper than
     ///   [`max_depth`](ReadOptions::max_depth), includes more than 100 deep, or asset
     ///   model files naming model files more than 16 deep (an included file's
