@@ -3,7 +3,9 @@
 //! self-attach), as MuJoCo 4.0.0's XML reader and `mjs_attach` refuse it: a
 //! self-attach that names nothing, a name the attached copy would take already taken
 //! (the element before the `<attach>` is refused as such; one after it as a repeated
-//! name), a body or frame the part lacks, and a key of the part longer than the part.
+//! name), a body or frame the part lacks, and a key of the part longer than the part;
+//! and an asset `<model>` whose file MuJoCo's XML reader refuses (MuJoCo reads it
+//! whether or not an `<attach>` takes from it).
 
 use crate::model::Model;
 use crate::model::pose::floats;
@@ -12,8 +14,9 @@ use crate::schema::{Namespace, Role};
 use crate::value::{Reference, Value};
 
 use super::ProblemKind;
-use super::expansion::{attached_part, named_by_expansion};
-use super::walk::{Event, Rule};
+use super::expansion::{attached_part, named_by_expansion, part_file};
+use super::values::Values;
+use super::walk::{Event, Rule, run};
 
 /// The rule.
 pub(super) struct Attach;
@@ -41,6 +44,13 @@ impl<'m> Rule<'m> for Attach {
     fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
         let (m, node) = (e.model, e.node);
         let kind = node.kind();
+        if kind.is(Role::AssetModel) {
+            if let Some(part) = part_file(node) {
+                let mut rules: Vec<Box<dyn Rule<'_> + '_>> = vec![Box::new(Values::reader(&part))];
+                out.extend(run(&part, &mut rules).into_iter().map(|p| p.kind));
+            }
+            return;
+        }
         if !kind.is(Role::Attach) {
             return;
         }

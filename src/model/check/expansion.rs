@@ -89,6 +89,12 @@ pub(super) fn attached_part(m: &Model, model: Option<&Value>) -> Option<Rc<Model
         Value::Reference(Reference::Element(id)) => m.node_by_id(*id)?,
         _ => return None,
     };
+    part_file(asset)
+}
+
+/// The model of the asset `<model>` `asset`'s file, read on its own (as
+/// [`attached_part`]).
+pub(super) fn part_file(asset: &Node) -> Option<Rc<Model>> {
     let kind = asset.kind();
     let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| asset.attr(i)) else {
         return None;

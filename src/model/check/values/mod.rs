@@ -144,20 +144,33 @@ fn numbers(v: &Value) -> Option<Vec<f64>> {
 const TABLES: &[&[Check]] =
     &[geom::CHECKS, global::CHECKS, presence::CHECKS, reader::CHECKS, numbers::CHECKS];
 
-/// The checks of each element kind (by kind index), gathered once.
-fn by_kind() -> &'static Vec<Vec<&'static Check>> {
-    static BY_KIND: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
-    BY_KIND.get_or_init(|| {
-        let mut out: Vec<Vec<&'static Check>> = Vec::new();
-        for kind in ElementKind::all() {
-            let i = kind.index();
-            if out.len() <= i {
-                out.resize_with(i + 1, Vec::new);
-            }
-            out[i] = TABLES.iter().flat_map(|t| t.iter()).filter(|c| (c.on)(kind)).collect();
+/// The tables of what MuJoCo's XML reader refuses as it reads a file: judged of a
+/// whole file MuJoCo reads but does not compile as it is (an asset model's).
+const READER_TABLES: &[&[Check]] =
+    &[global::CHECKS, presence::CHECKS, reader::CHECKS, numbers::CHECKS];
+
+/// The checks of `tables` for each element kind (by kind index).
+fn gather(tables: &[&'static [Check]]) -> Vec<Vec<&'static Check>> {
+    let mut out: Vec<Vec<&'static Check>> = Vec::new();
+    for kind in ElementKind::all() {
+        let i = kind.index();
+        if out.len() <= i {
+            out.resize_with(i + 1, Vec::new);
         }
-        out
-    })
+        out[i] = tables.iter().flat_map(|t| t.iter()).filter(|c| (c.on)(kind)).collect();
+    }
+    out
+}
+
+/// The checks of each element kind (by kind index), gathered once: of every table,
+/// or with `reader_only` of [`READER_TABLES`].
+fn by_kind(reader_only: bool) -> &'static Vec<Vec<&'static Check>> {
+    static BY_KIND: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
+    static READER: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
+    match reader_only {
+        false => BY_KIND.get_or_init(|| gather(TABLES)),
+        true => READER.get_or_init(|| gather(READER_TABLES)),
+    }
 }
 
 /// The rule: every check of the element's kind. The global settings are judged as
@@ -170,12 +183,20 @@ pub(super) struct Values<'m> {
     model: &'m Model,
     /// Its settings sections as written, once asked.
     merged: Option<Arc<[Node]>>,
+    /// Only the checks of what MuJoCo's reader refuses ([`READER_TABLES`]).
+    reader_only: bool,
 }
 
 impl<'m> Values<'m> {
     /// The rule for `model`.
     pub(super) fn new(model: &'m Model) -> Values<'m> {
-        Values { model, merged: None }
+        Values { model, merged: None, reader_only: false }
+    }
+
+    /// The rule for a file `model` that MuJoCo reads but does not compile as it is
+    /// (an asset model's): what its XML reader refuses alone.
+    pub(super) fn reader(model: &'m Model) -> Values<'m> {
+        Values { model, merged: None, reader_only: true }
     }
 
     /// The settings sections as written (a conflict, which attaching refuses, leaves
@@ -200,9 +221,9 @@ fn in_settings(kind: ElementKind) -> bool {
     false
 }
 
-/// Every check of `e`'s element's kind.
-fn judge(e: &Event<'_>, out: &mut Vec<ProblemKind>) {
-    let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
+/// Every check of `e`'s element's kind (of [`READER_TABLES`] with `reader_only`).
+fn judge(e: &Event<'_>, reader_only: bool, out: &mut Vec<ProblemKind>) {
+    let Some(checks) = by_kind(reader_only).get(e.node.kind().index()) else { return };
     let at = At { e };
     for check in checks {
         if let Some(f) = (check.test)(&at) {
@@ -218,11 +239,11 @@ fn judge(e: &Event<'_>, out: &mut Vec<ProblemKind>) {
 
 /// [`judge`] of the written settings element `node` and each element inside it, as
 /// if the walk were at `e`.
-fn judge_written(e: &Event<'_>, node: &Node, out: &mut Vec<ProblemKind>) {
+fn judge_written(e: &Event<'_>, node: &Node, reader_only: bool, out: &mut Vec<ProblemKind>) {
     let at = Event { node, class: None, ..*e };
-    judge(&at, out);
+    judge(&at, reader_only, out);
     for c in node.children().iter() {
-        judge_written(e, c, out);
+        judge_written(e, c, reader_only, out);
     }
 }
 
@@ -234,18 +255,18 @@ impl<'m> Rule<'m> for Values<'m> {
             let merged = self.merged();
             let own = |k: ElementKind| e.node.child_of_kind(k).is_some();
             for section in merged.iter().filter(|s| !own(s.kind())) {
-                judge_written(e, section, out);
+                judge_written(e, section, self.reader_only, out);
             }
         } else if in_settings(kind) {
             if e.inst == 0 && kind.is(Role::SettingsSection) {
                 let merged = self.merged();
                 if let Some(section) = merged.iter().find(|s| s.kind() == kind) {
-                    judge_written(e, section, out);
+                    judge_written(e, section, self.reader_only, out);
                 }
             }
             return;
         }
-        judge(e, out);
+        judge(e, self.reader_only, out);
     }
 }
 
