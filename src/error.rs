@@ -325,6 +325,19 @@ pub enum ErrorKind {
     /// `include_copy` of a model that has attachments.
     #[error("cannot copy from a model with attachments")]
     SourceHasAttachments,
+    /// A `<text>` of `<custom>` that gives its data both as its `data` attribute
+    /// (even empty) and as a CDATA section; MuJoCo refuses it.
+    #[error(
+        "<text> gives its data both as 'data' and as CDATA (MuJoCo: \"text field data cannot be \
+         specified as both attribute and CDATA\"); keep one"
+    )]
+    TextDataTwice,
+    /// A `<text>` of `<custom>` with more than one CDATA section; MuJoCo refuses it.
+    #[error(
+        "<text> has more than one CDATA section (MuJoCo: \"text field cannot have multiple CDATA \
+         sections\"); join them in one"
+    )]
+    TextCdataTwice,
 }
 
 /// The most characters of one name or value (a tag, an attribute, an identifier, a

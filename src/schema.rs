@@ -613,6 +613,7 @@ mod role_tests {
             Hfield,
             Texture,
             AssetModel,
+            TextField,
             Tendon,
             Actuator,
             ActuatorStateful,
@@ -733,6 +734,11 @@ mod role_tests {
         assert_role(Role::Hfield, asset("hfield"));
         assert_role(Role::Texture, asset("texture"));
         assert_role(Role::AssetModel, asset("model"));
+    }
+
+    #[test]
+    fn text_field_is_the_custom_text() {
+        assert_role(Role::TextField, expected(child_of("custom", &["text"]), &[]));
     }
 
     #[test]

@@ -51,6 +51,9 @@ impl ReadOptions {
     ///   their path as written, normalised), as MuJoCo refuses it;
     /// - [`ErrorKind::TooManyFiles`]: an asset `<model>` file that brings more than
     ///   100,000 files (counting the model files it names, each path once);
+    /// - [`ErrorKind::TextDataTwice`], [`ErrorKind::TextCdataTwice`]: a `<text>` of
+    ///   `<custom>` whose data is given both as `data` and as CDATA, or as two CDATA
+    ///   sections, as MuJoCo refuses them;
     /// - [`ErrorKind::TooDeep`]: elements nested deeper than
     ///   [`max_depth`](ReadOptions::max_depth), includes more than 100 deep, or asset
     ///   model files naming model files more than 16 deep (an included file's

@@ -3,6 +3,10 @@
 //! to such a name resolves (rule *references resolve*), and a part's welded bodies
 //! give mass (rule *moving bodies have mass*).
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
 use crate::model::Model;
 use crate::model::tree::Node;
 use crate::schema::{Namespace, Role};
@@ -78,18 +82,58 @@ fn expansion_makes<'n>(
 
 /// The part an `<attach model="...">` of `m` brings in: its asset `<model>`'s file,
 /// read on its own; `None` when it cannot be read here (its own files are not at
-/// hand, say).
-pub(super) fn attached_part(m: &Model, model: Option<&Value>) -> Option<Model> {
+/// hand, say). Within [`parts_read_once`] each file is read once.
+pub(super) fn attached_part(m: &Model, model: Option<&Value>) -> Option<Rc<Model>> {
     let asset = match model? {
         Value::Reference(Reference::Name(n)) => m.node_by_id(m.find(Namespace::Model, n)?.id())?,
         Value::Reference(Reference::Element(id)) => m.node_by_id(*id)?,
         _ => return None,
     };
+    part_file(asset)
+}
+
+/// The model of the asset `<model>` `asset`'s file, read on its own (as
+/// [`attached_part`]).
+pub(super) fn part_file(asset: &Node) -> Option<Rc<Model>> {
     let kind = asset.kind();
     let Some(Value::File(file)) = kind.attr_index("file").and_then(|i| asset.attr(i)) else {
         return None;
     };
-    Model::from_xml_str(std::str::from_utf8(file.contents()).ok()?).ok()
+    let contents = file.contents();
+    let read = || {
+        let text = std::str::from_utf8(contents).ok()?;
+        Model::from_xml_str(text).ok().map(Rc::new)
+    };
+    // The file's bytes are the model's while it is checked: their address names them.
+    let key = (contents.as_ptr() as usize, contents.len());
+    PARTS.with(|parts| {
+        if let Some(known) = parts.borrow().as_ref().and_then(|p| p.get(&key)) {
+            return known.clone();
+        }
+        let part = read();
+        if let Some(p) = parts.borrow_mut().as_mut() {
+            p.insert(key, part.clone());
+        }
+        part
+    })
+}
+
+/// The parts read, by the address and length of their file's bytes.
+type Parts = HashMap<(usize, usize), Option<Rc<Model>>>;
+
+thread_local! {
+    /// The parts read while [`parts_read_once`] runs.
+    static PARTS: RefCell<Option<Parts>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` (one [`Model::check`]) with each attached part's file read once: the
+/// rules ask for a part many times (each name it may hold, each body it may weld),
+/// and the model does not change meanwhile.
+pub(super) fn parts_read_once<R>(f: impl FnOnce() -> R) -> R {
+    let outer = PARTS.with(|p| p.borrow_mut().replace(HashMap::new()));
+    let out = f();
+    PARTS.with(|p| *p.borrow_mut() = outer);
+    out
 }
 
 /// Whether `name` is the name of a copy of `base` made by the replicates `levels`
@@ -124,6 +168,21 @@ fn strips_to(name: &str, base: &str, levels: &[(i64, &str)]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_part_is_read_once_within_one_check_and_afresh_outside() {
+        let part =
+            r#"<mujoco><worldbody><body name="b"><geom size="1"/></body></worldbody></mujoco>"#;
+        let m = crate::ReadOptions::new()
+            .asset("part.xml", part.as_bytes().to_vec())
+            .read_str(r#"<mujoco><asset><model name="part" file="part.xml"/></asset><worldbody><attach model="part" body="b" prefix="p-"/></worldbody></mujoco>"#)
+            .unwrap();
+        let model = Value::Reference(Reference::Name("part".into()));
+        let read = || attached_part(&m, Some(&model)).expect("the part reads");
+        let (a, b) = parts_read_once(|| (read(), read()));
+        assert!(Rc::ptr_eq(&a, &b));
+        assert!(!Rc::ptr_eq(&read(), &read()));
+    }
 
     #[test]
     fn a_replicated_name_is_the_base_then_each_level_s_sep_and_padded_index() {

@@ -23,6 +23,7 @@ use super::{Loc, Model};
 
 mod advice;
 mod arrays;
+mod attach;
 mod bodies;
 mod dofs;
 mod expansion;
@@ -59,6 +60,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(values::Values::new(model)),
         Box::new(bodies::Bodies::new(model)),
         Box::new(history::History::new(model)),
+        Box::new(attach::Attach),
     ]
 }
 
@@ -359,8 +361,10 @@ impl Model {
     ///
     /// Time: as [`Model::check`].
     pub fn check_with(&self, options: &WriteOptions) -> Vec<Problem> {
-        let mut rules = rules(self, options);
-        walk::run(self, &mut rules)
+        expansion::parts_read_once(|| {
+            let mut rules = rules(self, options);
+            walk::run(self, &mut rules)
+        })
     }
 
     /// Every element that refers to the element at `loc`, with the attribute: by a

@@ -2,7 +2,8 @@
 //!
 //! What is kept and what is dropped:
 //! - comments, processing instructions, the XML declaration, a DOCTYPE and text are
-//!   dropped; entities other than XML's five and character references are errors
+//!   dropped, and CDATA but a `<text>`'s, which is its data as MuJoCo reads it
+//!   (`cdata`); entities other than XML's five and character references are errors
 //!   (nothing is ever expanded);
 //! - on the root only `model` is read (the tag may be anything starting with
 //!   `mujoco`, as in the reference);
@@ -45,6 +46,7 @@ use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
 use crate::xml::source::{NO_RECORD, RecordKind};
 
+mod cdata;
 mod events;
 mod finish;
 mod include;
@@ -333,6 +335,8 @@ struct Reader<'t> {
     /// The class `/` folded into the root class (`finish::hoist_root_class`): its
     /// element and the root class's.
     hoisted: Option<(ElementId, ElementId)>,
+    /// The `<text>`s read, for their CDATA (`cdata`).
+    text_fields: cdata::TextFields,
 }
 
 /// How a text's tags are recorded: its file in the source, and what its root tag
@@ -541,6 +545,10 @@ fn parse(
                 continue;
             }
             Event::Eof => break,
+            Event::CData(t) => {
+                cdata::read(r, stack.last(), t.as_ref(), offset)?;
+                continue;
+            }
             Event::Text(t) => {
                 if stack.is_empty() && !t.as_ref().trim().is_empty() {
                     return Err(
@@ -667,6 +675,9 @@ fn read_tag(
         return Err(r.err(ErrorKind::TooDeep(max_depth), offset));
     }
     let index = read_element(r, tag, (parent, at.parent_tag), kind, offset)?;
+    if kind.is(crate::schema::Role::TextField) {
+        r.text_fields.opened(index, tag);
+    }
     let rec = record(r, tree, RecordKind::Element, r.arena[index].id, at);
     Ok(Open { entry: index, rec, tag: r.next_tag() })
 }
@@ -747,6 +758,7 @@ pub(crate) fn read_literal(
         scratch: Vec::new(),
         src,
         hoisted: None,
+        text_fields: cdata::TextFields::default(),
     };
     let first = tree.src.as_ref().map_or(0, |s| s.records.len());
     let model_name = parse(&mut r, Place::Root, max_depth, tree)?;

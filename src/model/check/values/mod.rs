@@ -9,7 +9,7 @@
 //! judged (MuJoCo judges the elements that use them). Each check is proved by the
 //! refused model and twin of `mjcf-mujoco/refusals` that carry its message.
 
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use crate::model::Model;
 use crate::model::layout::{class_defaults, effective, from_classes};
@@ -27,11 +27,15 @@ mod custom;
 mod flex;
 mod frame;
 mod geom;
+mod global;
 pub(crate) mod inertial;
 mod joint;
 mod links;
 mod mesh;
+mod numbers;
 pub(crate) mod orient;
+mod presence;
+mod reader;
 mod sensor;
 mod site;
 mod tendon;
@@ -279,39 +283,81 @@ const TABLES: &[&[Check]] = &[
     sensor::CHECKS,
     links::CHECKS,
     custom::CHECKS,
+    global::CHECKS,
+    presence::CHECKS,
+    reader::CHECKS,
+    numbers::CHECKS,
 ];
 
-/// The checks of each element kind (by kind index), gathered once.
-fn by_kind() -> &'static Vec<Vec<&'static Check>> {
-    static BY_KIND: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
-    BY_KIND.get_or_init(|| {
-        let mut out: Vec<Vec<&'static Check>> = Vec::new();
-        for kind in ElementKind::all() {
-            let i = kind.index();
-            if out.len() <= i {
-                out.resize_with(i + 1, Vec::new);
-            }
-            out[i] = TABLES.iter().flat_map(|t| t.iter()).filter(|c| (c.on)(kind)).collect();
+/// The tables of what MuJoCo's XML reader refuses as it reads a file: judged of a
+/// whole file MuJoCo reads but does not compile as it is (an asset model's).
+const READER_TABLES: &[&[Check]] =
+    &[global::CHECKS, presence::CHECKS, reader::CHECKS, numbers::CHECKS];
+
+/// The checks of `tables` for each element kind (by kind index).
+fn gather(tables: &[&'static [Check]]) -> Vec<Vec<&'static Check>> {
+    let mut out: Vec<Vec<&'static Check>> = Vec::new();
+    for kind in ElementKind::all() {
+        let i = kind.index();
+        if out.len() <= i {
+            out.resize_with(i + 1, Vec::new);
         }
-        out
-    })
+        out[i] = tables.iter().flat_map(|t| t.iter()).filter(|c| (c.on)(kind)).collect();
+    }
+    out
 }
 
-/// The rule: every check of the element's kind.
-pub(crate) struct Values {
-    settings: Settings,
-}
-
-impl Values {
-    /// The rule for `model` as written (its merged settings).
-    pub(crate) fn new(model: &Model) -> Values {
-        Values { settings: Settings::of(model) }
+/// The checks of each element kind (by kind index), gathered once: of every table,
+/// or with `reader_only` of [`READER_TABLES`].
+fn by_kind(reader_only: bool) -> &'static Vec<Vec<&'static Check>> {
+    static BY_KIND: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
+    static READER: OnceLock<Vec<Vec<&'static Check>>> = OnceLock::new();
+    match reader_only {
+        false => BY_KIND.get_or_init(|| gather(TABLES)),
+        true => READER.get_or_init(|| gather(READER_TABLES)),
     }
 }
 
-impl<'m> Rule<'m> for Values {
-    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
-        let Some(checks) = by_kind().get(e.node.kind().index()) else { return };
+/// The rule: every check of the element's kind. The global settings are judged as
+/// written: the sections merged across attachments (where the models give an
+/// attribute different values, the fold takes one: the least `znear`, the greatest
+/// `njmax`), each with its sub-elements, said on the outermost model's section (or on
+/// its root, for a section only attachments give).
+pub(super) struct Values<'m> {
+    /// The model checked (the outermost).
+    model: &'m Model,
+    /// Its settings sections as written, once asked.
+    merged: Option<Arc<[Node]>>,
+    /// The global settings the checks read.
+    settings: Settings,
+    /// Only the checks of what MuJoCo's reader refuses ([`READER_TABLES`]).
+    reader_only: bool,
+}
+
+impl<'m> Values<'m> {
+    /// The rule for `model` as written (its merged settings).
+    pub(super) fn new(model: &'m Model) -> Values<'m> {
+        Values { model, merged: None, settings: Settings::of(model), reader_only: false }
+    }
+
+    /// The rule for a file `model` that MuJoCo reads but does not compile as it is
+    /// (an asset model's): what its XML reader refuses alone.
+    pub(super) fn reader(model: &'m Model) -> Values<'m> {
+        Values { model, merged: None, settings: Settings::of(model), reader_only: true }
+    }
+
+    /// The settings sections as written (a conflict, which attaching refuses, leaves
+    /// none to judge).
+    fn merged(&mut self) -> Arc<[Node]> {
+        let model = self.model;
+        self.merged
+            .get_or_insert_with(|| settings::merged(model).unwrap_or_else(|_| Arc::from([])))
+            .clone()
+    }
+
+    /// Every check of `e`'s element's kind (of [`READER_TABLES`] with `reader_only`).
+    fn judge(&self, e: &Event<'_>, out: &mut Vec<ProblemKind>) {
+        let Some(checks) = by_kind(self.reader_only).get(e.node.kind().index()) else { return };
         let at = At { e, settings: &self.settings };
         for check in checks {
             if let Some(f) = (check.test)(&at) {
@@ -323,6 +369,51 @@ impl<'m> Rule<'m> for Values {
                 });
             }
         }
+    }
+
+    /// [`Values::judge`] of the written settings element `node` and each element
+    /// inside it, as if the walk were at `e`.
+    fn judge_written(&self, e: &Event<'_>, node: &Node, out: &mut Vec<ProblemKind>) {
+        let at = Event { node, class: None, ..*e };
+        self.judge(&at, out);
+        for c in node.children().iter() {
+            self.judge_written(e, c, out);
+        }
+    }
+}
+
+/// Whether `kind` is a settings section or inside one.
+fn in_settings(kind: ElementKind) -> bool {
+    let mut k = Some(kind);
+    while let Some(kind) = k {
+        if kind.is(Role::SettingsSection) {
+            return true;
+        }
+        k = kind.spec().parent;
+    }
+    false
+}
+
+impl<'m> Rule<'m> for Values<'m> {
+    fn enter(&mut self, e: &Event<'m>, out: &mut Vec<ProblemKind>) {
+        let kind = e.node.kind();
+        if e.inst == 0 && kind == ElementKind::ROOT {
+            // The sections only attachments give.
+            let merged = self.merged();
+            let own = |k: ElementKind| e.node.child_of_kind(k).is_some();
+            for section in merged.iter().filter(|s| !own(s.kind())) {
+                self.judge_written(e, section, out);
+            }
+        } else if in_settings(kind) {
+            if e.inst == 0 && kind.is(Role::SettingsSection) {
+                let merged = self.merged();
+                if let Some(section) = merged.iter().find(|s| s.kind() == kind) {
+                    self.judge_written(e, section, out);
+                }
+            }
+            return;
+        }
+        self.judge(e, out);
     }
 }
 
@@ -371,19 +462,16 @@ pub(crate) mod on {
     }
 
     /// An actuator of any kind.
-    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn actuator(k: ElementKind) -> bool {
         k.role().is_some_and(Role::is_actuator)
     }
 
     /// A tendon (`<fixed>`, `<spatial>`).
-    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn tendon(k: ElementKind) -> bool {
         k.is(Role::Tendon)
     }
 
     /// An element of the root's section `section` (`sensor`, `asset`, ...).
-    #[allow(dead_code)] // For the tables of other element kinds.
     pub(crate) fn in_section(k: ElementKind, section: &str) -> bool {
         k.spec()
             .parent
@@ -395,7 +483,8 @@ pub(crate) mod on {
         k.spec().parent.is_some_and(|p| p.is(Role::DefaultClass) && p.child(tag) == Some(k))
     }
 
-    /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`).
+    /// The element whose schema path is `path` (`actuator/general`, `(world)body/camera`;
+    /// `default/camera` in any default class).
     pub(crate) fn at(k: ElementKind, path: &str) -> bool {
         let (parent, tag) = path.rsplit_once('/').unwrap_or(("", path));
         if k.tag() != tag {
@@ -404,6 +493,7 @@ pub(crate) mod on {
         let p = k.spec().parent;
         match parent {
             "" => p == Some(ElementKind::ROOT),
+            "default" => p.is_some_and(|p| p.is(Role::DefaultClass)),
             "(world)body" => p.is_some_and(|p| {
                 p.is(Role::Body)
                     || p.is(Role::Worldbody)
