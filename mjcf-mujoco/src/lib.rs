@@ -58,7 +58,7 @@ mod physics;
 #[allow(clippy::all, unsafe_op_in_unsafe_fn, missing_docs, unreachable_pub, dead_code)]
 mod sys;
 
-pub use crate::bind::{Bound, ObjKind};
+pub use crate::bind::{BindTarget, Bound, ObjKind};
 pub use crate::error::{BindError, CompileError, Error, ErrorElement};
 pub use crate::guard::Message;
 pub use crate::library::MuJoCo;

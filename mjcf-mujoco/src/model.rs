@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use mjcf::{Loc, Model, Namespace, Written};
 
-use crate::bind::{Bound, ObjKind};
+use crate::bind::{BindTarget, Bound, ObjKind, Slot};
 use crate::error::{BindError, Error, ErrorElement};
 use crate::fields::{self, Field, RawField, Scalar};
 use crate::guard::Message;
@@ -218,19 +218,34 @@ impl Compiled {
         (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_str().ok()).flatten()
     }
 
-    /// The element of the compiled model that `loc` (a locator of the `mjcf` model it
-    /// was compiled from) became: its kind and MuJoCo id, found by the name it was
-    /// written with ([`ElementRef::full_name`](mjcf::ElementRef::full_name)), as
-    /// dm_control's `physics.bind`.
+    /// Binds an element in one call: by locator of the `mjcf` model it was compiled
+    /// from (`&Loc`), or by kind and full name (`(ObjKind::Actuator,
+    /// "arm/gripper/fingers_actuator")`, which also works for models compiled from a
+    /// path or from text, and for unnamed elements by the name the writer gave them,
+    /// `//unnamed_joint_0`), or by kind and MuJoCo id (`(ObjKind::Joint, 3)`). Its
+    /// fields are then read by MuJoCo's names with their true widths
+    /// ([`Compiled::get`], [`Physics::get`](crate::Physics::get)).
     ///
-    /// Time: O(levels · depth · log n) to name the element (O(n) more for an unnamed
-    /// one; O(E) more for an attachment frame, to see how it was written), plus
-    /// MuJoCo's lookup.
+    /// A locator is found by the name it was written with
+    /// ([`ElementRef::full_name`](mjcf::ElementRef::full_name)), as dm_control's
+    /// `physics.bind`.
+    ///
+    /// Time: by name, MuJoCo's hash lookup (O(n) more to suggest names when it is
+    /// missing); by locator, O(levels · depth · log n) to name the element (O(n)
+    /// more for an unnamed one; O(E) more for an attachment frame, to see how it was
+    /// written), plus MuJoCo's lookup.
     ///
     /// # Errors
-    /// [`BindError`]: no source model, a locator of another model, an element MuJoCo
-    /// keeps no record of (a `<frame>`, a default class), or not found by MuJoCo.
-    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
+    /// [`BindError::NotFound`] with the nearest names of that kind for a name MuJoCo
+    /// does not have; [`BindError::NoId`] for an id out of range; for a locator:
+    /// no source model, a locator of another model, an element MuJoCo keeps no record
+    /// of (a `<frame>`, a default class).
+    pub fn bind(&self, target: impl BindTarget) -> Result<Bound, BindError> {
+        target.bind_in(self)
+    }
+
+    /// [`Compiled::bind`] of a locator.
+    pub(crate) fn bind_loc(&self, loc: &Loc) -> Result<Bound, BindError> {
         let model = self.source().ok_or(BindError::NoSource)?;
         let element = model.get(loc).map_err(|e| BindError::NoElement(e.to_string()))?;
         let kind = ObjKind::of(&element).ok_or(BindError::NotCompiled { tag: element.tag() })?;
@@ -242,10 +257,66 @@ impl Compiled {
             }
         }
         let name = element.full_name().ok_or(BindError::Unnamed { tag: element.tag() })?;
-        let id = self
-            .id(kind, &name)
-            .ok_or_else(|| BindError::NotFound { kind: kind.name(), name: name.clone() })?;
+        self.bind_name(kind, &name)
+    }
+
+    /// [`Compiled::bind`] by kind and full name.
+    pub(crate) fn bind_name(&self, kind: ObjKind, name: &str) -> Result<Bound, BindError> {
+        match self.id(kind, name) {
+            Some(id) => Ok(Bound { kind, id, name: name.to_string() }),
+            None => Err(BindError::NotFound {
+                kind: kind.name(),
+                name: name.to_string(),
+                suggestions: crate::bind::nearest(self, kind, name),
+            }),
+        }
+    }
+
+    /// [`Compiled::bind`] by kind and MuJoCo id.
+    pub(crate) fn bind_id(&self, kind: ObjKind, id: usize) -> Result<Bound, BindError> {
+        if id >= self.count(kind) {
+            return Err(BindError::NoId { kind: kind.name(), id, count: self.count(kind) });
+        }
+        let name = self.name(kind, id).unwrap_or_default().to_string();
         Ok(Bound { kind, id, name })
+    }
+
+    /// A model field of a bound element, by MuJoCo's name with or without its prefix
+    /// (`gainprm` or `actuator_gainprm` of an actuator: its 10 numbers; `mass` of a
+    /// body; `range` of a joint: 2; `damping` of a joint: one per degree of freedom),
+    /// the element's rows, row after row. Fields of the simulation's data (`qpos`,
+    /// `xpos`) are [`Physics::get`](crate::Physics::get)'s.
+    ///
+    /// Time: O(f) for the f fields of `mjModel` (found by name).
+    ///
+    /// # Errors
+    /// [`BindError::NoField`] naming the fields there are; [`BindError::WrongType`]
+    /// for a field of integers (see [`Compiled::get_ints`]).
+    pub fn get(&self, b: &Bound, field: &str) -> Result<&[f64], BindError> {
+        let (slot, raw) = self.model_slot(b, field)?;
+        // SAFETY: the field's pointer and size from the model's own tables, borrowed
+        // from `self`; the rows are the element's.
+        let all: &[f64] = unsafe { raw.slice(slot.field, Scalar::F64, "f64") }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// [`Compiled::get`] for fields of integers (`type` and `qposadr` of a joint).
+    ///
+    /// Time: as [`Compiled::get`].
+    ///
+    /// # Errors
+    /// As [`Compiled::get`], the other way round.
+    pub fn get_ints(&self, b: &Bound, field: &str) -> Result<&[i32], BindError> {
+        let (slot, raw) = self.model_slot(b, field)?;
+        // SAFETY: as in `get`.
+        let all: &[i32] = unsafe { raw.slice(slot.field, Scalar::I32, "i32") }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    fn model_slot(&self, b: &Bound, field: &str) -> Result<(Slot, RawField), BindError> {
+        let slot = crate::bind::resolve_model(self.raw(), b.kind, b.id, field)?;
+        let raw = crate::bind::raw(&slot, self.raw(), None).ok_or_else(|| no_model_field(field))?;
+        Ok((slot, raw))
     }
 
     /// The model field `name` (`jnt_qposadr`, `geom_friction`, ...), all rows.

@@ -4,9 +4,7 @@ use std::ffi::{CStr, c_long};
 use std::ptr::NonNull;
 use std::sync::Arc;
 
-use mjcf::Loc;
-
-use crate::bind::{self, Bound, ObjKind, Place, Slot};
+use crate::bind::{self, BindTarget, Bound, ObjKind, Place, Slot};
 use crate::error::{BindError, Error};
 use crate::fields::Scalar;
 use crate::guard::{self, Message};
@@ -476,14 +474,15 @@ impl Physics {
         self.data_mut("ctrl").unwrap_or_default()
     }
 
-    /// Binds a locator of the `mjcf` model (see [`Compiled::bind`]).
+    /// Binds an element by locator, by kind and full name, or by kind and id (see
+    /// [`Compiled::bind`]).
     ///
     /// Time: as [`Compiled::bind`].
     ///
     /// # Errors
     /// As [`Compiled::bind`].
-    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
-        self.model.bind(loc)
+    pub fn bind(&self, target: impl BindTarget) -> Result<Bound, BindError> {
+        self.model.bind(target)
     }
 
     fn slot(&self, b: &Bound, field: &str) -> Result<Slot, BindError> {
