@@ -218,8 +218,12 @@ fn rows_of(m: &mjModel, kind: ObjKind, id: usize, rows: &str) -> Option<Range<us
         return Some(id..id + 1);
     }
     let span = |adr: &str, num: &str| -> Option<Range<usize>> {
-        let a = usize::try_from(model_int(m, adr, id)).ok()?;
         let n = usize::try_from(model_int(m, num, id)).ok()?;
+        if n == 0 {
+            // None of them (an actuator without activations: its address is -1).
+            return Some(0..0);
+        }
+        let a = usize::try_from(model_int(m, adr, id)).ok()?;
         Some(a..a + n)
     };
     match (kind, rows) {

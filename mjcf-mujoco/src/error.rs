@@ -63,6 +63,19 @@ pub enum Error {
     /// The simulation data met a fatal error in an earlier call and has not been reset.
     #[error("the simulation data is unusable after a fatal MuJoCo error; reset it first")]
     Poisoned,
+    /// A model field that cannot be written in place: the compiler derives more from
+    /// it than MuJoCo's `mj_setConst` recomputes. Edit the `mjcf` model and rebuild
+    /// ([`Physics::rebuild`](crate::Physics::rebuild)).
+    #[error(
+        "{field} cannot be written in a compiled model ({reason}): edit the mjcf model and \
+         rebuild (Physics::rebuild)"
+    )]
+    NeedsRebuild {
+        /// The field (MuJoCo's name).
+        field: &'static str,
+        /// Why.
+        reason: &'static str,
+    },
     /// No key of that name in the compiled model.
     #[error("no keyframe named {name:?} in the compiled model")]
     NoKey {

@@ -49,12 +49,14 @@
 
 mod bind;
 mod compile;
+mod constants;
 mod error;
 mod fields;
 mod guard;
 mod library;
 mod model;
 mod physics;
+mod rebuild;
 #[allow(clippy::all, unsafe_op_in_unsafe_fn, missing_docs, unreachable_pub, dead_code)]
 mod sys;
 
@@ -64,6 +66,7 @@ pub use crate::guard::Message;
 pub use crate::library::MuJoCo;
 pub use crate::model::{Compiled, Sizes};
 pub use crate::physics::{Physics, Warning, WarningElement, WarningKind, Warnings};
+pub use crate::rebuild::{Carried, Defaulted, DefaultedWhy, Dropped, RebuildMode, RebuildReport};
 
 /// The MuJoCo version the bindings were made for, the only one loaded.
 pub const MUJOCO_VERSION: &str = "4.0.0";

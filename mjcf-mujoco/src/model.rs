@@ -29,7 +29,7 @@ pub(crate) struct Inner {
     pub(crate) mujoco: MuJoCo,
     pub(crate) ptr: NonNull<mjModel>,
     /// The `mjcf` model and where its elements were written, when compiled from one.
-    pub(crate) source: Option<Arc<(Model, Written)>>,
+    pub(crate) source: Option<Arc<Source>>,
     pub(crate) messages: Vec<Message>,
 }
 
@@ -105,7 +105,7 @@ impl Compiled {
     pub(crate) fn new(
         mujoco: MuJoCo,
         ptr: NonNull<mjModel>,
-        source: Option<(Model, Written)>,
+        source: Option<Source>,
         messages: Vec<Message>,
     ) -> Compiled {
         Compiled { inner: Arc::new(Inner { mujoco, ptr, source: source.map(Arc::new), messages }) }
@@ -121,15 +121,17 @@ impl Compiled {
     ///
     /// Time: O(1).
     pub fn source(&self) -> Option<&Model> {
-        self.inner.source.as_deref().map(|(m, _)| m)
+        self.inner.source.as_deref().map(|s| &s.model)
     }
 
     /// The MJCF text MuJoCo compiled, with where each element was written (`None`
-    /// when compiled from text or a file).
+    /// when compiled from text or a file). For a model a rebuild wrote in place
+    /// ([`Physics::rebuild`](crate::Physics::rebuild)), the edited model's text,
+    /// written the first time it is asked for.
     ///
-    /// Time: O(1).
+    /// Time: O(1); the first call after an in-place rebuild writes the model (O(N)).
     pub fn written(&self) -> Option<&Written> {
-        self.inner.source.as_deref().map(|(_, w)| w)
+        self.inner.source.as_deref().and_then(Source::written)
     }
 
     /// What MuJoCo logged while compiling (its warnings).
@@ -370,6 +372,41 @@ fn no_model_field(name: &str) -> BindError {
         kind: "model",
         field: name.to_string(),
         known: "mjModel's array fields".into(),
+    }
+}
+
+/// The `mjcf` model a compiled model was compiled from (or written in place from),
+/// and where its elements were written.
+pub(crate) struct Source {
+    pub(crate) model: Model,
+    pub(crate) options: mjcf::WriteOptions,
+    written: std::sync::OnceLock<Option<Written>>,
+    /// Each compiled element by locator (`crate::rebuild`), found once.
+    pub(crate) ids: std::sync::OnceLock<Arc<crate::rebuild::Ids>>,
+}
+
+impl Source {
+    /// A model compiled from `written`.
+    pub(crate) fn compiled(model: Model, options: mjcf::WriteOptions, written: Written) -> Source {
+        let cell = std::sync::OnceLock::new();
+        let _ = cell.set(Some(written));
+        Source { model, options, written: cell, ids: std::sync::OnceLock::new() }
+    }
+
+    /// A model written in place into a compiled model whose elements are `ids`.
+    pub(crate) fn in_place(
+        model: Model,
+        options: mjcf::WriteOptions,
+        ids: Arc<crate::rebuild::Ids>,
+    ) -> Source {
+        let cell = std::sync::OnceLock::new();
+        let _ = cell.set(ids);
+        Source { model, options, written: std::sync::OnceLock::new(), ids: cell }
+    }
+
+    /// Where its elements were written (written now if not yet).
+    pub(crate) fn written(&self) -> Option<&Written> {
+        self.written.get_or_init(|| self.model.to_xml_written(&self.options).ok()).as_ref()
     }
 }
 
