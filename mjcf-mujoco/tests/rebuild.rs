@@ -247,3 +247,42 @@ fn fields_the_compiler_derives_more_from_are_refused_with_a_rebuild_hint() {
     assert!(p.step(1).unwrap().is_empty());
     assert_eq!(p.model().floats("body_subtreemass").unwrap()[base.id()], before + 1.0);
 }
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn an_inertial_added_to_a_body_is_written_in_place_and_equals_a_fresh_compile() {
+    // r1's base: its mass times 1.5, its inertia and inertial frame as compiled.
+    let m = scene();
+    let mut p = running(&m);
+    let base = p.bind((ObjKind::Body, "r1/base")).unwrap();
+    let mass = p.get(&base, "mass").unwrap()[0];
+    let (ipos, iquat, inertia) = (
+        p.get(&base, "ipos").unwrap().to_vec(),
+        p.get(&base, "iquat").unwrap().to_vec(),
+        p.get(&base, "inertia").unwrap().to_vec(),
+    );
+    let mut edited = m.clone();
+    let at = edited.find(Namespace::Body, "r1/base").unwrap();
+    let inertial = element!(
+        "inertial",
+        pos = ipos.as_slice(),
+        quat = iquat.as_slice(),
+        mass = 1.5 * mass,
+        diaginertia = inertia.as_slice()
+    );
+    edited.add_mut(&at, inertial).unwrap();
+    let report = p.rebuild(&edited).unwrap();
+    assert_eq!(report.mode, RebuildMode::InPlace);
+    assert_eq!(p.get(&base, "mass").unwrap(), [1.5 * mass]);
+    let fresh = mujoco().compile_with(&edited, &options()).unwrap();
+    let mut q = Physics::new(&fresh).unwrap();
+    set_state(&mut q, &state(&p));
+    let names = ["body_mass", "body_ipos", "body_iquat", "body_inertia", "body_subtreemass"];
+    for name in names.iter().chain(&["body_invweight0", "dof_invweight0", "dof_M0"]) {
+        assert_eq!(p.model().floats(name).unwrap(), fresh.floats(name).unwrap(), "{name}");
+    }
+    for _ in 0..20 {
+        assert!(p.step(1).unwrap().is_empty() && q.step(1).unwrap().is_empty());
+        assert_eq!(first_difference(&state(&p), &state(&q)), None);
+    }
+}

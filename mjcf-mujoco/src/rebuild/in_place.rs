@@ -10,6 +10,12 @@
 //! more leaves the rest to the class): they are kept. Anything else (a name, a class,
 //! an element added, removed or moved, an angle the compiler converts, a value the
 //! compiler derived rather than copied) is compiled.
+//!
+//! One structural edit is written in place too: an `<inertial>` added to a body
+//! (its `pos`, `mass`, `diaginertia` and optionally `quat`), which replaces what the
+//! compiler computed from the body's geoms by the inertial's numbers, as compiling
+//! does when no compiler setting (`inertiafromgeom="true"`, `boundmass`,
+//! `boundinertia`, `balanceinertia`, `settotalmass`, `alignfree`) alters them.
 
 use mjcf::{Change, ElementRef, Model, Value};
 
@@ -100,6 +106,10 @@ pub(crate) fn plan(
     let m: &mjModel = compiled.raw();
     let mut plan = Plan::default();
     for change in changes {
+        if let Change::Added { loc } = change {
+            added_inertial(compiled, ids, new, loc, &mut plan)?;
+            continue;
+        }
         let Change::AttrChanged { loc, attribute, old, new: Some(value) } = change else {
             return None;
         };
@@ -152,6 +162,73 @@ pub(crate) fn plan(
         }
     }
     Some(plan)
+}
+
+/// The compiler settings under which an added inertial is not copied as given.
+const INERTIA_SETTINGS: &[&str] =
+    &["boundmass", "boundinertia", "balanceinertia", "settotalmass", "alignfree"];
+
+/// The writes of an `<inertial>` added to a body (see the module's docs).
+fn added_inertial(
+    compiled: &Compiled,
+    ids: &Ids,
+    new: &Model,
+    loc: &mjcf::Loc,
+    plan: &mut Plan,
+) -> Option<()> {
+    let element = new.element(loc)?;
+    if element.tag() != "inertial" || in_default(&element) {
+        return None;
+    }
+    if element.attrs().any(|(a, _)| !matches!(a, "pos" | "quat" | "mass" | "diaginertia")) {
+        return None;
+    }
+    let settings_alter = new.walk().any(|ev| match ev {
+        mjcf::Event::Enter(e) if e.tag() == "compiler" => {
+            e.string("inertiafromgeom") == Some("true")
+                || e.attrs().any(|(a, _)| INERTIA_SETTINGS.contains(&a))
+        }
+        _ => false,
+    });
+    if settings_alter {
+        return None;
+    }
+    let body = element.parent()?;
+    if body.tag() != "body" && !body.is_frame() {
+        return None;
+    }
+    let &(kind, id) = ids.by_loc.get(&body.loc())?;
+    if kind != ObjKind::Body {
+        return None;
+    }
+    let pos = element.floats("pos")?;
+    let mass = element.float("mass")?;
+    let inertia = element.floats("diaginertia")?;
+    let mut quat =
+        element.floats("quat").map_or([1.0, 0.0, 0.0, 0.0], |q| [q[0], q[1], q[2], q[3]]);
+    // The compiler's normalization (mjuu_normvec): divided by the norm unless it is
+    // within 1e-9 of 1.
+    let norm = quat.iter().map(|x| x * x).sum::<f64>();
+    if norm < 1e-9 || pos.len() != 3 || inertia.len() != 3 {
+        return None;
+    }
+    let norm = norm.sqrt();
+    if (norm - 1.0).abs() > 1e-9 {
+        quat.iter_mut().for_each(|x| *x /= norm);
+    }
+    let m: &mjModel = compiled.raw();
+    for (field, values) in [
+        ("body_mass", vec![mass]),
+        ("body_ipos", pos.to_vec()),
+        ("body_iquat", quat.to_vec()),
+        ("body_inertia", inertia.to_vec()),
+    ] {
+        let slot = bind::resolve_model(m, ObjKind::Body, id, field).ok()?;
+        let raw = fields::model_field(m, slot.index)?;
+        plan.writes.push((slot.index, slot.rows.start * raw.cols, values));
+    }
+    plan.set_const = true;
+    Some(())
 }
 
 /// Writes `plan` into `m`.
