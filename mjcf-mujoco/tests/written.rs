@@ -12,6 +12,8 @@
 //! bit for bit; a difference within 1e-12 relative is counted apart, with its field.
 //! Scenes: `MJCF_WRITTEN_SCENES` (default 200).
 
+#[path = "support/augment.rs"]
+mod augment;
 #[path = "support/state.rs"]
 mod state;
 mod support;
@@ -103,36 +105,6 @@ fn candidates(m: &Model, rng: &mut Lcg) -> Vec<Edit> {
     out
 }
 
-/// `m` with a general actuator and a motor on its first named hinge or slide joint
-/// (generated scenes have few actuators).
-fn with_actuators(mut m: Model) -> Model {
-    let joint = m.walk().find_map(|ev| match ev {
-        Event::Enter(e)
-            if e.tag() == "joint"
-                && e.identifier().is_some()
-                && matches!(e.string("type"), None | Some("hinge" | "slide"))
-                && e.parent().is_some_and(|p| p.tag() == "body" || p.is_frame()) =>
-        {
-            e.full_name()
-        }
-        _ => None,
-    });
-    let Some(joint) = joint else { return m };
-    let act = m.actuator();
-    let general = mjcf::element!(
-        "general",
-        name = "extra_general",
-        joint = joint.as_str(),
-        gainprm = [1.0],
-        biasprm = [0.0, -1.0, -0.1]
-    );
-    let motor = mjcf::element!("motor", name = "extra_motor", joint = joint.as_str(), gear = [1.0]);
-    if m.add_mut(&act, general).is_err() || m.add_mut(&act, motor).is_err() {
-        return m;
-    }
-    m
-}
-
 /// The state arrays after `n` steps of `p` and of `q`, compared step by step: the
 /// first difference, if any.
 fn compare_steps(p: &mut Physics, q: &mut Physics, n: usize) -> Option<(String, f64)> {
@@ -176,7 +148,7 @@ fn written_numbers_step_as_a_fresh_compile_of_the_edited_model() {
     let mut near: Vec<String> = Vec::new();
     let mut failures: Vec<String> = Vec::new();
     for i in 0..n {
-        let m = with_actuators(scenes.new_tree(&mut runner).unwrap().current().build());
+        let m = augment::with_actuators(scenes.new_tree(&mut runner).unwrap().current().build());
         let mut all = candidates(&m, &mut lcg);
         if all.is_empty() {
             continue;
