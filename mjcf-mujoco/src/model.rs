@@ -383,6 +383,9 @@ pub(crate) struct Source {
     written: std::sync::OnceLock<Option<Written>>,
     /// Each compiled element by locator (`crate::rebuild`), found once.
     pub(crate) ids: std::sync::OnceLock<Arc<crate::rebuild::Ids>>,
+    /// Every element a rebuild reports, under its own name (the report of a rebuild
+    /// that changes no element), listed once.
+    pub(crate) all: std::sync::OnceLock<Arc<[crate::rebuild::Carried]>>,
 }
 
 impl Source {
@@ -390,18 +393,22 @@ impl Source {
     pub(crate) fn compiled(model: Model, options: mjcf::WriteOptions, written: Written) -> Source {
         let cell = std::sync::OnceLock::new();
         let _ = cell.set(Some(written));
-        Source { model, options, written: cell, ids: std::sync::OnceLock::new() }
+        let (ids, all) = (std::sync::OnceLock::new(), std::sync::OnceLock::new());
+        Source { model, options, written: cell, ids, all }
     }
 
-    /// A model written in place into a compiled model whose elements are `ids`.
+    /// A model written in place into a compiled model whose elements are `ids`, all
+    /// of them `all`.
     pub(crate) fn in_place(
         model: Model,
         options: mjcf::WriteOptions,
         ids: Arc<crate::rebuild::Ids>,
+        all: Arc<[crate::rebuild::Carried]>,
     ) -> Source {
-        let cell = std::sync::OnceLock::new();
+        let (cell, every) = (std::sync::OnceLock::new(), std::sync::OnceLock::new());
         let _ = cell.set(ids);
-        Source { model, options, written: std::sync::OnceLock::new(), ids: cell }
+        let _ = every.set(all);
+        Source { model, options, written: std::sync::OnceLock::new(), ids: cell, all: every }
     }
 
     /// Where its elements were written (written now if not yet).

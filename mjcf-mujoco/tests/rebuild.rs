@@ -292,10 +292,13 @@ fn an_inertial_added_to_a_body_is_written_in_place_and_equals_a_fresh_compile() 
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]
 fn the_editor_loop_of_the_crate_docs_runs() {
     let mut robot = Model::new("robot");
-    let torso =
-        robot.add_mut(&robot.worldbody(), element!("body", name = "torso", pos = [0, 0, 1])).unwrap();
+    let torso = robot
+        .add_mut(&robot.worldbody(), element!("body", name = "torso", pos = [0, 0, 1]))
+        .unwrap();
     robot.add_mut(&torso, element!("freejoint")).unwrap();
-    robot.add_mut(&torso, element!("geom", name = "box", type = "box", size = [0.1, 0.1, 0.1])).unwrap();
+    robot
+        .add_mut(&torso, element!("geom", name = "box", type = "box", size = [0.1, 0.1, 0.1]))
+        .unwrap();
     let mut history = History::new(robot);
     let mut physics = Physics::new(&mujoco().compile(history.current()).unwrap()).unwrap();
     assert!(physics.step(100).unwrap().is_empty());
@@ -303,10 +306,14 @@ fn the_editor_loop_of_the_crate_docs_runs() {
     history.edit("friction", |m| m.set_attr_mut(&geom, "friction", [0.5])).unwrap();
     assert_eq!(physics.rebuild(history.current()).unwrap().mode, RebuildMode::InPlace);
     let free = physics.bind((ObjKind::Joint, 0)).unwrap();
-    let (q, v) = (physics.get(&free, "qpos").unwrap().to_vec(), physics.get(&free, "qvel").unwrap().to_vec());
+    let (q, v) = (
+        physics.get(&free, "qpos").unwrap().to_vec(),
+        physics.get(&free, "qvel").unwrap().to_vec(),
+    );
     history
         .edit("ball", |m| {
-            let ball = m.add_mut(&m.worldbody(), element!("body", name = "ball", pos = [1, 0, 1]))?;
+            let ball =
+                m.add_mut(&m.worldbody(), element!("body", name = "ball", pos = [1, 0, 1]))?;
             m.add_mut(&ball, element!("freejoint"))?;
             m.add_mut(&ball, element!("geom", type = "sphere", size = [0.1]))
         })
@@ -326,5 +333,9 @@ fn the_editor_loop_of_the_crate_docs_runs() {
     physics.rebuild(history.current()).unwrap();
     let ball = physics.bind((ObjKind::Body, "ball")).unwrap();
     physics.forward().unwrap();
-    assert_eq!(physics.get(&ball, "xpos").unwrap(), [1.0, 0.0, 1.0], "back at rest where it starts");
+    assert_eq!(
+        physics.get(&ball, "xpos").unwrap(),
+        [1.0, 0.0, 1.0],
+        "back at rest where it starts"
+    );
 }

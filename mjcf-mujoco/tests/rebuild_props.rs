@@ -149,7 +149,7 @@ fn random_edits_undo_and_redo_drive_a_running_simulation() {
             *modes.entry(report.mode.name()).or_default() += 1;
             let new_state = as_map(state(&p));
             let new_model = p.model().clone();
-            for c in &report.carried {
+            for c in report.carried.iter() {
                 let (old_id, new_id) = (
                     old_model.id(c.kind, &c.old_name).unwrap(),
                     new_model.id(c.kind, &c.name).unwrap(),

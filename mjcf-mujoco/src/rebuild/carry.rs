@@ -24,20 +24,24 @@ unsafe fn array<'a, T>(p: &Physics, name: &str, scalar: Scalar) -> &'a mut [T] {
     unsafe { raw.slice_mut(&fields::DATA_FIELDS[i], scalar, "") }.unwrap_or_default()
 }
 
-/// Copies `n` scalars of field `name` from `old` at `from` to `new` at `to`.
-fn copy<T: Copy>(
-    old: &Physics,
-    new: &Physics,
-    name: &str,
-    s: Scalar,
-    from: usize,
-    to: usize,
-    n: usize,
-) {
-    // SAFETY: two data of two simulations; the slices live for this call only.
-    let (src, dst) = unsafe { (array::<T>(old, name, s), array::<T>(new, name, s)) };
-    if from + n <= src.len() && to + n <= dst.len() {
-        dst[to..to + n].copy_from_slice(&src[from..from + n]);
+/// A data array of `old` and of `new`, found once.
+struct Pair<'a, T> {
+    src: &'a mut [T],
+    dst: &'a mut [T],
+}
+
+impl<T: Copy> Pair<'_, T> {
+    fn new(old: &Physics, new: &Physics, name: &str, s: Scalar) -> Self {
+        // SAFETY: two data of two simulations; each field is taken once, and the
+        // pair lives for one `carry` call, while both simulations do.
+        unsafe { Pair { src: array::<T>(old, name, s), dst: array::<T>(new, name, s) } }
+    }
+
+    /// Copies `n` scalars from `from` to `to`.
+    fn copy(&mut self, from: usize, to: usize, n: usize) {
+        if from.saturating_add(n) <= self.src.len() && to.saturating_add(n) <= self.dst.len() {
+            self.dst[to..to + n].copy_from_slice(&self.src[from..from + n]);
+        }
     }
 }
 
@@ -65,6 +69,7 @@ pub(crate) fn carry(
     new: &mut Physics,
     ids: Option<(&Ids, &Ids)>,
     report: &mut RebuildReport,
+    carried: &mut Vec<Carried>,
 ) {
     new.set_time(old.time());
     let mut per_kind =
@@ -83,7 +88,7 @@ pub(crate) fn carry(
                 match (why, o) {
                     (None, Some(o)) => {
                         let old_name = old.model().name(kind, *o).unwrap_or_default().to_string();
-                        report.carried.push(Carried { kind, name, old_name });
+                        carried.push(Carried { kind, name, old_name });
                     }
                     (Some(why), _) => report.defaulted.push(Defaulted { kind, name, why }),
                     (None, None) => {}
@@ -99,14 +104,17 @@ pub(crate) fn carry(
     let (ot, nt) = (ints(old, "jnt_type"), ints(new, "jnt_type"));
     let (oq, nq) = (ints(old, "jnt_qposadr"), ints(new, "jnt_qposadr"));
     let (od, nd) = (ints(old, "jnt_dofadr"), ints(new, "jnt_dofadr"));
+    let f64s = |name: &str| Pair::<f64>::new(old, new, name, Scalar::F64);
+    let mut qpos = f64s("qpos");
+    let mut dofs = [f64s("qvel"), f64s("qacc_warmstart"), f64s("qfrc_applied")];
     per_kind(ObjKind::Joint, &mut |j, o| {
         if ot.get(o) != nt.get(j) {
             return Some(DefaultedWhy::TypeChanged);
         }
         let (q, v) = widths(nt[j]);
-        copy::<f64>(old, new, "qpos", Scalar::F64, at(oq, o), at(nq, j), q);
-        for f in ["qvel", "qacc_warmstart", "qfrc_applied"] {
-            copy::<f64>(old, new, f, Scalar::F64, at(od, o), at(nd, j), v);
+        qpos.copy(at(oq, o), at(nq, j), q);
+        for f in &mut dofs {
+            f.copy(at(od, o), at(nd, j), v);
         }
         None
     });
@@ -114,6 +122,7 @@ pub(crate) fn carry(
     let (ocn, ncn) = (ints(old, "actuator_ctrlnum"), ints(new, "actuator_ctrlnum"));
     let (oaa, naa) = (ints(old, "actuator_actadr"), ints(new, "actuator_actadr"));
     let (oan, nan) = (ints(old, "actuator_actnum"), ints(new, "actuator_actnum"));
+    let (mut ctrl, mut act) = (f64s("ctrl"), f64s("act"));
     per_kind(ObjKind::Actuator, &mut |a, o| {
         if oan.get(o) != nan.get(a) {
             return Some(DefaultedWhy::ActivationChanged);
@@ -121,27 +130,30 @@ pub(crate) fn carry(
         if ocn.get(o) != ncn.get(a) {
             return Some(DefaultedWhy::ControlsChanged);
         }
-        copy::<f64>(old, new, "ctrl", Scalar::F64, at(oca, o), at(nca, a), at(ncn, a));
+        ctrl.copy(at(oca, o), at(nca, a), at(ncn, a));
         let n = usize::try_from(nan.get(a).copied().unwrap_or(0)).unwrap_or(0);
         if n > 0 {
-            copy::<f64>(old, new, "act", Scalar::F64, at(oaa, o), at(naa, a), n);
+            act.copy(at(oaa, o), at(naa, a), n);
         }
         None
     });
     let (om, nm) = (ints(old, "body_mocapid"), ints(new, "body_mocapid"));
+    let (mut xfrc, mut mpos, mut mquat) =
+        (f64s("xfrc_applied"), f64s("mocap_pos"), f64s("mocap_quat"));
     per_kind(ObjKind::Body, &mut |b, o| {
-        copy::<f64>(old, new, "xfrc_applied", Scalar::F64, 6 * o, 6 * b, 6);
+        xfrc.copy(6 * o, 6 * b, 6);
         let (from, to) = (at(om, o), at(nm, b));
         if from != usize::MAX && to != usize::MAX {
-            copy::<f64>(old, new, "mocap_pos", Scalar::F64, 3 * from, 3 * to, 3);
-            copy::<f64>(old, new, "mocap_quat", Scalar::F64, 4 * from, 4 * to, 4);
+            mpos.copy(3 * from, 3 * to, 3);
+            mquat.copy(4 * from, 4 * to, 4);
         } else if to != usize::MAX {
             return Some(DefaultedWhy::NewMocap);
         }
         None
     });
+    let mut active = Pair::<u8>::new(old, new, "eq_active", Scalar::Bool);
     per_kind(ObjKind::Equality, &mut |e, o| {
-        copy::<u8>(old, new, "eq_active", Scalar::Bool, o, e, 1);
+        active.copy(o, e, 1);
         None
     });
     carry_global(old, new, ids.is_some(), report);
@@ -176,7 +188,7 @@ fn carry_global(old: &Physics, new: &Physics, related: bool, report: &mut Rebuil
         }
         if o == n && alike {
             let n = usize::try_from(n).unwrap_or(0);
-            copy::<f64>(old, new, name, Scalar::F64, 0, 0, n);
+            Pair::<f64>::new(old, new, name, Scalar::F64).copy(0, 0, n);
         } else {
             report
                 .notes

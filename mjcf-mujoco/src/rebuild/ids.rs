@@ -98,12 +98,19 @@ pub(crate) fn ids(compiled: &Compiled) -> Option<Arc<Ids>> {
     let written = source.written()?;
     let mut by_loc = HashMap::with_capacity(written.elements().len());
     for w in written.elements() {
-        if w.tag == "frame" {
-            continue;
-        }
-        let Some(kind) = source.model.element(&w.loc).and_then(|e| ObjKind::of(&e)) else {
-            continue;
+        let kind = match w.tag {
+            // Kinds a rebuild neither carries nor writes in place.
+            "frame" | "site" | "camera" | "light" | "default" | "mesh" | "texture" | "material"
+            | "hfield" | "key" | "pair" | "exclude" | "numeric" | "text" | "tuple" | "spatial"
+            | "fixed" => continue,
+            // Tags of one kind (an attachment frame written as a body is a body).
+            "body" => Some(ObjKind::Body),
+            "geom" => Some(ObjKind::Geom),
+            "freejoint" => Some(ObjKind::Joint),
+            // Others (a `<joint>` of a body or of the equalities, actuators, ...).
+            _ => source.model.element(&w.loc).and_then(|e| ObjKind::of(&e)),
         };
+        let Some(kind) = kind else { continue };
         let Some(name) = written_name(written.xml(), w.offset) else { continue };
         if let Some(id) = compiled.id(kind, &name) {
             by_loc.insert(w.loc.clone(), (kind, id));

@@ -102,8 +102,9 @@ pub struct Dropped {
 pub struct RebuildReport {
     /// How the new model was made.
     pub mode: RebuildMode,
-    /// Elements whose state was carried over.
-    pub carried: Vec<Carried>,
+    /// Elements whose state was carried over (shared between the reports of
+    /// rebuilds that change no element).
+    pub carried: Arc<[Carried]>,
     /// Elements of the new model at their defaults, and why.
     pub defaulted: Vec<Defaulted>,
     /// Elements of the old model the new one lacks.
@@ -119,7 +120,7 @@ impl RebuildReport {
     fn new(mode: RebuildMode) -> RebuildReport {
         RebuildReport {
             mode,
-            carried: Vec::new(),
+            carried: Arc::new([]),
             defaulted: Vec::new(),
             dropped: Vec::new(),
             notes: Vec::new(),
@@ -132,13 +133,22 @@ impl RebuildReport {
 const REPORTED: [ObjKind; 4] =
     [ObjKind::Joint, ObjKind::Actuator, ObjKind::Body, ObjKind::Equality];
 
-/// Every element of the reported kinds of `compiled`, carried under its own name.
-fn all_carried(compiled: &Compiled, report: &mut RebuildReport) {
-    for kind in REPORTED {
-        for id in 0..compiled.count(kind) {
-            let name = compiled.name(kind, id).unwrap_or_default().to_string();
-            report.carried.push(Carried { kind, old_name: name.clone(), name });
+/// Every element of the reported kinds of `compiled`, carried under its own name
+/// (listed once per compiled model).
+fn all_carried(compiled: &Compiled) -> Arc<[Carried]> {
+    let list = || -> Arc<[Carried]> {
+        let mut all = Vec::new();
+        for kind in REPORTED {
+            for id in 0..compiled.count(kind) {
+                let name = compiled.name(kind, id).unwrap_or_default().to_string();
+                all.push(Carried { kind, old_name: name.clone(), name });
+            }
         }
+        all.into()
+    };
+    match compiled.inner.source.as_deref() {
+        Some(source) => source.all.get_or_init(list).clone(),
+        None => list(),
     }
 }
 
@@ -201,13 +211,14 @@ impl Physics {
             let changes = source.model.diff(model);
             if changes.is_empty() {
                 let mut report = RebuildReport::new(RebuildMode::None);
-                all_carried(&self.model, &mut report);
+                report.carried = all_carried(&self.model);
                 report.seconds = start.elapsed().as_secs_f64();
                 return Ok(report);
             }
             if let Some(old_ids) = ids::ids(&self.model)
                 && let Some(plan) = in_place::plan(&self.model, &old_ids, model, &changes)
             {
+                let all = all_carried(&self.model);
                 self.own_model()?;
                 // SAFETY: the model is this simulation's own now.
                 unsafe { in_place::apply(self.model.raw(), &plan) };
@@ -215,11 +226,12 @@ impl Physics {
                     call: "Physics::rebuild",
                     message: "the model is shared after it was copied".into(),
                 })?;
-                inner.source = Some(Arc::new(Source::in_place(model.clone(), options, old_ids)));
+                let source = Source::in_place(model.clone(), options, old_ids, all.clone());
+                inner.source = Some(Arc::new(source));
                 self.stale_constants |= plan.set_const;
                 self.update_constants()?;
                 let mut report = RebuildReport::new(RebuildMode::InPlace);
-                all_carried(&self.model, &mut report);
+                report.carried = all;
                 report.seconds = start.elapsed().as_secs_f64();
                 return Ok(report);
             }
@@ -233,7 +245,9 @@ impl Physics {
             (Some(o), Some(n)) if ids::related(Some(o), Some(n)) => Some((&**o, &**n)),
             _ => None,
         };
-        carry::carry(self, &mut new, pair, &mut report);
+        let mut carried = Vec::new();
+        carry::carry(self, &mut new, pair, &mut report, &mut carried);
+        report.carried = carried.into();
         *self = new;
         report.seconds = start.elapsed().as_secs_f64();
         Ok(report)
