@@ -151,11 +151,13 @@ pub(crate) fn matching(
     match ids {
         Some((o, nw)) => {
             for (loc, &(k, id)) in &nw.by_loc {
-                if k == kind
-                    && let Some(&(ok, oid)) = o.by_loc.get(loc)
-                    && ok == kind
-                {
-                    old_of[id] = Some(oid);
+                if k != kind {
+                    continue;
+                }
+                if let Some(&(ok, oid)) = o.by_loc.get(loc) {
+                    if ok == kind {
+                        old_of[id] = Some(oid);
+                    }
                 }
             }
         }

@@ -129,6 +129,46 @@ impl RebuildReport {
     }
 }
 
+impl Physics {
+    /// A rebuild with no change, or written in place (`None` when `model` must be
+    /// compiled).
+    fn without_compile(
+        &mut self,
+        source: &Source,
+        model: &Model,
+        options: &mjcf::WriteOptions,
+        start: Instant,
+    ) -> Result<Option<RebuildReport>, Error> {
+        let changes = source.model.diff(model);
+        if changes.is_empty() {
+            let mut report = RebuildReport::new(RebuildMode::None);
+            report.carried = all_carried(&self.model);
+            report.seconds = start.elapsed().as_secs_f64();
+            return Ok(Some(report));
+        }
+        let Some(old_ids) = ids::ids(&self.model) else { return Ok(None) };
+        let Some(plan) = in_place::plan(&self.model, &old_ids, model, &changes) else {
+            return Ok(None);
+        };
+        let all = all_carried(&self.model);
+        self.own_model()?;
+        // SAFETY: the model is this simulation's own now.
+        unsafe { in_place::apply(self.model.raw(), &plan) };
+        let inner = Arc::get_mut(&mut self.model.inner).ok_or_else(|| Error::Fatal {
+            call: "Physics::rebuild",
+            message: "the model is shared after it was copied".into(),
+        })?;
+        let source = Source::in_place(model.clone(), options.clone(), old_ids, all.clone());
+        inner.source = Some(Arc::new(source));
+        self.stale_constants |= plan.set_const;
+        self.update_constants()?;
+        let mut report = RebuildReport::new(RebuildMode::InPlace);
+        report.carried = all;
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok(Some(report))
+    }
+}
+
 /// The kinds whose elements a report lists.
 const REPORTED: [ObjKind; 4] =
     [ObjKind::Joint, ObjKind::Actuator, ObjKind::Body, ObjKind::Equality];
@@ -205,35 +245,11 @@ impl Physics {
         }
         let old_source = self.model.inner.source.clone();
         let options = old_source.as_ref().map(|s| s.options.clone()).unwrap_or_default();
-        if !self.written_raw
-            && let Some(source) = &old_source
-        {
-            let changes = source.model.diff(model);
-            if changes.is_empty() {
-                let mut report = RebuildReport::new(RebuildMode::None);
-                report.carried = all_carried(&self.model);
-                report.seconds = start.elapsed().as_secs_f64();
-                return Ok(report);
-            }
-            if let Some(old_ids) = ids::ids(&self.model)
-                && let Some(plan) = in_place::plan(&self.model, &old_ids, model, &changes)
-            {
-                let all = all_carried(&self.model);
-                self.own_model()?;
-                // SAFETY: the model is this simulation's own now.
-                unsafe { in_place::apply(self.model.raw(), &plan) };
-                let inner = Arc::get_mut(&mut self.model.inner).ok_or_else(|| Error::Fatal {
-                    call: "Physics::rebuild",
-                    message: "the model is shared after it was copied".into(),
-                })?;
-                let source = Source::in_place(model.clone(), options, old_ids, all.clone());
-                inner.source = Some(Arc::new(source));
-                self.stale_constants |= plan.set_const;
-                self.update_constants()?;
-                let mut report = RebuildReport::new(RebuildMode::InPlace);
-                report.carried = all;
-                report.seconds = start.elapsed().as_secs_f64();
-                return Ok(report);
+        if !self.written_raw {
+            if let Some(source) = &old_source {
+                if let Some(report) = self.without_compile(source, model, &options, start)? {
+                    return Ok(report);
+                }
             }
         }
         let compiled = self.model.inner.mujoco.compile_with(model, &options)?;
