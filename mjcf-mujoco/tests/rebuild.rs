@@ -339,3 +339,22 @@ fn the_editor_loop_of_the_crate_docs_runs() {
         "back at rest where it starts"
     );
 }
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn a_model_written_field_by_field_is_compiled_anew_by_a_rebuild() {
+    // Its numbers are no longer its source's: a rebuild to the same source compiles it
+    // (the written damping goes), keeping the state.
+    let m = scene();
+    let mut p = running(&m);
+    let hip = p.bind((ObjKind::Joint, "r0/fl_hip")).unwrap();
+    let damping = p.get(&hip, "damping").unwrap()[0];
+    p.get_mut(&hip, "damping").unwrap()[0] = damping + 5.0;
+    let before = state(&p);
+    let report = p.rebuild(&m).unwrap();
+    assert_eq!(report.mode, RebuildMode::Compiled);
+    assert_eq!(first_difference(&before, &state(&p)), None);
+    let hip = p.bind((ObjKind::Joint, "r0/fl_hip")).unwrap();
+    assert_eq!(p.get(&hip, "damping").unwrap(), [damping]);
+    assert_eq!(p.rebuild(&m).unwrap().mode, RebuildMode::None);
+}
