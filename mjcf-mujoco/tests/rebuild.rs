@@ -358,3 +358,49 @@ fn a_model_written_field_by_field_is_compiled_anew_by_a_rebuild() {
     assert_eq!(p.get(&hip, "damping").unwrap(), [damping]);
     assert_eq!(p.rebuild(&m).unwrap().mode, RebuildMode::None);
 }
+
+/// The default class's `<joint>` (damping 1, armature 0.01) of the robot in scope `r0`.
+fn r0_default_joint(m: &Model) -> mjcf::Loc {
+    m.walk()
+        .find_map(|ev| match ev {
+            mjcf::Event::Enter(e)
+                if e.tag() == "joint" && e.parent().is_some_and(|p| p.tag() == "default") =>
+            {
+                Some(e.loc())
+            }
+            _ => None,
+        })
+        .expect("a default joint")
+}
+
+#[test]
+#[ignore = "needs MuJoCo: set MUJOCO_LIB"]
+fn numbers_the_compiler_does_not_copy_as_given_are_compiled_and_equal_a_fresh_compile() {
+    // A default class's damping (every joint of the class), a hinge's range (degrees,
+    // converted), a free body's position (its joint's qpos0), an attribute cleared (the
+    // class's value comes back): each compiled, each step as a fresh compile's.
+    let m = scene();
+    let class_joint = r0_default_joint(&m);
+    let knee = m.find(Namespace::Joint, "r1/fl_knee").unwrap();
+    let base = m.find(Namespace::Body, "r1/base").unwrap();
+    let floor = m.find(Namespace::Geom, "floor").unwrap();
+    let with_friction = m.set_attr(&floor, "friction", [0.7]).unwrap();
+    let edits = [
+        (m.clone(), m.set_attr(&class_joint, "damping", 3.0).unwrap()),
+        (m.clone(), m.set_attr(&knee, "range", [-2.0, 0.5]).unwrap()),
+        (m.clone(), m.set_attr(&base, "pos", [0.0, 0.0, 0.5]).unwrap()),
+        (with_friction.clone(), with_friction.clear_attr(&floor, "friction").unwrap()),
+    ];
+    for (i, (from, to)) in edits.iter().enumerate() {
+        let mut p = running(from);
+        let report = p.rebuild(to).unwrap();
+        assert_eq!(report.mode, RebuildMode::Compiled, "edit {i}");
+        let fresh = mujoco().compile_with(to, &options()).unwrap();
+        let mut q = Physics::new(&fresh).unwrap();
+        set_state(&mut q, &state(&p));
+        for _ in 0..5 {
+            assert!(p.step(1).unwrap().is_empty() && q.step(1).unwrap().is_empty());
+            assert_eq!(first_difference(&state(&p), &state(&q)), None, "edit {i}");
+        }
+    }
+}
