@@ -107,6 +107,10 @@ pub(crate) fn ids(compiled: &Compiled) -> Option<Arc<Ids>> {
             "body" => Some(ObjKind::Body),
             "geom" => Some(ObjKind::Geom),
             "freejoint" => Some(ObjKind::Joint),
+            // Tags only the actuator section (and default classes, unnamed) has.
+            "general" | "motor" | "position" | "velocity" | "intvelocity" | "damper"
+            | "cylinder" | "muscle" | "adhesion" | "orientation" => Some(ObjKind::Actuator),
+            "connect" | "weld" => Some(ObjKind::Equality),
             // Others (a `<joint>` of a body or of the equalities, actuators, ...).
             _ => source.model.element(&w.loc).and_then(|e| ObjKind::of(&e)),
         };
