@@ -378,8 +378,36 @@ fn r0_default_joint(m: &Model) -> mjcf::Loc {
 fn numbers_the_compiler_does_not_copy_as_given_are_compiled_and_equal_a_fresh_compile() {
     // A default class's damping (every joint of the class), a hinge's range (degrees,
     // converted), a free body's position (its joint's qpos0), an attribute cleared (the
-    // class's value comes back): each compiled, each step as a fresh compile's.
-    let m = scene();
+    // class's value comes back), a zero position in a rotated frame, the gain of a
+    // servo with a damping ratio, a mass under a bound: each compiled, each step as a
+    // fresh compile's.
+    let mut m = scene();
+    // A body at the origin of a rotated frame (its compiled position, 0, is its own).
+    let w = m.worldbody();
+    let frame = m.add_mut(&w, element!("frame", name = "turned", euler = [0, 0, 90])).unwrap();
+    let spun = m.add_mut(&frame, element!("body", name = "spun")).unwrap();
+    m.add_mut(&spun, element!("geom", type = "sphere", size = [0.05], pos = [2, 2, 0.05])).unwrap();
+    // A position-like general actuator with a damping ratio (a positive third bias).
+    let act = m.actuator();
+    let servo = element!(
+        "general",
+        name = "servo",
+        joint = "r1/hl_hip",
+        gainprm = [20.0],
+        biasprm = [0.0, -20.0, 0.7]
+    );
+    let servo = m.add_mut(&act, servo).unwrap();
+    // An explicit inertial under a compiler's bound on masses.
+    let hl = m.find(Namespace::Body, "r1/hl").unwrap();
+    let inertial =
+        element!("inertial", pos = [0, 0, 0], mass = 0.3, diaginertia = [0.01, 0.01, 0.01]);
+    let inertial = m.add_mut(&hl, inertial).unwrap();
+    let bounded = {
+        let mut b = m.clone();
+        let compiler = b.section("compiler").unwrap();
+        b.set_attr_mut(&compiler, "boundmass", 0.2).unwrap();
+        b
+    };
     let class_joint = r0_default_joint(&m);
     let knee = m.find(Namespace::Joint, "r1/fl_knee").unwrap();
     let base = m.find(Namespace::Body, "r1/base").unwrap();
@@ -390,6 +418,9 @@ fn numbers_the_compiler_does_not_copy_as_given_are_compiled_and_equal_a_fresh_co
         (m.clone(), m.set_attr(&knee, "range", [-2.0, 0.5]).unwrap()),
         (m.clone(), m.set_attr(&base, "pos", [0.0, 0.0, 0.5]).unwrap()),
         (with_friction.clone(), with_friction.clear_attr(&floor, "friction").unwrap()),
+        (m.clone(), m.set_attr(&spun, "pos", [0.1, 0.0, 0.0]).unwrap()),
+        (m.clone(), m.set_attr(&servo, "gainprm", [30.0]).unwrap()),
+        (bounded.clone(), bounded.set_attr(&inertial, "mass", 0.1).unwrap()),
     ];
     for (i, (from, to)) in edits.iter().enumerate() {
         let mut p = running(from);

@@ -121,7 +121,7 @@ pub(crate) fn plan(
             RULES.iter().find(|r| r.attr == *attribute && r.tags.contains(&element.tag()))?;
         let target = if rule.parent { element.parent()?.loc() } else { loc.clone() };
         let &(kind, id) = ids.by_loc.get(&target)?;
-        if rule.field == "body_pos" && (kind != ObjKind::Body || free_body(compiled, id)) {
+        if !copied_as_given(compiled, new, &element, rule.field, kind, id) {
             return None;
         }
         let slot = bind::resolve_model(m, kind, id, rule.field).ok()?;
@@ -164,9 +164,85 @@ pub(crate) fn plan(
     Some(plan)
 }
 
-/// The compiler settings under which an added inertial is not copied as given.
+/// The compiler settings under which an inertial is not copied as given (bounded,
+/// balanced, scaled, fused with static children, or the free body aligned to it).
 const INERTIA_SETTINGS: &[&str] =
-    &["boundmass", "boundinertia", "balanceinertia", "settotalmass", "alignfree"];
+    &["boundmass", "boundinertia", "balanceinertia", "settotalmass", "alignfree", "fusestatic"];
+
+/// Whether a compiler setting of `model` changes inertias from what they are given.
+fn inertia_settings_alter(model: &Model) -> bool {
+    model.walk().any(|ev| match ev {
+        mjcf::Event::Enter(e) if e.tag() == "compiler" => {
+            e.string("inertiafromgeom") == Some("true")
+                || e.attrs().any(|(a, _)| INERTIA_SETTINGS.contains(&a))
+        }
+        _ => false,
+    })
+}
+
+/// MuJoCo 4.0's `mjGAIN_MUSCLE` and `mjGAIN_USER` (mjtGain), whose length ranges
+/// the compiler computes.
+const GAIN_MUSCLE_OR_USER: [i32; 2] = [2, 6];
+/// MuJoCo 4.0's `mjBIAS_MUSCLE` and `mjBIAS_USER` (mjtBias).
+const BIAS_MUSCLE_OR_USER: [i32; 2] = [2, 5];
+/// `mjGAIN_FIXED`, `mjGAIN_AFFINE` (and `mjBIAS_NONE`, `mjBIAS_AFFINE`): the types
+/// whose parameters the compiler copies (others, such as PID and DC motor
+/// actuators, derive more from them).
+const PLAIN_TYPES: [i32; 2] = [0, 1];
+
+/// Whether the compiler copies the attribute of `element` (compiled as element `id`
+/// of `kind`) into `field` as given, beyond the check that the field held the old
+/// value (which a transform can pass: a zero position in a rotated frame):
+/// - a body's position, when its parent is a body (not a frame, an attachment or
+///   a replicate, whose transforms compose with it) and it has no free joint;
+/// - an inertial's numbers, when no compiler setting alters inertias;
+/// - a gear, when no actuator length range is computed from it (muscle and user
+///   actuators, or every actuator with `<lengthrange mode="all">`);
+/// - a general actuator's gains and biases, unless it is position-like with a damping
+///   ratio (a positive third bias, which the compiler turns into a damping from the
+///   gain): its own biasprm must give a third number of at most 0.
+fn copied_as_given(
+    compiled: &Compiled,
+    new: &Model,
+    element: &ElementRef<'_>,
+    field: &str,
+    kind: ObjKind,
+    id: usize,
+) -> bool {
+    let at = |name: &str, cols: usize, i: usize| -> f64 {
+        compiled.floats(name).ok().and_then(|v| v.get(id * cols + i).copied()).unwrap_or(f64::NAN)
+    };
+    let int = |name: &str| compiled.ints(name).ok().and_then(|v| v.get(id).copied());
+    match field {
+        "body_pos" => {
+            kind == ObjKind::Body
+                && !free_body(compiled, id)
+                && element
+                    .parent()
+                    .is_some_and(|p| matches!(p.tag(), "body" | "worldbody") && !p.is_frame())
+        }
+        "body_mass" | "body_inertia" => !inertia_settings_alter(new),
+        "actuator_gear" => {
+            let all = new.walk().any(|ev| match ev {
+                mjcf::Event::Enter(e) if e.tag() == "lengthrange" => {
+                    e.string("mode") == Some("all")
+                }
+                _ => false,
+            });
+            !all && int("actuator_gaintype").is_some_and(|t| !GAIN_MUSCLE_OR_USER.contains(&t))
+                && int("actuator_biastype").is_some_and(|t| !BIAS_MUSCLE_OR_USER.contains(&t))
+        }
+        "actuator_gainprm" | "actuator_biasprm" => {
+            let plain = |name: &str| int(name).is_some_and(|t| PLAIN_TYPES.contains(&t));
+            let position_like = at("actuator_gainprm", 10, 0) == -at("actuator_biasprm", 10, 1);
+            let own = element.floats("biasprm");
+            plain("actuator_gaintype")
+                && plain("actuator_biastype")
+                && (!position_like || own.is_some_and(|b| b.len() >= 3 && b[2] <= 0.0))
+        }
+        _ => true,
+    }
+}
 
 /// The writes of an `<inertial>` added to a body (see the module's docs).
 fn added_inertial(
@@ -183,14 +259,7 @@ fn added_inertial(
     if element.attrs().any(|(a, _)| !matches!(a, "pos" | "quat" | "mass" | "diaginertia")) {
         return None;
     }
-    let settings_alter = new.walk().any(|ev| match ev {
-        mjcf::Event::Enter(e) if e.tag() == "compiler" => {
-            e.string("inertiafromgeom") == Some("true")
-                || e.attrs().any(|(a, _)| INERTIA_SETTINGS.contains(&a))
-        }
-        _ => false,
-    });
-    if settings_alter {
+    if inertia_settings_alter(new) {
         return None;
     }
     let body = element.parent()?;
