@@ -7,8 +7,8 @@
 //! inverse weights, each degree of freedom's `M0`, `invweight0` and length, tendon and
 //! actuator lengths and accelerations at `qpos0`, cameras' and lights' reference
 //! poses, the model's statistics (mean inertia, extent), which frames coincide
-//! (`*_sameframe`), the trees and their sleep policies, and the damping of
-//! position-like actuators given a damping ratio. The binding runs it again after a
+//! (`*_sameframe`), the trees and their sleep policies (a damping ratio is turned
+//! into a damping by the compiler alone, in MuJoCo 4.0.0). The binding runs it again after a
 //! write of a field it reads, with a scratch `mjData` of its own, reset first (never
 //! the running simulation's data: `mj_setConst` moves the data it is given to
 //! `qpos0`). Fields the compiler derives more from than `mj_setConst` recomputes are

@@ -549,9 +549,9 @@ impl Physics {
     /// A field the compiler derives more from is refused ([`Error::NeedsRebuild`]):
     /// edit the `mjcf` model and [`Physics::rebuild`]. Write what a compile would
     /// hold: a unit axis, a unit quaternion. A position servo's damping ratio
-    /// (`dampratio`) is turned into a damping from its gain when compiled: after
-    /// writing the gain, write `biasprm`'s third number as the ratio (positive), and
-    /// it is turned into the damping again.
+    /// (`dampratio`) is turned into a damping from its gain by MuJoCo 4.0.0's
+    /// compiler only (not by `mj_setConst`): a gain written here keeps the damping
+    /// compiled from the old gain; a rebuild from the edited model compiles it.
     ///
     /// Time: O(f), plus the copy of the model the first time a shared one is written;
     /// `mj_setConst` (O(nv²) at most) before the next step after a write of a field
