@@ -85,6 +85,8 @@ int mjr_step(model_data_fn step, const mjModel* m, mjData* d, long n) {
 
 int mjr_call(model_data_fn f, const mjModel* m, mjData* d) { GUARDED(f(m, d)); }
 
+int mjr_set_const(void (*f)(mjModel*, mjData*), mjModel* m, mjData* d) { GUARDED(f(m, d)); }
+
 int mjr_reset_key(void (*f)(const mjModel*, mjData*, int), const mjModel* m, mjData* d, int key) {
   GUARDED(f(m, d, key));
 }

@@ -218,8 +218,12 @@ fn rows_of(m: &mjModel, kind: ObjKind, id: usize, rows: &str) -> Option<Range<us
         return Some(id..id + 1);
     }
     let span = |adr: &str, num: &str| -> Option<Range<usize>> {
-        let a = usize::try_from(model_int(m, adr, id)).ok()?;
         let n = usize::try_from(model_int(m, num, id)).ok()?;
+        if n == 0 {
+            // None of them (an actuator without activations: its address is -1).
+            return Some(0..0);
+        }
+        let a = usize::try_from(model_int(m, adr, id)).ok()?;
         Some(a..a + n)
     };
     match (kind, rows) {
@@ -257,7 +261,7 @@ pub(crate) fn resolve(
     id: usize,
     name: &str,
 ) -> Result<Slot, BindError> {
-    let (_, _, model_prefixes, data_prefix) = kind.table();
+    let (_, _, _, data_prefix) = kind.table();
     let data_names = [format!("{data_prefix}{name}"), name.to_string()];
     for candidate in &data_names {
         if let Some(i) = DATA_FIELDS.iter().position(|f| f.name == candidate) {
@@ -267,6 +271,17 @@ pub(crate) fn resolve(
             }
         }
     }
+    resolve_model(m, kind, id, name)
+}
+
+/// [`resolve`] among the fields of mjModel only.
+pub(crate) fn resolve_model(
+    m: &mjModel,
+    kind: ObjKind,
+    id: usize,
+    name: &str,
+) -> Result<Slot, BindError> {
+    let (_, _, model_prefixes, _) = kind.table();
     let mut model_names: Vec<String> =
         model_prefixes.iter().map(|p| format!("{p}{name}")).collect();
     model_names.push(name.to_string());
@@ -283,6 +298,89 @@ pub(crate) fn resolve(
         field: name.to_string(),
         known: known_fields(m, kind, id),
     })
+}
+
+/// What [`Compiled::bind`](crate::Compiled::bind) binds: a locator of the `mjcf`
+/// model (`&Loc`), a kind and a full name (`(ObjKind::Joint, "robot/knee")`, also
+/// as a `String`), or a kind and a MuJoCo id (`(ObjKind::Joint, 3)`).
+pub trait BindTarget {
+    /// The element of `compiled` this names.
+    ///
+    /// # Errors
+    /// As [`Compiled::bind`](crate::Compiled::bind).
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError>;
+}
+
+impl BindTarget for mjcf::Loc {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        compiled.bind_loc(self)
+    }
+}
+
+impl<T: BindTarget + ?Sized> BindTarget for &T {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        (**self).bind_in(compiled)
+    }
+}
+
+impl BindTarget for (ObjKind, &str) {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        compiled.bind_name(self.0, self.1)
+    }
+}
+
+impl BindTarget for (ObjKind, String) {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        compiled.bind_name(self.0, &self.1)
+    }
+}
+
+impl BindTarget for (ObjKind, &String) {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        compiled.bind_name(self.0, self.1)
+    }
+}
+
+impl BindTarget for (ObjKind, usize) {
+    fn bind_in(&self, compiled: &crate::Compiled) -> Result<Bound, BindError> {
+        compiled.bind_id(self.0, self.1)
+    }
+}
+
+/// The edit distance between `a` and `b`, case-insensitive. Time: O(|a| · |b|).
+fn distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().flat_map(char::to_lowercase).collect();
+    let b: Vec<char> = b.chars().flat_map(char::to_lowercase).collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diag = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let up = row[j + 1];
+            row[j + 1] = (diag + usize::from(ca != cb)).min(up + 1).min(row[j] + 1);
+            diag = up;
+        }
+    }
+    row[b.len()]
+}
+
+/// The names of `kind` nearest `name` (at most five, nearest first): those whose
+/// last part (after the scope's `/`) is `name`'s last part, in any scope, then those
+/// within a third of its length in edit distance.
+pub(crate) fn nearest(compiled: &crate::Compiled, kind: ObjKind, name: &str) -> Vec<String> {
+    let leaf = |n: &str| n.rsplit('/').next().unwrap_or(n).to_string();
+    let want_leaf = leaf(name);
+    let bound = (name.chars().count() / 3).max(2);
+    let mut scored: Vec<(usize, String)> = (0..compiled.count(kind))
+        .filter_map(|id| compiled.name(kind, id))
+        .filter(|n| !n.is_empty())
+        .filter_map(|n| {
+            let d = if leaf(n) == want_leaf { 0 } else { distance(n, name) };
+            (d <= bound).then(|| (d, n.to_string()))
+        })
+        .collect();
+    scored.sort();
+    scored.into_iter().take(5).map(|(_, n)| n).collect()
 }
 
 /// The fields element `id` of `kind` has, comma-separated (for the error).

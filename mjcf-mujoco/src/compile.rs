@@ -104,7 +104,8 @@ impl MuJoCo {
         let (ptr, messages) = self
             .load_text(written.xml(), &assets)
             .map_err(|e| crate::model::locate(e, model, &written))?;
-        Ok(Compiled::new(self.clone(), ptr, Some((model.clone(), written)), messages))
+        let source = crate::model::Source::compiled(model.clone(), options.clone(), written);
+        Ok(Compiled::new(self.clone(), ptr, Some(source), messages))
     }
 
     /// Compiles MJCF text with the files it names (name → contents), in memory.

@@ -63,6 +63,19 @@ pub enum Error {
     /// The simulation data met a fatal error in an earlier call and has not been reset.
     #[error("the simulation data is unusable after a fatal MuJoCo error; reset it first")]
     Poisoned,
+    /// A model field that cannot be written in place: the compiler derives more from
+    /// it than MuJoCo's `mj_setConst` recomputes. Edit the `mjcf` model and rebuild
+    /// ([`Physics::rebuild`](crate::Physics::rebuild)).
+    #[error(
+        "{field} cannot be written in a compiled model ({reason}): edit the mjcf model and \
+         rebuild (Physics::rebuild)"
+    )]
+    NeedsRebuild {
+        /// The field (MuJoCo's name).
+        field: &'static str,
+        /// Why.
+        reason: &'static str,
+    },
     /// No key of that name in the compiled model.
     #[error("no keyframe named {name:?} in the compiled model")]
     NoKey {
@@ -123,6 +136,14 @@ fn element_note(element: &Option<ErrorElement>) -> String {
     }
 }
 
+fn did_you_mean(suggestions: &[String]) -> String {
+    if suggestions.is_empty() {
+        return String::new();
+    }
+    let names: Vec<String> = suggestions.iter().map(|s| format!("{s:?}")).collect();
+    format!(" (did you mean {}?)", names.join(", "))
+}
+
 /// Why an element or a field could not be bound.
 #[derive(Debug, Clone, thiserror::Error)]
 #[non_exhaustive]
@@ -147,14 +168,29 @@ pub enum BindError {
         /// Its tag.
         tag: &'static str,
     },
-    /// MuJoCo has no element of that kind and name (a bug of the writer or of
-    /// `full_name`, which MuJoCo judges in this crate's tests).
-    #[error("MuJoCo has no {kind} named {name:?}")]
+    /// MuJoCo has no element of that kind and name: a misspelt name given to
+    /// [`Compiled::bind`](crate::Compiled::bind) (the nearest names of that kind are
+    /// suggested), or for a locator a bug of the writer or of `full_name`, which
+    /// MuJoCo judges in this crate's tests.
+    #[error("MuJoCo has no {kind} named {name:?}{}", did_you_mean(.suggestions))]
     NotFound {
         /// MuJoCo's object kind.
         kind: &'static str,
         /// The name looked up.
         name: String,
+        /// The nearest names of that kind the compiled model has (at most five,
+        /// nearest first; empty when none is near).
+        suggestions: Vec<String>,
+    },
+    /// No element of that kind has that MuJoCo id.
+    #[error("no {kind} has id {id} (the model has {count})")]
+    NoId {
+        /// MuJoCo's object kind.
+        kind: &'static str,
+        /// The id asked for.
+        id: usize,
+        /// How many there are.
+        count: usize,
     },
     /// No field of that name for this kind of element.
     #[error("no field {field:?} for a {kind} (fields: {known})")]

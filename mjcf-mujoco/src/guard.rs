@@ -35,6 +35,11 @@ unsafe extern "C" {
         m: *const mjModel,
         d: *mut mjData,
     ) -> c_int;
+    pub(crate) fn mjr_set_const(
+        f: unsafe extern "C" fn(*mut mjModel, *mut mjData),
+        m: *mut mjModel,
+        d: *mut mjData,
+    ) -> c_int;
     pub(crate) fn mjr_reset_key(
         f: unsafe extern "C" fn(*const mjModel, *mut mjData, c_int),
         m: *const mjModel,

@@ -26,6 +26,69 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # Binding
+//! [`Physics::bind`] (and [`Compiled::bind`]) takes a locator of the `mjcf` model, a
+//! kind and full name (`(ObjKind::Actuator, "arm/gripper/fingers_actuator")`, which
+//! works for models compiled from a path or from text too, and suggests the nearest
+//! names when it is missing), or a kind and MuJoCo id. A bound element's fields are
+//! read by MuJoCo's names with their true widths: an actuator's `gainprm` is its 10
+//! numbers, a joint's `qpos` its 7, 4 or 1 ([`Physics::get`], [`Compiled::get`]).
+//!
+//! # Editing a running simulation
+//! An editor keeps its model in an [`mjcf::History`] and, after each edit, undo or
+//! redo, rebuilds the running simulation from the current version
+//! ([`Physics::rebuild`]): numbers only are written into the compiled model in place
+//! (MuJoCo's derived constants recomputed, so that the model is what compiling the
+//! edited model gives); anything else is compiled, and every joint, actuator, body
+//! and equality keeps its state (by element identity: a renamed joint keeps its
+//! state), new ones starting at their defaults. A model MuJoCo refuses leaves the
+//! simulation as it was.
+//!
+//! ```no_run
+//! use mjcf::{History, Model, Namespace, element};
+//! use mjcf_mujoco::{MuJoCo, ObjKind, Physics, RebuildMode};
+//!
+//! let mut robot = Model::new("robot");
+//! let torso = robot.add_mut(&robot.worldbody(), element!("body", name = "torso", pos = [0, 0, 1]))?;
+//! robot.add_mut(&torso, element!("freejoint"))?;
+//! robot.add_mut(&torso, element!("geom", name = "box", type = "box", size = [0.1, 0.1, 0.1]))?;
+//! let mut history = History::new(robot);
+//!
+//! let mujoco = MuJoCo::load()?;
+//! let mut physics = Physics::new(&mujoco.compile(history.current())?)?;
+//! let _ = physics.step(100)?;
+//!
+//! // Numbers only: written in place, the simulation goes on from where it was.
+//! let geom = history.current().find(Namespace::Geom, "box").unwrap();
+//! history.edit("friction", |m| m.set_attr_mut(&geom, "friction", [0.5]))?;
+//! assert_eq!(physics.rebuild(history.current())?.mode, RebuildMode::InPlace);
+//!
+//! // A new element: compiled; the torso keeps its position and velocity.
+//! history.edit("ball", |m| {
+//!     let ball = m.add_mut(&m.worldbody(), element!("body", name = "ball", pos = [1, 0, 1]))?;
+//!     m.add_mut(&ball, element!("freejoint"))?;
+//!     m.add_mut(&ball, element!("geom", type = "sphere", size = [0.1]))
+//! })?;
+//! let report = physics.rebuild(history.current())?;
+//! assert_eq!(report.mode, RebuildMode::Compiled); // report.defaulted: the ball's joint
+//! let _ = physics.step(100)?;
+//!
+//! // Undo and redo drive the simulation too: the ball goes, and comes back at rest.
+//! history.undo();
+//! physics.rebuild(history.current())?;
+//! history.redo();
+//! physics.rebuild(history.current())?;
+//! let ball = physics.bind((ObjKind::Body, "ball"))?;
+//! let _ = physics.step(1)?;
+//! println!("the ball is at {:?}", physics.get(&ball, "xpos")?);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! A model field written directly ([`Physics::get_mut`]) is followed by the
+//! recomputation of the constants MuJoCo derives from it (`mj_setConst`, with a
+//! scratch data: never the running simulation's), or refused with
+//! [`Error::NeedsRebuild`] when the compiler derives more from it (a geom's size).
+//!
 //! # Errors and MuJoCo's fatal errors
 //! What MuJoCo reports in its error buffer (parsing, compiling) is a
 //! [`CompileError`], with the element of the `mjcf` model MuJoCo names, found through
@@ -49,21 +112,24 @@
 
 mod bind;
 mod compile;
+mod constants;
 mod error;
 mod fields;
 mod guard;
 mod library;
 mod model;
 mod physics;
+mod rebuild;
 #[allow(clippy::all, unsafe_op_in_unsafe_fn, missing_docs, unreachable_pub, dead_code)]
 mod sys;
 
-pub use crate::bind::{Bound, ObjKind};
+pub use crate::bind::{BindTarget, Bound, ObjKind};
 pub use crate::error::{BindError, CompileError, Error, ErrorElement};
 pub use crate::guard::Message;
 pub use crate::library::MuJoCo;
 pub use crate::model::{Compiled, Sizes};
 pub use crate::physics::{Physics, Warning, WarningElement, WarningKind, Warnings};
+pub use crate::rebuild::{Carried, Defaulted, DefaultedWhy, Dropped, RebuildMode, RebuildReport};
 
 /// The MuJoCo version the bindings were made for, the only one loaded.
 pub const MUJOCO_VERSION: &str = "4.0.0";

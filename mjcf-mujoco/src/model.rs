@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use mjcf::{Loc, Model, Namespace, Written};
 
-use crate::bind::{Bound, ObjKind};
+use crate::bind::{BindTarget, Bound, ObjKind, Slot};
 use crate::error::{BindError, Error, ErrorElement};
 use crate::fields::{self, Field, RawField, Scalar};
 use crate::guard::Message;
@@ -29,7 +29,7 @@ pub(crate) struct Inner {
     pub(crate) mujoco: MuJoCo,
     pub(crate) ptr: NonNull<mjModel>,
     /// The `mjcf` model and where its elements were written, when compiled from one.
-    pub(crate) source: Option<Arc<(Model, Written)>>,
+    pub(crate) source: Option<Arc<Source>>,
     pub(crate) messages: Vec<Message>,
 }
 
@@ -105,7 +105,7 @@ impl Compiled {
     pub(crate) fn new(
         mujoco: MuJoCo,
         ptr: NonNull<mjModel>,
-        source: Option<(Model, Written)>,
+        source: Option<Source>,
         messages: Vec<Message>,
     ) -> Compiled {
         Compiled { inner: Arc::new(Inner { mujoco, ptr, source: source.map(Arc::new), messages }) }
@@ -121,15 +121,17 @@ impl Compiled {
     ///
     /// Time: O(1).
     pub fn source(&self) -> Option<&Model> {
-        self.inner.source.as_deref().map(|(m, _)| m)
+        self.inner.source.as_deref().map(|s| &s.model)
     }
 
     /// The MJCF text MuJoCo compiled, with where each element was written (`None`
-    /// when compiled from text or a file).
+    /// when compiled from text or a file). For a model a rebuild wrote in place
+    /// ([`Physics::rebuild`](crate::Physics::rebuild)), the edited model's text,
+    /// written the first time it is asked for.
     ///
-    /// Time: O(1).
+    /// Time: O(1); the first call after an in-place rebuild writes the model (O(N)).
     pub fn written(&self) -> Option<&Written> {
-        self.inner.source.as_deref().map(|(_, w)| w)
+        self.inner.source.as_deref().and_then(Source::written)
     }
 
     /// What MuJoCo logged while compiling (its warnings).
@@ -218,19 +220,34 @@ impl Compiled {
         (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_str().ok()).flatten()
     }
 
-    /// The element of the compiled model that `loc` (a locator of the `mjcf` model it
-    /// was compiled from) became: its kind and MuJoCo id, found by the name it was
-    /// written with ([`ElementRef::full_name`](mjcf::ElementRef::full_name)), as
-    /// dm_control's `physics.bind`.
+    /// Binds an element in one call: by locator of the `mjcf` model it was compiled
+    /// from (`&Loc`), or by kind and full name (`(ObjKind::Actuator,
+    /// "arm/gripper/fingers_actuator")`, which also works for models compiled from a
+    /// path or from text, and for unnamed elements by the name the writer gave them,
+    /// `//unnamed_joint_0`), or by kind and MuJoCo id (`(ObjKind::Joint, 3)`). Its
+    /// fields are then read by MuJoCo's names with their true widths
+    /// ([`Compiled::get`], [`Physics::get`](crate::Physics::get)).
     ///
-    /// Time: O(levels · depth · log n) to name the element (O(n) more for an unnamed
-    /// one; O(E) more for an attachment frame, to see how it was written), plus
-    /// MuJoCo's lookup.
+    /// A locator is found by the name it was written with
+    /// ([`ElementRef::full_name`](mjcf::ElementRef::full_name)), as dm_control's
+    /// `physics.bind`.
+    ///
+    /// Time: by name, MuJoCo's hash lookup (O(n) more to suggest names when it is
+    /// missing); by locator, O(levels · depth · log n) to name the element (O(n)
+    /// more for an unnamed one; O(E) more for an attachment frame, to see how it was
+    /// written), plus MuJoCo's lookup.
     ///
     /// # Errors
-    /// [`BindError`]: no source model, a locator of another model, an element MuJoCo
-    /// keeps no record of (a `<frame>`, a default class), or not found by MuJoCo.
-    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
+    /// [`BindError::NotFound`] with the nearest names of that kind for a name MuJoCo
+    /// does not have; [`BindError::NoId`] for an id out of range; for a locator:
+    /// no source model, a locator of another model, an element MuJoCo keeps no record
+    /// of (a `<frame>`, a default class).
+    pub fn bind(&self, target: impl BindTarget) -> Result<Bound, BindError> {
+        target.bind_in(self)
+    }
+
+    /// [`Compiled::bind`] of a locator.
+    pub(crate) fn bind_loc(&self, loc: &Loc) -> Result<Bound, BindError> {
         let model = self.source().ok_or(BindError::NoSource)?;
         let element = model.get(loc).map_err(|e| BindError::NoElement(e.to_string()))?;
         let kind = ObjKind::of(&element).ok_or(BindError::NotCompiled { tag: element.tag() })?;
@@ -242,10 +259,66 @@ impl Compiled {
             }
         }
         let name = element.full_name().ok_or(BindError::Unnamed { tag: element.tag() })?;
-        let id = self
-            .id(kind, &name)
-            .ok_or_else(|| BindError::NotFound { kind: kind.name(), name: name.clone() })?;
+        self.bind_name(kind, &name)
+    }
+
+    /// [`Compiled::bind`] by kind and full name.
+    pub(crate) fn bind_name(&self, kind: ObjKind, name: &str) -> Result<Bound, BindError> {
+        match self.id(kind, name) {
+            Some(id) => Ok(Bound { kind, id, name: name.to_string() }),
+            None => Err(BindError::NotFound {
+                kind: kind.name(),
+                name: name.to_string(),
+                suggestions: crate::bind::nearest(self, kind, name),
+            }),
+        }
+    }
+
+    /// [`Compiled::bind`] by kind and MuJoCo id.
+    pub(crate) fn bind_id(&self, kind: ObjKind, id: usize) -> Result<Bound, BindError> {
+        if id >= self.count(kind) {
+            return Err(BindError::NoId { kind: kind.name(), id, count: self.count(kind) });
+        }
+        let name = self.name(kind, id).unwrap_or_default().to_string();
         Ok(Bound { kind, id, name })
+    }
+
+    /// A model field of a bound element, by MuJoCo's name with or without its prefix
+    /// (`gainprm` or `actuator_gainprm` of an actuator: its 10 numbers; `mass` of a
+    /// body; `range` of a joint: 2; `damping` of a joint: one per degree of freedom),
+    /// the element's rows, row after row. Fields of the simulation's data (`qpos`,
+    /// `xpos`) are [`Physics::get`](crate::Physics::get)'s.
+    ///
+    /// Time: O(f) for the f fields of `mjModel` (found by name).
+    ///
+    /// # Errors
+    /// [`BindError::NoField`] naming the fields there are; [`BindError::WrongType`]
+    /// for a field of integers (see [`Compiled::get_ints`]).
+    pub fn get(&self, b: &Bound, field: &str) -> Result<&[f64], BindError> {
+        let (slot, raw) = self.model_slot(b, field)?;
+        // SAFETY: the field's pointer and size from the model's own tables, borrowed
+        // from `self`; the rows are the element's.
+        let all: &[f64] = unsafe { raw.slice(slot.field, Scalar::F64, "f64") }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// [`Compiled::get`] for fields of integers (`type` and `qposadr` of a joint).
+    ///
+    /// Time: as [`Compiled::get`].
+    ///
+    /// # Errors
+    /// As [`Compiled::get`], the other way round.
+    pub fn get_ints(&self, b: &Bound, field: &str) -> Result<&[i32], BindError> {
+        let (slot, raw) = self.model_slot(b, field)?;
+        // SAFETY: as in `get`.
+        let all: &[i32] = unsafe { raw.slice(slot.field, Scalar::I32, "i32") }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    fn model_slot(&self, b: &Bound, field: &str) -> Result<(Slot, RawField), BindError> {
+        let slot = crate::bind::resolve_model(self.raw(), b.kind, b.id, field)?;
+        let raw = crate::bind::raw(&slot, self.raw(), None).ok_or_else(|| no_model_field(field))?;
+        Ok((slot, raw))
     }
 
     /// The model field `name` (`jnt_qposadr`, `geom_friction`, ...), all rows.
@@ -299,6 +372,48 @@ fn no_model_field(name: &str) -> BindError {
         kind: "model",
         field: name.to_string(),
         known: "mjModel's array fields".into(),
+    }
+}
+
+/// The `mjcf` model a compiled model was compiled from (or written in place from),
+/// and where its elements were written.
+pub(crate) struct Source {
+    pub(crate) model: Model,
+    pub(crate) options: mjcf::WriteOptions,
+    written: std::sync::OnceLock<Option<Written>>,
+    /// Each compiled element by locator (`crate::rebuild`), found once.
+    pub(crate) ids: std::sync::OnceLock<Arc<crate::rebuild::Ids>>,
+    /// Every element a rebuild reports, under its own name (the report of a rebuild
+    /// that changes no element), listed once.
+    pub(crate) all: std::sync::OnceLock<Arc<[crate::rebuild::Carried]>>,
+}
+
+impl Source {
+    /// A model compiled from `written`.
+    pub(crate) fn compiled(model: Model, options: mjcf::WriteOptions, written: Written) -> Source {
+        let cell = std::sync::OnceLock::new();
+        let _ = cell.set(Some(written));
+        let (ids, all) = (std::sync::OnceLock::new(), std::sync::OnceLock::new());
+        Source { model, options, written: cell, ids, all }
+    }
+
+    /// A model written in place into a compiled model whose elements are `ids`, all
+    /// of them `all`.
+    pub(crate) fn in_place(
+        model: Model,
+        options: mjcf::WriteOptions,
+        ids: Arc<crate::rebuild::Ids>,
+        all: Arc<[crate::rebuild::Carried]>,
+    ) -> Source {
+        let (cell, every) = (std::sync::OnceLock::new(), std::sync::OnceLock::new());
+        let _ = cell.set(ids);
+        let _ = every.set(all);
+        Source { model, options, written: std::sync::OnceLock::new(), ids: cell, all: every }
+    }
+
+    /// Where its elements were written (written now if not yet).
+    pub(crate) fn written(&self) -> Option<&Written> {
+        self.written.get_or_init(|| self.model.to_xml_written(&self.options).ok()).as_ref()
     }
 }
 

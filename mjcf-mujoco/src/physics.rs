@@ -4,9 +4,7 @@ use std::ffi::{CStr, c_long};
 use std::ptr::NonNull;
 use std::sync::Arc;
 
-use mjcf::Loc;
-
-use crate::bind::{self, Bound, ObjKind, Place, Slot};
+use crate::bind::{self, BindTarget, Bound, ObjKind, Place, Slot};
 use crate::error::{BindError, Error};
 use crate::fields::Scalar;
 use crate::guard::{self, Message};
@@ -19,13 +17,21 @@ use crate::sys::{mjData, mjModel};
 /// It is `Send` (a simulation can move to another thread) and not `Sync`. Many
 /// simulations can share one compiled model ([`Physics::new`] on clones of it).
 pub struct Physics {
-    model: Compiled,
-    data: NonNull<mjData>,
+    pub(crate) model: Compiled,
+    pub(crate) data: NonNull<mjData>,
     /// Set by a fatal error inside MuJoCo, cleared by a reset.
-    poisoned: bool,
-    messages: Vec<Message>,
+    pub(crate) poisoned: bool,
+    pub(crate) messages: Vec<Message>,
     /// [`Physics::set_warnings_as_errors`].
-    warnings_as_errors: bool,
+    pub(crate) warnings_as_errors: bool,
+    /// A model field `mj_setConst` derives constants from was written, and the
+    /// constants are not recomputed yet ([`Physics::update_constants`]).
+    pub(crate) stale_constants: bool,
+    /// A model field was written ([`Physics::get_mut`]): the compiled model is no
+    /// longer what its source compiles to.
+    pub(crate) written_raw: bool,
+    /// The scratch data `mj_setConst` runs with (never the simulation's own).
+    pub(crate) scratch: Option<NonNull<mjData>>,
 }
 
 // SAFETY: the `mjData` is owned by this value alone; MuJoCo keeps no reference to it
@@ -34,8 +40,14 @@ unsafe impl Send for Physics {}
 
 impl Drop for Physics {
     fn drop(&mut self) {
-        // SAFETY: made by `mj_makeData`, deleted once, here.
-        unsafe { (self.model.inner.mujoco.lib.fns.delete_data)(self.data.as_ptr()) }
+        let delete = self.model.inner.mujoco.lib.fns.delete_data;
+        // SAFETY: made by `mj_makeData`, deleted once, here (the scratch data too).
+        unsafe {
+            delete(self.data.as_ptr());
+            if let Some(scratch) = self.scratch.take() {
+                delete(scratch.as_ptr());
+            }
+        }
     }
 }
 
@@ -194,6 +206,9 @@ impl Physics {
             poisoned: false,
             messages,
             warnings_as_errors: false,
+            stale_constants: false,
+            written_raw: false,
+            scratch: None,
         })
     }
 
@@ -204,11 +219,11 @@ impl Physics {
         &self.model
     }
 
-    fn m(&self) -> *const mjModel {
+    pub(crate) fn m(&self) -> *const mjModel {
         self.model.inner.ptr.as_ptr()
     }
 
-    fn d(&self) -> &mjData {
+    pub(crate) fn d(&self) -> &mjData {
         // SAFETY: owned and valid while `self` lives.
         unsafe { self.data.as_ref() }
     }
@@ -240,6 +255,7 @@ impl Physics {
     /// # Errors
     /// [`Error::Fatal`] from inside MuJoCo.
     pub fn reset(&mut self) -> Result<(), Error> {
+        self.update_constants()?;
         let f = self.model.inner.mujoco.lib.fns.reset_data;
         // SAFETY: valid model and data of that model; the guard calls `f` with them.
         self.guarded("Physics::reset", |m, d| unsafe { guard::mjr_call(f, m, d) })?;
@@ -260,6 +276,7 @@ impl Physics {
             .model
             .id(crate::ObjKind::Key, name)
             .ok_or_else(|| Error::NoKey { name: name.to_string() })?;
+        self.update_constants()?;
         let f = self.model.inner.mujoco.lib.fns.reset_data_keyframe;
         let key = i32::try_from(key).map_err(|_| Error::NoKey { name: name.to_string() })?;
         // SAFETY: valid model and data, and a key id of the model.
@@ -279,6 +296,7 @@ impl Physics {
     /// [`Error::Poisoned`]; [`Error::Fatal`] from inside MuJoCo.
     pub fn forward(&mut self) -> Result<(), Error> {
         self.check()?;
+        self.update_constants()?;
         let f = self.model.inner.mujoco.lib.fns.forward;
         // SAFETY: valid model and data of that model.
         self.guarded("Physics::forward", |m, d| unsafe { guard::mjr_call(f, m, d) })
@@ -296,6 +314,7 @@ impl Physics {
     /// [`Error::Warned`] when MuJoCo warned (the steps were taken).
     pub fn step(&mut self, n: usize) -> Result<Warnings, Error> {
         self.check()?;
+        self.update_constants()?;
         let before = self.counts();
         let f = self.model.inner.mujoco.lib.fns.step;
         let n = c_long::try_from(n).unwrap_or(c_long::MAX);
@@ -476,14 +495,15 @@ impl Physics {
         self.data_mut("ctrl").unwrap_or_default()
     }
 
-    /// Binds a locator of the `mjcf` model (see [`Compiled::bind`]).
+    /// Binds an element by locator, by kind and full name, or by kind and id (see
+    /// [`Compiled::bind`]).
     ///
     /// Time: as [`Compiled::bind`].
     ///
     /// # Errors
     /// As [`Compiled::bind`].
-    pub fn bind(&self, loc: &Loc) -> Result<Bound, BindError> {
-        self.model.bind(loc)
+    pub fn bind(&self, target: impl BindTarget) -> Result<Bound, BindError> {
+        self.model.bind(target)
     }
 
     fn slot(&self, b: &Bound, field: &str) -> Result<Slot, BindError> {
@@ -519,14 +539,44 @@ impl Physics {
     /// this simulation its own copy of the model (`mj_copyModel`), so the others keep
     /// their numbers.
     ///
-    /// Time: O(f), plus the copy of the model the first time a shared one is written.
+    /// A written model field makes the model what compiling the edited model gives:
+    /// when MuJoCo derives constants from the field (masses, inertias, body and joint
+    /// poses, axes, armatures, gears, ranges, ...), they are recomputed
+    /// (`mj_setConst`, with a scratch data of its own, never this simulation's) before
+    /// the next call into MuJoCo ([`Physics::step`], [`Physics::forward`], the
+    /// resets) or at [`Physics::update_constants`]. Nothing is recomputed after a
+    /// field nothing derives from (friction, gains, damping, solver parameters).
+    /// A field the compiler derives more from is refused ([`Error::NeedsRebuild`]):
+    /// edit the `mjcf` model and [`Physics::rebuild`]. Write what a compile would
+    /// hold: a unit axis, a unit quaternion. A position servo's damping ratio
+    /// (`dampratio`) is turned into a damping from its gain by MuJoCo 4.0.0's
+    /// compiler only (not by `mj_setConst`): a gain written here keeps the damping
+    /// compiled from the old gain; a rebuild from the edited model compiles it.
+    ///
+    /// Time: O(f), plus the copy of the model the first time a shared one is written;
+    /// `mj_setConst` (O(nv²) at most) before the next step after a write of a field
+    /// constants derive from.
     ///
     /// # Errors
-    /// As [`Physics::get`]; [`Error::Fatal`] when MuJoCo cannot copy the model.
+    /// As [`Physics::get`]; [`Error::NeedsRebuild`] for a model field that cannot be
+    /// written in place (a geom's size or pose, a free body's pose, meshes, derived
+    /// constants); [`Error::Fatal`] when MuJoCo cannot copy the model.
     pub fn get_mut(&mut self, b: &Bound, field: &str) -> Result<&mut [f64], Error> {
         let slot = self.slot(b, field)?;
         if slot.place == Place::Model {
+            let class = crate::constants::class(slot.field.name);
+            if let crate::constants::Class::Refused(reason) = class {
+                return Err(Error::NeedsRebuild { field: slot.field.name, reason });
+            }
+            if matches!(slot.field.name, "body_pos" | "body_quat") && self.has_free_joint(b.id) {
+                let reason = crate::constants::FREE_BODY_POSE;
+                return Err(Error::NeedsRebuild { field: slot.field.name, reason });
+            }
             self.own_model()?;
+            self.written_raw = true;
+            if class == crate::constants::Class::SetConst {
+                self.stale_constants = true;
+            }
         }
         // SAFETY: valid model and data.
         let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
@@ -535,6 +585,72 @@ impl Physics {
         // (`own_model`), and the data always is.
         let all: &mut [f64] = unsafe { raw.slice_mut(slot.field, Scalar::F64, "f64") }?;
         Ok(&mut all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// Whether body `body` has a free joint.
+    fn has_free_joint(&self, body: usize) -> bool {
+        let (Ok(jb), Ok(jt)) = (self.model.ints("jnt_bodyid"), self.model.ints("jnt_type")) else {
+            return false;
+        };
+        jb.iter().zip(jt).any(|(&b, &t)| {
+            usize::try_from(b).is_ok_and(|b| b == body)
+                && t == crate::sys::mjtJoint_mjJNT_FREE as i32
+        })
+    }
+
+    /// Recomputes the constants MuJoCo derives from the model's numbers
+    /// (`mj_setConst`) if a field they derive from was written since
+    /// ([`Physics::get_mut`]); the steps and resets call it. It runs with a scratch
+    /// data of its own, reset first, as the compiler's: the simulation's state is not
+    /// touched.
+    ///
+    /// Time: O(1) when nothing is stale; else `mj_setConst` (a forward pass at
+    /// `qpos0` and O(nv²) for the inverse weights).
+    ///
+    /// # Errors
+    /// [`Error::Fatal`] from inside MuJoCo (the simulation's data stays usable).
+    pub fn update_constants(&mut self) -> Result<(), Error> {
+        if !self.stale_constants {
+            return Ok(());
+        }
+        self.own_model()?;
+        let fns = self.model.inner.mujoco.lib.fns;
+        let m = self.model.inner.ptr.as_ptr();
+        let scratch = match self.scratch {
+            Some(d) => d,
+            None => {
+                let mut d: *mut mjData = std::ptr::null_mut();
+                // SAFETY: a valid model; the guard stores `mj_makeData`'s result.
+                let fatal = unsafe { guard::mjr_make_data(fns.make_data, m, &mut d) };
+                self.messages.extend(guard::take_messages());
+                let d = NonNull::new(d).filter(|_| fatal == 0).ok_or_else(|| Error::Fatal {
+                    call: "Physics::update_constants",
+                    message: guard::fatal_message(),
+                })?;
+                self.scratch = Some(d);
+                d
+            }
+        };
+        // SAFETY: the model is this simulation's own (`own_model`), written only
+        // here; the scratch data was made for a model of its sizes (this one, or the
+        // one it was copied from) and is reset before `mj_setConst` reads it.
+        let fatal = unsafe {
+            let reset = guard::mjr_call(fns.reset_data, m, scratch.as_ptr());
+            if reset != 0 {
+                reset
+            } else {
+                guard::mjr_set_const(fns.set_const, m, scratch.as_ptr())
+            }
+        };
+        self.messages.extend(guard::take_messages());
+        if fatal != 0 {
+            return Err(Error::Fatal {
+                call: "Physics::update_constants",
+                message: guard::fatal_message(),
+            });
+        }
+        self.stale_constants = false;
+        Ok(())
     }
 
     /// [`Physics::get`] for fields of integers (`contype` of a geom, `qposadr` of a
@@ -554,8 +670,49 @@ impl Physics {
         Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
     }
 
+    /// [`Physics::get`] for fields of flags (`active` of an equality: MuJoCo's
+    /// `eq_active`, 0 or 1).
+    ///
+    /// Time: as [`Physics::get`].
+    ///
+    /// # Errors
+    /// As [`Physics::get`], for a field of flags.
+    pub fn flags(&self, b: &Bound, field: &str) -> Result<&[u8], BindError> {
+        let slot = self.slot(b, field)?;
+        // SAFETY: valid model and data.
+        let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
+            .ok_or_else(|| no_data_field(field))?;
+        // SAFETY: as in `get`.
+        let all: &[u8] = unsafe { raw.slice(slot.field, Scalar::Bool, "flags") }?;
+        Ok(&all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
+    /// [`Physics::flags`], to write a field of the simulation's data (`active` of an
+    /// equality).
+    ///
+    /// Time: as [`Physics::get`].
+    ///
+    /// # Errors
+    /// As [`Physics::flags`]; [`BindError::NoField`] for a field of the model.
+    pub fn flags_mut(&mut self, b: &Bound, field: &str) -> Result<&mut [u8], BindError> {
+        let slot = self.slot(b, field)?;
+        if slot.place == Place::Model {
+            return Err(BindError::NoField {
+                kind: b.kind.name(),
+                field: field.to_string(),
+                known: "the simulation's data fields of flags".into(),
+            });
+        }
+        // SAFETY: valid model and data.
+        let raw = bind::raw(&slot, unsafe { &*self.m() }, Some(self.d()))
+            .ok_or_else(|| no_data_field(field))?;
+        // SAFETY: as in `get_mut`: the data is this simulation's own.
+        let all: &mut [u8] = unsafe { raw.slice_mut(slot.field, Scalar::Bool, "flags") }?;
+        Ok(&mut all[slot.rows.start * raw.cols..slot.rows.end * raw.cols])
+    }
+
     /// Makes the compiled model this simulation's own (copied if shared).
-    fn own_model(&mut self) -> Result<(), Error> {
+    pub(crate) fn own_model(&mut self) -> Result<(), Error> {
         if Arc::get_mut(&mut self.model.inner).is_some() {
             return Ok(());
         }

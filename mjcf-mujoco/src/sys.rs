@@ -2979,6 +2979,8 @@ pub struct MujocoApi {
         ::libloading::Error,
     >,
     pub mj_deleteData: Result<unsafe extern "C" fn(d: *mut mjData), ::libloading::Error>,
+    pub mj_setConst:
+        Result<unsafe extern "C" fn(m: *mut mjModel, d: *mut mjData), ::libloading::Error>,
     pub mj_name2id: Result<
         unsafe extern "C" fn(
             m: *const mjModel,
@@ -3034,6 +3036,7 @@ impl MujocoApi {
         let mj_resetData = __library.get(b"mj_resetData\0").map(|sym| *sym);
         let mj_resetDataKeyframe = __library.get(b"mj_resetDataKeyframe\0").map(|sym| *sym);
         let mj_deleteData = __library.get(b"mj_deleteData\0").map(|sym| *sym);
+        let mj_setConst = __library.get(b"mj_setConst\0").map(|sym| *sym);
         let mj_name2id = __library.get(b"mj_name2id\0").map(|sym| *sym);
         let mj_id2name = __library.get(b"mj_id2name\0").map(|sym| *sym);
         let mj_version = __library.get(b"mj_version\0").map(|sym| *sym);
@@ -3054,6 +3057,7 @@ impl MujocoApi {
             mj_resetData,
             mj_resetDataKeyframe,
             mj_deleteData,
+            mj_setConst,
             mj_name2id,
             mj_id2name,
             mj_version,
@@ -3115,6 +3119,9 @@ impl MujocoApi {
         key: ::std::os::raw::c_int,
     ) {
         (self.mj_resetDataKeyframe.as_ref().expect("Expected function, got error."))(m, d, key)
+    }
+    pub unsafe fn mj_setConst(&self, m: *mut mjModel, d: *mut mjData) {
+        (self.mj_setConst.as_ref().expect("Expected function, got error."))(m, d)
     }
     pub unsafe fn mj_deleteData(&self, d: *mut mjData) {
         (self.mj_deleteData.as_ref().expect("Expected function, got error."))(d)

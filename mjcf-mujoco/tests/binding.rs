@@ -234,7 +234,7 @@ fn files_are_handed_over_in_memory() {
     assert_eq!(compiled.sizes().ngeom, 2);
     assert!(compiled.id(ObjKind::Mesh, "robot_1/tet").is_some());
     // The mesh's volume gives the body's mass: 1/6 · 0.1³ · 1000 kg/m³.
-    let b = compiled.bind(&arena.find(Namespace::Body, "robot/b").unwrap()).unwrap();
+    let b = compiled.bind(arena.find(Namespace::Body, "robot/b").unwrap()).unwrap();
     let mass = compiled.floats("body_mass").unwrap()[b.id()];
     assert!((mass - 1000.0 * 0.001 / 6.0).abs() < 1e-6, "{mass}");
 }
@@ -268,7 +268,7 @@ fn bound_fields_read_and_write_data_and_model() {
     let model = cart();
     let compiled = mujoco().compile(&model).unwrap();
     let mut p = Physics::new(&compiled).unwrap();
-    let find = |ns, name| p.bind(&model.find(ns, name).unwrap()).unwrap();
+    let find = |ns, name| p.bind(model.find(ns, name).unwrap()).unwrap();
     let (cart, x, boxg) =
         (find(Namespace::Body, "cart"), find(Namespace::Joint, "x"), find(Namespace::Geom, "box"));
     let (tip, push, xs) = (

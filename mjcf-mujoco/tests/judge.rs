@@ -183,7 +183,7 @@ fn judge_keys(mujoco: &MuJoCo, label: &str, model: &Model, tally: &mut Tally) {
         let (mut c, mut a) = (Physics::new(&composed).unwrap(), Physics::new(&alone).unwrap());
         for base in &bases {
             let (Ok(bc), Ok(ba)) =
-                (c.bind(&model.locate_in(scope.as_str(), base).unwrap()), a.bind(base))
+                (c.bind(model.locate_in(scope.as_str(), base).unwrap()), a.bind(base))
             else {
                 continue;
             };
@@ -252,7 +252,7 @@ fn judge_names(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tall
         let Some(kind) = ObjKind::of(&e) else { continue };
         if e.is_frame() && as_frame.contains(&e.loc()) {
             // Written as MuJoCo's <frame>: not compiled (and not bound).
-            assert!(compiled.bind(&e.loc()).is_err());
+            assert!(compiled.bind(e.loc()).is_err());
             continue;
         }
         if discards

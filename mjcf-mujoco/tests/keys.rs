@@ -115,7 +115,7 @@ fn check_fleet(arena: Model, sites: &[mjcf::Loc]) {
     for (site, scope) in sites.iter().zip(&scopes) {
         let s = p.bind(site).unwrap();
         let (sp, sr) = (p.get(&s, "xpos").unwrap().to_vec(), p.get(&s, "xmat").unwrap().to_vec());
-        let b = p.bind(&arena.locate_in(scope.as_str(), &base).unwrap()).unwrap();
+        let b = p.bind(arena.locate_in(scope.as_str(), &base).unwrap()).unwrap();
         let moved = matvec(&sr, &key_pos);
         let want: Vec<f64> = (0..3).map(|i| sp[i] + moved[i]).collect();
         close(p.get(&b, "xpos").unwrap(), &want, &format!("{scope} base position"));
@@ -127,7 +127,7 @@ fn check_fleet(arena: Model, sites: &[mjcf::Loc]) {
         // Its velocity turned with it: linear in the world, angular in the body.
         let j = p
             .bind(
-                &arena.find(Namespace::Joint, &format!("{scope}//unnamed_joint_0")).unwrap_or_else(
+                arena.find(Namespace::Joint, &format!("{scope}//unnamed_joint_0")).unwrap_or_else(
                     || {
                         arena
                             .locate_in(scope.as_str(), &robot.find_all(Namespace::Joint)[0])
@@ -147,7 +147,7 @@ fn check_fleet(arena: Model, sites: &[mjcf::Loc]) {
             &format!("{scope} angular velocity"),
         );
         // The mocap body's key pose, carried the same way.
-        let t = p.bind(&arena.locate_in(scope.as_str(), &target).unwrap()).unwrap();
+        let t = p.bind(arena.locate_in(scope.as_str(), &target).unwrap()).unwrap();
         let moved = matvec(&sr, &[0.2, 0.3, 0.4]);
         let want: Vec<f64> = (0..3).map(|i| sp[i] + moved[i]).collect();
         close(p.get(&t, "xpos").unwrap(), &want, &format!("{scope} mocap position"));
@@ -224,7 +224,7 @@ fn the_example_fleet_stands_where_it_was_put() {
     let mut p = Physics::new(&compiled).unwrap();
     p.reset_to_key("home").unwrap();
     assert!(p.step(1000).unwrap().is_empty());
-    let b = p.bind(&alone.locate_in(a.scope(), &base).unwrap()).unwrap();
+    let b = p.bind(alone.locate_in(a.scope(), &base).unwrap()).unwrap();
     let height = p.get(&b, "xpos").unwrap()[2];
     // The fleet.
     let compiled = mujoco.compile_with(&arena, &options).unwrap();
@@ -233,7 +233,7 @@ fn the_example_fleet_stands_where_it_was_put() {
     let warnings = p.step(1000).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
     for (k, scope) in scopes.iter().enumerate() {
-        let b = p.bind(&arena.locate_in(scope.as_str(), &base).unwrap()).unwrap();
+        let b = p.bind(arena.locate_in(scope.as_str(), &base).unwrap()).unwrap();
         let x = p.get(&b, "xpos").unwrap();
         let (dx, dy) = (x[0] - (k % 3) as f64, x[1] - (k / 3) as f64);
         assert!(dx.hypot(dy) < 0.05, "{scope} is {:.3} m from its site", dx.hypot(dy));
