@@ -194,6 +194,52 @@ mod tests {
         }
     }
 
+    /// The table is MuJoCo's own: every presence rule of its schema
+    /// (`schema/mjcf-schema-facts.tsv`, derived from `src/xml/mjcf.schema`) over
+    /// attributes the element reads, and nothing else. Left out: the orientation
+    /// alternatives of a body, frame, geom, site or camera, a `variant` group in the
+    /// schema, which MuJoCo 4.0.0 refuses in its own words ("multiple orientation
+    /// specifiers are not allowed": the `orient` checks).
+    #[test]
+    fn the_table_is_the_schema_s_presence_rules() {
+        let facts = include_str!("../../../../schema/mjcf-schema-facts.tsv");
+        let variant = "quat axisangle xyaxes zaxis euler";
+        let mut theirs = std::collections::BTreeSet::new();
+        for line in facts.lines().filter(|l| !l.starts_with('#')).skip(1) {
+            let f: Vec<&str> = line.split('\t').collect();
+            let [parent, element, "", rule, bundles] = f[..] else { continue };
+            if bundles == variant {
+                continue;
+            }
+            let path = if parent == "mujoco" {
+                element.to_string()
+            } else {
+                format!("{parent}/{element}")
+            };
+            let reads = |a: &str| {
+                ElementKind::all().filter(|k| on::at(*k, &path)).any(|k| k.attr_index(a).is_some())
+            };
+            if !bundles.split([' ', '+']).all(reads) {
+                continue; // attributes a default class cannot set
+            }
+            theirs.insert((path, rule.to_string(), bundles.to_string()));
+        }
+        let mut ours = std::collections::BTreeSet::new();
+        for r in RULES {
+            let rule = match r.presence {
+                Exclusive => "exclusive",
+                Together => "together",
+                OneOf => "oneof",
+            };
+            let bundles: Vec<String> = r.bundles.iter().map(|b| b.join("+")).collect();
+            for path in r.paths {
+                ours.insert((path.to_string(), rule.to_string(), bundles.join(" ")));
+            }
+        }
+        assert!(theirs.len() >= 35, "{theirs:?}");
+        assert_eq!(ours, theirs);
+    }
+
     #[test]
     fn bundles_are_listed_in_mujoco_s_words() {
         assert_eq!(bundle_list(&[&["fovy"], &["sensorsize"]]), "'fovy', 'sensorsize'");
