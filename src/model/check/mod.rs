@@ -21,6 +21,9 @@ use super::cursor::{Insts, Item, Step, Walk};
 use super::naming;
 use super::{Loc, Model};
 
+mod actuator_fixes;
+mod actuator_spec;
+mod actuators;
 mod advice;
 mod arrays;
 mod dofs;
@@ -54,6 +57,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(arrays::ArrayLengths),
         Box::new(limits::Limits::new(model)),
         Box::new(values::Values),
+        Box::new(actuators::Actuators::new(model)),
     ]
 }
 
