@@ -4,15 +4,17 @@
 //! transmission, for the actuator checks to judge as MuJoCo's compiler does; and
 //! what the reader itself refuses while making it.
 //!
-//! MuJoCo keeps one actuator default per default class: every actuator shortcut in
-//! a `<default>` (`<position>`, `<motor>`, `<general>`, ...) writes into it, in
-//! document order, a child class starting from its parent's. An actuator starts
-//! from its class's default whatever its tag (checked with MuJoCo 4.0.0: a
-//! `<default><position kp="5" inheritrange="1"/>` gives a `<general>` the position
-//! servo's gains and its `inheritrange`), then its shortcut rewrites what it sets (a
-//! `<motor>` resets the types and `gainprm[0]`, so the same default leaves it a
-//! plain motor). One exception found by probing MuJoCo 4.0.0: a class's `actdim`
-//! reaches a `<general>` only; every shortcut starts without one.
+//! How a class's actuator defaults reach an actuator, as probed with MuJoCo 4.0.0
+//! (its source and its behaviour differ here): the attributes every tag reads alike
+//! (ranges, `gear`, `damping`, `armature`, `delay`, `nsample`, `user`,
+//! `cranklength`) reach an actuator of any tag from a default of any tag; what a
+//! shortcut derives (gains, types, `inheritrange`) reaches an actuator of the same
+//! tag, and a `<general>` (a `<default><position kp="5" inheritrange="1"/>` gives a
+//! `<general>` the position servo and its `inheritrange`, but leaves a `<motor>` a
+//! plain motor and an `<intvelocity>` its own gains); a class's `actdim` reaches a
+//! `<general>` only. Where the defaults of several tags set servos, or a class's
+//! `inheritrange` meets a range given elsewhere, MuJoCo 4.0.0 mixes them in ways
+//! not followed here, and the actuator is not judged ([`Read::Unknown`]).
 
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
@@ -247,15 +249,8 @@ fn sets_more(d: &Node) -> bool {
     d.attrs().iter().any(|(i, _)| !COMMON.contains(&d.kind().attr(*i as usize).name))
 }
 
-/// The spec of the actuator `node` (of `model`, class in force `class`).
-///
-/// What a class's shortcut derives (gains, types, `inheritrange`, `actdim`) reaches
-/// an actuator of the same tag, and a `<general>` when one tag's defaults set it;
-/// MuJoCo 4.0.0 mixes the defaults of several tags in ways this emulation does not
-/// follow (a `<position kp>` then `<velocity kv>` leaves a `<general>` the velocity
-/// servo's bias alone; a `<general dyntype>` does not reach a `<position>`), so an
-/// actuator whose classes' defaults of another tag set more than the common
-/// attributes is not judged.
+/// The spec of the actuator `node` (of `model`, class in force `class`), its
+/// classes' actuator defaults applied as the module docs say.
 pub(crate) fn read<'m>(model: &'m Model, node: &'m Node, class: Option<ElementId>) -> Read<'m> {
     let mut spec = Spec::default();
     // The class chain, the root class first.
@@ -277,29 +272,48 @@ pub(crate) fn read<'m>(model: &'m Model, node: &'m Node, class: Option<ElementId
         .filter(|d| !d.attrs().is_empty())
         .collect();
     let tag = node.kind().tag();
+    // The tags whose defaults set a servo: any shortcut's for a `<general>` (it takes
+    // what every default derives), else what sets more than the common attributes.
+    let servo = |d: &Node| {
+        let t = d.kind().tag();
+        if tag == "general" { t != "general" || sets_more(d) } else { sets_more(d) }
+    };
     let mut tags: Vec<&str> =
-        defaults.iter().filter(|d| sets_more(d)).map(|d| d.kind().tag()).collect();
+        defaults.iter().filter(|d| servo(d)).map(|d| d.kind().tag()).collect();
     tags.sort_unstable();
     tags.dedup();
     let followed = match tags[..] {
         [] => true,
-        [t] => t == tag || tag == "general",
+        // A class's muscle reaches a muscle in ways not followed (MuJoCo 4.0.0
+        // compiles a muscle whose class gives lmax 1 and which gives lmax -1).
+        [t] => t == tag && tag != "muscle" || tag == "general",
         _ => false,
     };
     if !followed {
         return Read::Unknown;
     }
+    let ranges = ["ctrlrange", "posrange", "actrange"];
+    let mut class_range = false;
     for d in defaults {
+        class_range |= ranges.iter().any(|a| own(d, a).is_some());
+        // A default of another tag gives a shortcut only the common attributes.
+        let read = if tag == "general" || d.kind().tag() == tag {
+            one_actuator(&mut spec, d)
+        } else {
+            general_attributes(&mut spec, d)
+        };
         // A class that MuJoCo refuses is refused whatever uses it: not judged here.
-        if one_actuator(&mut spec, d).is_err() {
+        if read.is_err() {
             return Read::Unknown;
         }
     }
-    // MuJoCo 4.0.0 lets an actuator's own range stand over its class's
-    // `inheritrange` (and the other way round): not followed here.
+    // MuJoCo 4.0.0 lets the range or `inheritrange` given last stand over the other
+    // (a class's range gives way to the element's `inheritrange`, the class's
+    // `inheritrange` to the element's range): not followed here.
     let own_inherit = own(node, "inheritrange").is_some();
-    let own_range = ["ctrlrange", "posrange", "actrange"].iter().any(|a| own(node, a).is_some());
-    if spec.inheritrange != 0.0 && !own_inherit && own_range {
+    let own_range = ranges.iter().any(|a| own(node, a).is_some());
+    let inherit = spec.inheritrange != 0.0 || own_inherit;
+    if inherit && (class_range || spec.inheritrange != 0.0 && !own_inherit && own_range) {
         return Read::Unknown;
     }
     match one_actuator(&mut spec, node) {
@@ -705,7 +719,9 @@ fn dcmotor(spec: &mut Spec<'_>, node: &Node) -> Result<(), Option<&'static str>>
     if r == 0.0 && vn > 0.0 && tau0 > 0.0 && k > 0.0 {
         r = k * vn / tau0;
     }
-    if k <= 0.0 {
+    // Checked with MuJoCo 4.0.0: a passive motor (`input="none"`) needs no motor
+    // constant.
+    if k <= 0.0 && ctrlspec != INPUT_NONE {
         return Err(Some("DC motor: motor constant K must be positive"));
     }
     if r <= 0.0 {

@@ -561,6 +561,11 @@ mod tests {
             r#"<dcmotor joint="j" nominal="2 1 4"/>"#,
         ),
         (
+            r#"DC motor: motor constant K must be positive"#,
+            r#"<dcmotor joint="j" input="voltage" resistance="1"/>"#,
+            r#"<dcmotor joint="j" input="none" resistance="1"/>"#,
+        ),
+        (
             r#"DC motor: resistance R must be positive"#,
             r#"<dcmotor joint="j" motorconst="1" nominal="2 0 4"/>"#,
             r#"<dcmotor joint="j" motorconst="1" nominal="2 1 4"/>"#,
