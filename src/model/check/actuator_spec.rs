@@ -12,9 +12,10 @@
 //! tag, and a `<general>` (a `<default><position kp="5" inheritrange="1"/>` gives a
 //! `<general>` the position servo and its `inheritrange`, but leaves a `<motor>` a
 //! plain motor and an `<intvelocity>` its own gains); a class's `actdim` reaches a
-//! `<general>` only. Where the defaults of several tags set servos, or a class's
-//! `inheritrange` meets a range given elsewhere, MuJoCo 4.0.0 mixes them in ways
-//! not followed here, and the actuator is not judged ([`Read::Unknown`]).
+//! `<general>` only. Where the defaults of several tags set servos, a default of
+//! another tag follows the servo's, or a class's `inheritrange` meets a range given
+//! elsewhere, MuJoCo 4.0.0 mixes them in ways not followed here, and the actuator
+//! is not judged ([`Read::Unknown`]).
 
 use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
@@ -289,7 +290,16 @@ pub(crate) fn read<'m>(model: &'m Model, node: &'m Node, class: Option<ElementId
         [t] => t == tag && tag != "muscle" || tag == "general",
         _ => false,
     };
-    if !followed {
+    // A default of another tag after the servo's (even one giving only common
+    // attributes) resets what MuJoCo 4.0.0 keeps of it (a `<motor gear>` after a
+    // `<position inheritrange>` drops the `inheritrange`): not followed.
+    let after_servo = tags.first().is_some_and(|servo_tag| {
+        defaults
+            .iter()
+            .skip_while(|d| d.kind().tag() != *servo_tag)
+            .any(|d| d.kind().tag() != *servo_tag)
+    });
+    if !followed || after_servo {
         return Read::Unknown;
     }
     let ranges = ["ctrlrange", "posrange", "actrange"];

@@ -858,4 +858,21 @@ mod tests {
         );
         assert_eq!(found(&text), Vec::<String>::new());
     }
+
+    /// MuJoCo 4.0.0 refuses the first (the class's `inheritrange` on a joint without
+    /// a range) and compiles the second: a `<motor>` default after the position
+    /// servo's drops its `inheritrange`. The rule judges the first, and says nothing
+    /// of the second, whose reading it does not follow.
+    #[test]
+    fn a_default_of_another_tag_after_the_servo_s_stops_the_judgement() {
+        let model = |defaults: &str| {
+            format!(
+                r#"<mujoco><default>{defaults}</default>{WORLD}<actuator><position joint="h"/></actuator></mujoco>"#
+            )
+        };
+        let before = found(&model(r#"<motor gear="2"/><position inheritrange="1"/>"#));
+        assert!(before.len() == 1 && before[0].contains("has no range defined"), "{before:?}");
+        let after = found(&model(r#"<position inheritrange="1"/><motor gear="2"/>"#));
+        assert_eq!(after, Vec::<String>::new());
+    }
 }
