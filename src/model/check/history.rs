@@ -1,11 +1,12 @@
-//! Rule *history needs time steps* ([`ProblemKind::Refused`]): a sensor or actuator
-//! that keeps a history (`nsample` above 0) needs the model's `<option timestep>`
+//! Rule *history needs time steps* ([`ProblemKind::Refused`]): a sensor that keeps a
+//! history (`nsample` above 0) needs the model's `<option timestep>`
 //! positive (its merged settings; the last `<option>` giving it wins; 0.002 by
 //! default). MuJoCo refuses it ("history buffers require positive timestep, got 0").
+//! An actuator's history is the actuators rule's, in MuJoCo's order of its checks.
 
 use crate::model::Model;
 use crate::model::settings;
-use crate::schema::{ElementKind, Role};
+use crate::schema::ElementKind;
 use crate::value::Value;
 
 use super::ProblemKind;
@@ -42,9 +43,7 @@ impl<'m> Rule<'m> for History {
             return;
         }
         let kind = e.node.kind();
-        let judged = on::in_section(kind, "sensor") || kind.role().is_some_and(Role::is_actuator);
-        // The element's own `nsample` only: an actuator's may come from a class's
-        // default of another actuator tag (one for all tags in MuJoCo), not read here.
+        let judged = on::in_section(kind, "sensor");
         let own = kind.attr_index("nsample").and_then(|i| e.node.attr(i));
         if judged && matches!(own, Some(Value::Int(n)) if *n > 0) {
             out.push(ProblemKind::Refused {
@@ -77,7 +76,8 @@ mod tests {
         let sensor = r#"<sensor><jointpos joint="j" nsample="2"/></sensor>"#;
         let motor = r#"<actuator><motor joint="j" nsample="2" delay="0.01"/></actuator>"#;
         assert_eq!(found(zero, sensor), 1);
-        assert_eq!(found(zero, motor), 1);
+        // An actuator's is the actuators rule's: said once, there.
+        assert_eq!(found(zero, motor), 0);
         assert_eq!(found(r#"<option timestep="-1"/>"#, sensor), 1);
         assert_eq!(found(r#"<option timestep="0.01"/><option timestep="0"/>"#, sensor), 1);
         assert_eq!(found(r#"<option timestep="0"/><option timestep="0.01"/>"#, sensor), 0);

@@ -21,6 +21,9 @@ use super::cursor::{Insts, Item, Step, Walk};
 use super::naming;
 use super::{Loc, Model};
 
+mod actuator_fixes;
+mod actuator_spec;
+mod actuators;
 mod advice;
 mod arrays;
 mod attach;
@@ -61,6 +64,7 @@ fn rules<'m>(model: &'m Model, options: &WriteOptions) -> Vec<Box<dyn Rule<'m> +
         Box::new(bodies::Bodies::new(model)),
         Box::new(history::History::new(model)),
         Box::new(attach::Attach),
+        Box::new(actuators::Actuators::new(model)),
     ]
 }
 

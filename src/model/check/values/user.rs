@@ -1,6 +1,6 @@
 //! The checks of an element's `user` numbers against `<size nuser_*>` (MuJoCo's
-//! `Compile` of bodies, joints, geoms, sites, cameras, tendons, actuators and
-//! sensors).
+//! `Compile` of bodies, joints, geoms, sites, cameras, tendons and sensors; an
+//! actuator's is the actuators rule's, in MuJoCo's order of its checks).
 
 use crate::schema::{ElementKind, Role};
 
@@ -20,8 +20,6 @@ fn limit_of(k: ElementKind) -> Option<(&'static str, &'static str)> {
         Some(("nuser_cam", "camera"))
     } else if on::tendon(k) {
         Some(("nuser_tendon", "tendon"))
-    } else if on::actuator(k) {
-        Some(("nuser_actuator", "actuator"))
     } else if on::in_section(k, "sensor") {
         Some(("nuser_sensor", "sensor"))
     } else {
@@ -58,9 +56,7 @@ fn too_long(at: &At<'_, '_>) -> Option<Found> {
         .map_or(0, |v| v.len());
     (len as i64 > n).then_some(())?;
     let message = match what {
-        "geom" | "actuator" => {
-            format!("user has more values than {setting} in {what} '{}'", at.name())
-        }
+        "geom" => format!("user has more values than {setting} in geom '{}'", at.name()),
         _ => format!("user has more values than {setting} in {what}"),
     };
     found("user", message)
@@ -96,10 +92,10 @@ mod tests {
         assert_pairs("user-too-long", &pairs);
     }
 
-    /// Tendons, actuators and sensors, by their own numbers or a class's; the last
+    /// Tendons and sensors, by their own numbers or a class's; the last
     /// `<size>` giving a setting wins. Each verdict is MuJoCo 4.0.0's.
     #[test]
-    fn tendon_actuator_and_sensor_user_numbers_must_fit_too() {
+    fn tendon_and_sensor_user_numbers_must_fit_too() {
         let with = |size: &str, defaults: &str, tendon: &str, actuator: &str, sensor: &str| {
             format!(
                 r#"<mujoco>{size}<default>{defaults}</default><worldbody><body name="b"><joint name="j"/><geom size=".1"/></body></worldbody>
@@ -132,10 +128,6 @@ mod tests {
                     "",
                     r#"user="1 2""#,
                 ),
-            ),
-            (
-                with(r#"<size nuser_actuator="1"/>"#, "", "", r#"user="1 2""#, ""),
-                with(r#"<size nuser_actuator="2"/>"#, "", "", r#"user="1 2""#, ""),
             ),
             (
                 with(r#"<size nuser_tendon="1"/>"#, r#"<tendon user="1 2"/>"#, "", "", ""),
