@@ -331,9 +331,23 @@ impl Model {
     /// are not at the world's top level once composed, mocap bodies that are not
     /// fixed children of the world, planes in moving bodies, keys longer than the
     /// model, arrays shorter than MuJoCo accepts (`pos="1 2"`; the minimums probed
-    /// from MuJoCo 4.0.0). Each is said once, naming its element as the writer writes
+    /// from MuJoCo 4.0.0), and what MuJoCo refuses of an element's own values and of
+    /// its targets ([`ProblemKind::Refused`], in MuJoCo's words, with the check's
+    /// name: out-of-range numbers, degenerate orientations, attributes that exclude
+    /// each other, actuators, sensors, tendons, equalities, assets, settings, MuJoCo's
+    /// own `<attach>`). Each is said once, naming its element as the writer writes
     /// it, with MuJoCo's own words and what to do. Empty when none is found; this is
-    /// not a full MuJoCo compile.
+    /// not a full MuJoCo compile: the content of files (meshes, textures, height
+    /// fields, skins) and plugins are MuJoCo's to judge ([`Model::advice`] names the
+    /// plugins).
+    ///
+    /// How far it reaches is measured against MuJoCo 4.0.0's own refusals (the
+    /// binding's `refusals` catalog: 758 distinct messages of its compiler and XML
+    /// reader, 453 reachable from MJCF text, 90 needing a file's content, 215
+    /// unreachable; 329 pairs of a refused model and its compiled twin for 319 of the
+    /// 453): the reader or `check()` objects to 305 refused models with MuJoCo's
+    /// message, 1 with another, and none of the twins; the 23 it is silent on are
+    /// inline mesh, skin and flex data and a renamed top-level default class.
     ///
     /// Time: O(N) for a composed model of N elements, plus, for dangling references,
     /// O(n log n) per model and namespace they name into (ranking its `n` names
