@@ -754,3 +754,23 @@ fn modules_name_only_their_own_layer_and_those_below() {
     assert!(graph.len() >= 12, "{graph:?}");
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// The root's sections are named by their constants (`ElementKind::COMPILER`), never
+/// looked up by a tag written in the library's code (`ROOT.child("compiler")`).
+#[test]
+fn sections_are_named_by_their_constants() {
+    let mut found = Vec::new();
+    for (path, text) in sources() {
+        let path = path.display().to_string();
+        if path.ends_with("/tests.rs") {
+            continue;
+        }
+        let code = code_only(&text);
+        for (n, line) in code.lines().enumerate() {
+            if line.contains("ROOT.child(\"") {
+                found.push(format!("{path}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "name the section by its constant:\n{}", found.join("\n"));
+}

@@ -23,7 +23,7 @@ use crate::schema::{Namespace, Role};
 use crate::value::{Reference, Value};
 
 use super::cursor::{Step, Walk};
-use super::layout::{class_at, effective};
+use super::layout::{class_in_force, effective};
 use super::tree::{ElementId, Node};
 use super::{Loc, Model};
 
@@ -216,9 +216,8 @@ fn needed(m: &Model, loc: &Loc, attr: &str) -> bool {
         return false;
     }
     let Some(own) = m.scoped_model(loc.scope()) else { return false };
-    let Some(path) = own.path_of(loc.id()) else { return false };
-    let Some(node) = own.node_at(&path) else { return false };
-    let ty = effective(own, node, class_at(own, &path), "type").and_then(Value::as_str);
+    let Some(node) = own.node_by_id(loc.id()) else { return false };
+    let ty = effective(own, node, class_in_force(own, node), "type").and_then(Value::as_str);
     match attr {
         "mesh" => matches!(ty, Some("mesh" | "sdf")),
         _ => ty == Some("hfield"),

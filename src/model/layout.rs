@@ -261,19 +261,23 @@ pub(crate) fn root_class(model: &Model) -> Option<ElementId> {
     model.root.child_of_kind(ElementKind::DEFAULT).map(Node::id)
 }
 
-/// The default class in force for the element at `path` in `model` (as
-/// [`ClassesInForce`] finds it in a walk): its own class, else the nearest
-/// `childclass` above it, else the model's root class.
+/// The default class in force for `node` of `model` (as [`ClassesInForce`] finds it
+/// in a walk): its own class, else the nearest `childclass` above it, else the
+/// model's root class.
 ///
-/// Time: O(depth).
-pub(crate) fn class_at(model: &Model, path: &[usize]) -> Option<ElementId> {
-    let mut inherited = None;
-    let mut at = &model.root;
-    for &i in path {
-        inherited = childclass_of(at).or(inherited);
-        at = at.children().get(i)?;
+/// Time: O(depth · log n), a parent lookup per level.
+pub(crate) fn class_in_force(model: &Model, node: &Node) -> Option<ElementId> {
+    if let Some(c) = class_of(node) {
+        return Some(c);
     }
-    class_of(at).or(inherited).or_else(|| root_class(model))
+    let mut cur = model.index.parent(node.id());
+    while let Some(id) = cur {
+        if let Some(c) = model.node_by_id(id).and_then(childclass_of) {
+            return Some(c);
+        }
+        cur = model.index.parent(id);
+    }
+    root_class(model)
 }
 
 /// The class an element's `childclass` gives its content, if it sets one.

@@ -14,9 +14,9 @@
 //! said of the actuator.
 
 use crate::model::Model;
-use crate::model::layout::{JointType, childclass_of, class_of, effective, joint_type};
+use crate::model::layout::{JointType, class_in_force, effective, joint_type};
 use crate::model::settings;
-use crate::model::tree::{ElementId, Node};
+use crate::model::tree::Node;
 use crate::schema::{ElementKind, Role};
 use crate::value::{Reference, Value};
 
@@ -94,22 +94,6 @@ fn target<'m>(model: &'m Model, node: &'m Node, attr: &str, v: &Value) -> Option
         }
         _ => None,
     }
-}
-
-/// The class in force for `node` of `model`: its own, else the nearest `childclass`
-/// above it, else the model's root class.
-fn class_in_force(model: &Model, node: &Node) -> Option<ElementId> {
-    if let Some(c) = class_of(node) {
-        return Some(c);
-    }
-    let mut cur = model.index.parent(node.id());
-    while let Some(id) = cur {
-        if let Some(c) = model.node_by_id(id).and_then(childclass_of) {
-            return Some(c);
-        }
-        cur = model.index.parent(id);
-    }
-    model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id)
 }
 
 /// The target's facts the checks read.

@@ -21,10 +21,9 @@ pub(super) struct History {
 impl History {
     /// The rule for `model` as written.
     pub(super) fn new(model: &Model) -> History {
-        let option = ElementKind::ROOT.child("option");
         let mut timestep = 0.002;
         if let Ok(sections) = settings::merged(model) {
-            for s in sections.iter().filter(|n| Some(n.kind()) == option) {
+            for s in sections.iter().filter(|n| n.kind() == ElementKind::OPTION) {
                 match s.kind().attr_index("timestep").and_then(|i| s.attr(i)) {
                     Some(Value::Float(t)) => timestep = *t,
                     Some(Value::Int(t)) => timestep = *t as f64,

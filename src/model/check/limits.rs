@@ -104,9 +104,8 @@ pub(super) struct Limits {
 impl Limits {
     /// The rule for `model` as written.
     pub(super) fn new(model: &Model) -> Limits {
-        let compiler = ElementKind::ROOT.child("compiler");
         let off = settings::merged(model).ok().is_some_and(|sections| {
-            sections.iter().filter(|n| Some(n.kind()) == compiler).any(|c| {
+            sections.iter().filter(|n| n.kind() == ElementKind::COMPILER).any(|c| {
                 let kind = c.kind();
                 let v = kind.attr_index("autolimits").and_then(|i| c.attr(i));
                 v.and_then(Value::as_str) == Some("false")

@@ -4,9 +4,8 @@
 //! geom, an equality's joints).
 
 use crate::model::Model;
-use crate::model::layout::{childclass_of, class_of, effective};
+use crate::model::layout::{class_in_force, effective};
 use crate::model::tree::{ElementId, Node};
-use crate::schema::ElementKind;
 use crate::value::{Reference, Value};
 
 /// An element named by a reference, in its model, with its class in force.
@@ -64,22 +63,6 @@ pub(crate) fn named<'m>(
         .attr(i)
         .or_else(|| crate::model::layout::from_classes(model, node.kind(), class, attr))?;
     resolve(model, node, i, value)
-}
-
-/// The default class in force for `node` of `model`, as the walk finds it: its own
-/// class, else the nearest `childclass` of an element above it, else the root class.
-fn class_in_force(model: &Model, node: &Node) -> Option<ElementId> {
-    if let Some(c) = class_of(node) {
-        return Some(c);
-    }
-    let mut cur = model.index.parent(node.id());
-    while let Some(id) = cur {
-        if let Some(c) = model.node_by_id(id).and_then(childclass_of) {
-            return Some(c);
-        }
-        cur = model.index.parent(id);
-    }
-    model.root.child_of_kind(ElementKind::ROOT.child("default")?).map(Node::id)
 }
 
 /// A reference attribute of an element: its model, the element, the attribute's

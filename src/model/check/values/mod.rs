@@ -461,11 +461,6 @@ pub(crate) mod on {
         k.is(Role::Joint)
     }
 
-    /// An actuator of any kind.
-    pub(crate) fn actuator(k: ElementKind) -> bool {
-        k.role().is_some_and(Role::is_actuator)
-    }
-
     /// A tendon (`<fixed>`, `<spatial>`).
     pub(crate) fn tendon(k: ElementKind) -> bool {
         k.is(Role::Tendon)
