@@ -72,6 +72,8 @@ extern crate self as mjcf;
 mod compose;
 #[doc = include_str!("decisions.md")]
 pub mod decisions {}
+#[doc = include_str!("guide.md")]
+pub mod guide {}
 mod error;
 mod files;
 #[cfg(any(test, feature = "proptest", feature = "arbitrary"))]

@@ -2,10 +2,12 @@
 //! decides: each test reads both places and fails when one changes alone.
 //!
 //! - the README's `[dependencies]` line and Rust version are the manifest's;
-//! - the real-model floor of the README is `.ci/run`'s `realmodels_floor`;
-//! - the README's conformance summary counts every case of the corpus;
+//! - the real-model floor of `tests/conformance/README.md` is `.ci/run`'s
+//!   `realmodels_floor`, and the manual's lossless floor `.ci/run`'s;
+//! - the conformance summary of `tests/conformance/README.md` counts every case;
 //! - every `deviation` label a conformance case uses is explained in
-//!   `tests/conformance/README.md` and listed in the README's table;
+//!   `tests/conformance/README.md` and is a heading of `src/decisions.md`;
+//! - the README is what a newcomer reads to the end: at most 200 non-blank lines;
 //! - no comment or document cites a line of code by number (a file name, a colon and
 //!   the number, or a `#L` anchor), which goes stale as soon as the code above moves;
 //! - the README's quickstart is `examples/quickstart.rs`, and its line counts of the
@@ -91,32 +93,25 @@ fn readme_dependency_line_and_rust_version_are_the_manifests() {
     assert!(readme.contains(&stated), "the README does not say `{stated}`");
 }
 
-/// The README's "Real models" section: the floor it states, and the pass count of its
-/// sample run, which is at least that floor.
+/// The conformance README's "Real models" section: the floor it states, and the
+/// pass count of its sample run, which is at least that floor.
 #[test]
-fn readme_real_model_floor_is_the_ci_floor() {
+fn real_model_floor_is_the_ci_floor() {
     let ci = number_after(&read(".ci/run"), "\nrealmodels_floor=", ".ci/run");
-    let readme = read("README.md");
-    let stated = number_after(&readme, "fails if fewer than ", "README.md, Real models");
-    assert_eq!(
-        stated, ci,
-        "the README states a real-model floor of {stated}, .ci/run's realmodels_floor is {ci}"
-    );
-    let sample = number_after(
-        &readme,
-        "../shared/realmodels/cases\n# ",
-        "README.md, Real models: the sample run's result",
-    );
-    assert!(sample >= ci, "the README's sample run passes {sample}, below the floor {ci}");
+    let doc = read("tests/conformance/README.md");
+    let at = "tests/conformance/README.md, Real models";
+    let stated = number_after(&doc, "fails if fewer than ", at);
+    assert_eq!(stated, ci, "{at} states a real-model floor of {stated}, .ci/run's is {ci}");
+    let sample = number_after(&doc, "../shared/realmodels/cases\n# ", at);
+    assert!(sample >= ci, "{at}: the sample run passes {sample}, below the floor {ci}");
 }
 
-/// The README's lossless-save section: the floor it states is `.ci/run`'s.
+/// The manual's lossless-save section: the floor it states is `.ci/run`'s.
 #[test]
-fn readme_lossless_floor_is_the_ci_floor() {
+fn lossless_floor_is_the_ci_floor() {
     let ci = number_after(&read(".ci/run"), "\n  lossless_floor=", ".ci/run");
-    let readme = read("README.md");
-    let stated = number_after(&readme, "requires all ", "README.md, lossless save");
-    assert_eq!(stated, ci, "the README states a lossless floor of {stated}, .ci/run's is {ci}");
+    let stated = number_after(&read("src/guide.md"), "requires all ", "src/guide.md, saving");
+    assert_eq!(stated, ci, "the manual states a lossless floor of {stated}, .ci/run's is {ci}");
 }
 
 fn case_dirs() -> Vec<PathBuf> {
@@ -130,11 +125,11 @@ fn case_dirs() -> Vec<PathBuf> {
     dirs
 }
 
-/// `# P passed, 0 failed, K deviations` under the README's conformance runner command:
-/// every case passes, and P + K is the number of cases.
+/// `# P passed, 0 failed, K deviations` under the conformance README's runner
+/// command: every case passes, and P + K is the number of cases.
 #[test]
-fn readme_conformance_summary_counts_every_case() {
-    let readme = read("README.md");
+fn conformance_summary_counts_every_case() {
+    let readme = read("tests/conformance/README.md");
     let prefix = "--example conformance -- tests/conformance/cases\n# ";
     let passed = number_after(&readme, prefix, "README.md, Conformance");
     let rest = &readme[readme.find(prefix).unwrap() + prefix.len()..];
@@ -169,15 +164,15 @@ fn every_deviation_label_of_the_cases_is_documented() {
     let labels = case_deviation_labels();
     assert!(labels.contains("D1") && labels.contains("D3"), "labels found: {labels:?}");
     let format = read("tests/conformance/README.md");
-    let readme = read("README.md");
+    let decisions = read("src/decisions.md");
     for label in &labels {
         assert!(
             format.contains(&format!("\n* `{label}` (")),
             "tests/conformance/README.md does not say how ops marked {label} are replayed"
         );
         assert!(
-            readme.contains(&format!("\n| {label} | ")),
-            "the README's table of deviations has no row {label}"
+            decisions.contains(&format!("\n# {label}: ")),
+            "src/decisions.md has no heading {label}"
         );
     }
 }
@@ -385,4 +380,20 @@ fn every_test_a_decision_names_exists() {
         }
     }
     assert!(named >= 15, "{named} tests named");
+}
+
+/// The README is the overview a newcomer reads to the end (the manual is the crate's
+/// docs, `src/guide.md`): at most 200 non-blank lines, and every file it links exists.
+#[test]
+fn the_readme_is_short_and_its_links_resolve() {
+    let readme = read("README.md");
+    let lines = readme.lines().filter(|l| !l.trim().is_empty()).count();
+    assert!(lines <= 200, "the README has {lines} non-blank lines");
+    for (at, _) in readme.match_indices("](") {
+        let target: String = readme[at + 2..].chars().take_while(|c| *c != ')').collect();
+        if target.starts_with("http") || target.starts_with('#') {
+            continue;
+        }
+        assert!(root().join(&target).exists(), "the README links {target}, which does not exist");
+    }
 }
