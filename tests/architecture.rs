@@ -774,3 +774,23 @@ fn sections_are_named_by_their_constants() {
     }
     assert!(found.is_empty(), "name the section by its constant:\n{}", found.join("\n"));
 }
+
+/// One folder-module style: a module with submodules is a folder holding `mod.rs`,
+/// never a file `foo.rs` beside a folder `foo/`.
+#[test]
+fn modules_with_submodules_are_folders_with_mod_rs() {
+    let mut mixed = Vec::new();
+    let mut dirs = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join("src")];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                if path.with_extension("rs").is_file() {
+                    mixed.push(path.display().to_string());
+                }
+                dirs.push(path);
+            }
+        }
+    }
+    assert!(mixed.is_empty(), "move foo.rs into foo/mod.rs: {mixed:?}");
+}

@@ -1,4 +1,4 @@
-//! The writer's rules (issue 20 item 4; the table in `src/xml/write.rs`), one test
+//! The writer's rules (issue 20 item 4; the table in `src/xml/write/mod.rs`), one test
 //! each: what the rule writes, and that it reads back as its reader rule says.
 //! Every test goes through [`round_trip`]: written, read back (with the files the
 //! text names), the model read back writes the same text, and reads back as the
@@ -528,15 +528,18 @@ fn names_with_markup_characters_read_back() {
     assert!(matches!(e, mjcf::WriteError::InvalidCharacter { character: '\u{1}', .. }), "{e}");
 }
 
-/// The table of rules in `src/xml/write.rs` and this file agree: every test here is
+/// The table of rules in `src/xml/write/mod.rs` and this file agree: every test here is
 /// one rule's test, every rule names a test here, and every function a rule names
 /// exists where the table says.
 #[test]
 fn the_rule_table_lists_every_rule_with_its_test() {
     let root = env!("CARGO_MANIFEST_DIR");
     let read = |p: &str| std::fs::read_to_string(format!("{root}/{p}")).unwrap();
-    let (doc, tests, policy) =
-        (read("src/xml/write.rs"), read("tests/write_rules.rs"), read("src/xml/write/policy.rs"));
+    let (doc, tests, policy) = (
+        read("src/xml/write/mod.rs"),
+        read("tests/write_rules.rs"),
+        read("src/xml/write/policy.rs"),
+    );
     let rows: Vec<Vec<&str>> = doc
         .lines()
         .filter_map(|l| l.strip_prefix("//! | "))

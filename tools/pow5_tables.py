@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes src/value/number/tables.rs: the 125-bit powers of five (and their inverses)
-that the shortest-float formatter (src/value/number.rs, after Ryu by Ulf Adams) multiplies by.
+that the shortest-float formatter (src/value/number/mod.rs, after Ryu by Ulf Adams) multiplies by.
 
     python3 tools/pow5_tables.py > src/value/number/tables.rs && cargo fmt
 """
