@@ -21,7 +21,7 @@ use crate::model::Model;
 use crate::value::{FileAsset, Value};
 
 use super::WriteOptions;
-use super::write::policy;
+use super::rules;
 
 impl Model {
     /// Every file the MJCF written with `options` names (this model's own, and those
@@ -84,7 +84,7 @@ impl Model {
                 }
                 for (_, value) in node.attrs() {
                     if let Value::File(file) = value {
-                        add_file(&mut out, policy::file_name(file, options), file)?;
+                        add_file(&mut out, rules::file_name(file, options), file)?;
                         // A model file's own files, at their paths relative to it.
                         for (path, companion) in file.companions() {
                             add_file(&mut out, path.to_string(), companion)?;

@@ -12,7 +12,7 @@ use crate::model::tree::{Attr, ElementId, Node, no_attrs};
 use crate::model::{Model, ReadIndex, empty_node, empty_node_with_id};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{Reference, Value};
-use crate::xml::write::policy;
+use crate::xml::rules;
 
 /// Turns the arena into nodes, indexes them and resolves references.
 pub(super) fn finish(r: &mut Reader<'_>, model_name: Option<SmolStr>) -> Result<Model, ReadError> {
@@ -208,7 +208,7 @@ pub(super) fn empty_size(k: ElementKind) -> usize {
 /// `<default><default class="/">…</default></default>`, the shape this crate and
 /// dm_control write a model's root default class in, reads as that root class: the
 /// content of the one class `/` becomes the root class's own (the writer's rules
-/// "root class wrapper" and "main wrapper", `policy::folds_into_root_class`). Where the root
+/// "root class wrapper" and "main wrapper", `rules::folds_into_root_class`). Where the root
 /// `<default>` holds other classes beside `/` (a composed model written out: the
 /// attached models' root classes `robot/` are siblings of `/`, not inside it), `/` is
 /// kept as a class of that name, so that the siblings keep inheriting nothing from it.
@@ -228,19 +228,19 @@ pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
     let as_default_child = |c: usize| {
         let p = &arena[c];
         if !p.kind.is(Role::DefaultClass) {
-            return policy::DefaultChild::Setting;
+            return rules::DefaultChild::Setting;
         }
         let ident = p.kind.identifier();
         let name = p.attrs.iter().find(|(k, _)| Some(*k as usize) == ident);
-        policy::DefaultChild::Class(name.and_then(|(_, v)| v.as_str()))
+        rules::DefaultChild::Class(name.and_then(|(_, v)| v.as_str()))
     };
     // A class `/` beside other classes, at any level (under a named root class too).
     let composed = arena.iter().enumerate().any(|(i, p)| {
         p.kind.is(Role::DefaultClass)
-            && policy::is_composed_output(children_of(arena, i).map(as_default_child))
+            && rules::is_composed_output(children_of(arena, i).map(as_default_child))
     });
     let wrapper_attrs = !arena[d].attrs.is_empty();
-    if !policy::folds_into_root_class(wrapper_attrs, children_of(arena, d).map(as_default_child)) {
+    if !rules::folds_into_root_class(wrapper_attrs, children_of(arena, d).map(as_default_child)) {
         return (composed, None);
     }
     let Some(only) = children_of(arena, d).next() else { return (composed, None) };
@@ -276,12 +276,12 @@ pub(super) fn hoist_root_class(arena: &mut [Pending]) -> (bool, Option<usize>) {
 
 /// Automatic names (`//unnamed_geom_0`, written by this crate and by dm_control) mean
 /// "unnamed": they are derived again when the model is written (the writer's rule
-/// "automatic names", `policy::is_auto_name`). (In a composed model
+/// "automatic names", `rules::is_auto_name`). (In a composed model
 /// written out they are kept: there they were counted over the outer model's own
 /// elements, which the flat model read back no longer tells apart.)
 pub(super) fn forget_auto_name(p: &mut Pending) {
     let Some(ident) = p.kind.identifier() else { return };
-    let auto = |(k, v): &Attr| *k as usize == ident && v.as_str().is_some_and(policy::is_auto_name);
+    let auto = |(k, v): &Attr| *k as usize == ident && v.as_str().is_some_and(rules::is_auto_name);
     if p.attrs.iter().any(auto) {
         let mut attrs = p.attrs.to_vec();
         attrs.retain(|a| !auto(a));

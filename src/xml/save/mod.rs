@@ -40,8 +40,8 @@ use crate::model::Model;
 use crate::model::tree::{ElementId, Node};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Role};
 use crate::value::{FloatStyle, Reference, Value};
+use crate::xml::rules::{self, DefaultChild};
 use crate::xml::source::{NO_RECORD, RecordKind, Source};
-use crate::xml::write::policy::{self, DefaultChild};
 use tag::Tag;
 
 /// Why a model cannot be saved losslessly.
@@ -609,7 +609,7 @@ impl Saver<'_> {
 
     /// Whether the record `r` is a file's root `<default>` (the root class's outer
     /// tag, `node`) without attributes whose content, as written, the reader would
-    /// fold into the root class (one class named `/`: `policy::folds_into_root_class`),
+    /// fold into the root class (one class named `/`: `rules::folds_into_root_class`),
     /// reading another model: a class `/` left alone by an edit where it stood beside
     /// other classes (a composed model written out). Such a tag is written
     /// `class="main"`, as the plain writer writes it (a wrapper with an attribute is
@@ -631,7 +631,7 @@ impl Saver<'_> {
                 DefaultChild::Setting
             }
         });
-        policy::folds_into_root_class(false, written)
+        rules::folds_into_root_class(false, written)
     }
 
     /// Whether the record `q` (an element's own tag) gives the attribute `i`.

@@ -1,9 +1,9 @@
 //! An element's attributes as written: in schema order, the name slot from the
-//! naming rules (`model::naming`), the implicit class ([`policy::implicit_class`]),
+//! naming rules (`model::naming`), the implicit class ([`rules::implicit_class`]),
 //! names and references with their instance's prefix
-//! ([`policy::named_reference`]), references to removed elements
-//! ([`policy::removed_reference`]), files by their written names
-//! ([`policy::file_name`]), and no base path ([`policy::writes_attr`]).
+//! ([`rules::named_reference`]), references to removed elements
+//! ([`rules::removed_reference`]), files by their written names
+//! ([`rules::file_name`]), and no base path ([`rules::writes_attr`]).
 
 use crate::error::WriteError;
 use crate::model::naming::Written as WrittenName;
@@ -13,14 +13,14 @@ use crate::schema::AttrType;
 use crate::value::{Reference, Value};
 
 use super::Writer;
-use super::policy::{self, NamedReference};
+use crate::xml::rules::{self, NamedReference};
 
 impl<'a> Writer<'a> {
     /// Writes ` name="value"` for every attribute, in schema order, including the
     /// element's name (its own with its prefix, an attachment frame's, a frame
     /// joint's, an automatic one: `model::naming`) and the implicit class.
     /// `childclass_above`: a `childclass` of the same model is above
-    /// ([`policy::childclass_above`]).
+    /// ([`rules::childclass_above`]).
     pub(super) fn write_attrs(
         &mut self,
         insts: &Insts<'a>,
@@ -35,7 +35,7 @@ impl<'a> Writer<'a> {
             None => None,
         };
         let implicit_class =
-            policy::implicit_class(kind, childclass_above, |c| self.has_live(insts, inst, node, c));
+            rules::implicit_class(kind, childclass_above, |c| self.has_live(insts, inst, node, c));
         // The stored attributes, merged in schema order with the two slots written
         // from the rules (each replacing a stored value at its slot).
         let mut set = node.attrs().iter().peekable();
@@ -125,7 +125,7 @@ impl<'a> Writer<'a> {
             Value::String(n) if kind.attr(i).ty == AttrType::NamePrefix => [prefix, n.as_str()],
             Value::Reference(Reference::Name(n)) => {
                 let model = insts.list[inst].model;
-                match policy::named_reference(model, node, i, n) {
+                match rules::named_reference(model, node, i, n) {
                     NamedReference::RootClass => {
                         let root = insts.root_class_name(inst);
                         self.emit_written(insts, inst, tag, attr, root);
@@ -136,7 +136,7 @@ impl<'a> Writer<'a> {
                 }
             }
             Value::File(f) => {
-                self.text.value.push_str(&policy::file_name(f, self.options));
+                self.text.value.push_str(&rules::file_name(f, self.options));
                 self.text.value_attr(tag, attr);
                 return Ok(());
             }
@@ -151,7 +151,7 @@ impl<'a> Writer<'a> {
     }
 
     /// Appends ` name="…"` for attribute `i`, a reference to element `target`, if it
-    /// is written ([`policy::removed_reference`]).
+    /// is written ([`rules::removed_reference`]).
     fn emit_reference(
         &mut self,
         insts: &Insts<'a>,
@@ -161,7 +161,7 @@ impl<'a> Writer<'a> {
         target: ElementId,
     ) -> Result<(), WriteError> {
         let Some(entry) = self.entry(insts, inst, target) else {
-            return policy::removed_reference(insts.list[inst].model, node, i);
+            return rules::removed_reference(insts.list[inst].model, node, i);
         };
         if let Some(written) = insts.name_of_entry(inst, target, entry) {
             let kind = node.kind();
@@ -184,9 +184,9 @@ impl<'a> Writer<'a> {
     }
 
     /// Whether `node` (of instance `inst`) sets a `childclass` that is written
-    /// ([`policy::childclass_below`]).
+    /// ([`rules::childclass_below`]).
     pub(super) fn sets_childclass(&mut self, insts: &Insts<'a>, inst: usize, node: &Node) -> bool {
-        let childclass = policy::kind_facts(node.kind()).childclass;
+        let childclass = rules::kind_facts(node.kind()).childclass;
         childclass.is_some_and(|i| self.has_live(insts, inst, node, i))
     }
 

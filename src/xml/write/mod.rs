@@ -8,7 +8,8 @@
 //!
 //! # The writer's rules
 //!
-//! Each rule is one function of [`policy`] (or of the module named), asked as the
+//! Each rule is one function of [`rules`] (`xml::rules`, which the reader, the saver
+//! and scenes ask too; or of the module named), asked as the
 //! writer walks the composed model; each is inverted by a rule of the reader
 //! (`xml::read`), and round-tripped by a test of `tests/write_rules.rs` (write, read
 //! back: what the rule wrote reads back as the table says, writing that gives the
@@ -18,26 +19,26 @@
 //! | Rule | Function | Writes | Read back by | Test |
 //! |---|---|---|---|---|
 //! | names | `model::naming` | every name slot from the naming rules: own names with the instance's prefix (`robot/torso`), attachment frames and their joints by scope (`robot/`) | literal names, `/` included (decision D13) | `scoped_names_read_back_as_literal_names` |
-//! | automatic names | [`policy::is_auto_name`] | `//unnamed_<ns>_<i>` for an unnamed element with a name slot (`naming::Written::Auto`) | `forget_auto_name`: no name, derived again when written | `automatic_names_are_forgotten_and_derived_again` |
-//! | replicate suffix | [`policy::is_auto_name`] | `_` after an automatic name inside a `<replicate>` (MuJoCo appends the copy's number) | `forget_auto_name`, as any automatic name | `automatic_names_in_a_replicate_end_in_an_underscore` |
-//! | composed output | [`policy::is_composed_output`] | the root class `/` (or `/1`) beside the attached models' root classes `robot/` | `hoist_root_class` tells it; the automatic names are kept as literal names | `a_composed_output_keeps_its_automatic_names` |
-//! | root class wrapper | [`policy::in_root_wrapper`] | one `<default>` around the root classes (`/`, then `robot/`, ...), closed before the next section | `hoist_root_class`: a wrapper holding only `<default class="/">` is the root class ([`policy::folds_into_root_class`]) | `root_classes_share_one_wrapper` |
-//! | root class as main (decision D9) | [`policy::root_class_is_wrapper`] | a root class named `main`, or beside a class named `/`: its content in the wrapper itself | the wrapper's content is the root class's | `a_root_class_named_main_is_the_wrapper` |
-//! | main wrapper | [`policy::wrapper_says_main`] | `<default class="main">` for such a root class named `main` or holding a lone class `/` | `hoist_root_class` folds no wrapper with an attribute ([`policy::folds_into_root_class`]) | `a_lone_slash_class_in_the_main_class_stays_a_class` |
+//! | automatic names | [`rules::is_auto_name`] | `//unnamed_<ns>_<i>` for an unnamed element with a name slot (`naming::Written::Auto`) | `forget_auto_name`: no name, derived again when written | `automatic_names_are_forgotten_and_derived_again` |
+//! | replicate suffix | [`rules::is_auto_name`] | `_` after an automatic name inside a `<replicate>` (MuJoCo appends the copy's number) | `forget_auto_name`, as any automatic name | `automatic_names_in_a_replicate_end_in_an_underscore` |
+//! | composed output | [`rules::is_composed_output`] | the root class `/` (or `/1`) beside the attached models' root classes `robot/` | `hoist_root_class` tells it; the automatic names are kept as literal names | `a_composed_output_keeps_its_automatic_names` |
+//! | root class wrapper | [`rules::in_root_wrapper`] | one `<default>` around the root classes (`/`, then `robot/`, ...), closed before the next section | `hoist_root_class`: a wrapper holding only `<default class="/">` is the root class ([`rules::folds_into_root_class`]) | `root_classes_share_one_wrapper` |
+//! | root class as main (decision D9) | [`rules::root_class_is_wrapper`] | a root class named `main`, or beside a class named `/`: its content in the wrapper itself | the wrapper's content is the root class's | `a_root_class_named_main_is_the_wrapper` |
+//! | main wrapper | [`rules::wrapper_says_main`] | `<default class="main">` for such a root class named `main` or holding a lone class `/` | `hoist_root_class` folds no wrapper with an attribute ([`rules::folds_into_root_class`]) | `a_lone_slash_class_in_the_main_class_stays_a_class` |
 //! | numbered root class | `naming::RootClass::Numbered` | `/1` (the first free `/k`) for the root class when a class is named `/` and attached root classes follow | a class of that name | `a_root_class_beside_a_class_named_slash_is_numbered` |
-//! | implicit class | [`policy::implicit_class`] | `class="/"` (the root class's name) where an element can have a class and has none, nor a `childclass` above | `/` and `main` resolve to the root class | `elements_without_a_class_name_the_root_class` |
-//! | childclass scope | [`policy::childclass_above`], [`policy::childclass_below`] | no implicit class under a written `childclass` of the element's own model; an attached model starts outside it | MuJoCo's own `childclass` rule | `an_attached_model_is_outside_its_frames_childclass` |
-//! | references by name | [`policy::named_reference`] | `main` and `/` as the root class is named, `world` (decision D5) and names in another model bare, the rest prefixed | `/` and `main` resolve to the root class | `named_references_keep_their_meaning` |
-//! | removed references | [`policy::removed_reference`] | nothing for an optional reference to a removed element; `MissingRequired` for a required one | the element without it | `references_to_removed_elements_are_left_out_or_refused` |
-//! | silent elements | [`policy::is_silent`] | nothing for an empty singleton below the sections | `finish` makes every singleton not read, empty | `empty_singletons_are_left_out_and_made_again` |
-//! | sections on demand | [`policy::section_presence`] | a section once it holds something (a child, an attribute); no empty worldbody | every section not read, made empty | `empty_sections_are_left_out_and_made_again` |
-//! | merged settings | [`policy::writes_merged_settings`] | the settings merged over the composition, in place of the outermost model's | the model's own settings | `settings_are_written_merged` |
-//! | merged keys | [`policy::merges_keys`] | with `merge_keyframes`, one key per name laid out over the composed model | plain keys, which fit the model read back | `merged_keys_read_back_as_keys_that_fit` |
-//! | attachment frame tag | [`policy::written_tag`] | an attachment frame as `<body name="robot/">` with its site's pose | a body with a literal name (decision D13) | `an_attachment_frame_reads_back_as_a_body` |
-//! | frames keeping bodies top level (decision D10) | [`policy::frame_keeps_bodies_top_level`], [`policy::passes_world_on`] | `<frame>` for a frame in the world over bodies with freejoints | MuJoCo's `<frame>` (decision D12) | `a_frame_over_free_bodies_is_written_as_a_frame` |
-//! | file names | [`policy::file_name`] | `stem-<sha1>.ext` (or `stem.ext` without `filename_with_hash`) | `FileAsset::named_as` drops `-<sha1>` | `files_read_back_under_their_names` |
-//! | base paths | [`policy::writes_attr`] | no `meshdir`, `texturedir`, `assetdir` (files are named as written) | files read by their written names | `base_paths_are_not_written` |
-//! | unnamed model | [`policy::implicit_model_name`] | `model="unnamed_model"` for a model without a name | a model read without a name is named so | `an_unnamed_model_reads_back_unnamed` |
+//! | implicit class | [`rules::implicit_class`] | `class="/"` (the root class's name) where an element can have a class and has none, nor a `childclass` above | `/` and `main` resolve to the root class | `elements_without_a_class_name_the_root_class` |
+//! | childclass scope | [`rules::childclass_above`], [`rules::childclass_below`] | no implicit class under a written `childclass` of the element's own model; an attached model starts outside it | MuJoCo's own `childclass` rule | `an_attached_model_is_outside_its_frames_childclass` |
+//! | references by name | [`rules::named_reference`] | `main` and `/` as the root class is named, `world` (decision D5) and names in another model bare, the rest prefixed | `/` and `main` resolve to the root class | `named_references_keep_their_meaning` |
+//! | removed references | [`rules::removed_reference`] | nothing for an optional reference to a removed element; `MissingRequired` for a required one | the element without it | `references_to_removed_elements_are_left_out_or_refused` |
+//! | silent elements | [`rules::is_silent`] | nothing for an empty singleton below the sections | `finish` makes every singleton not read, empty | `empty_singletons_are_left_out_and_made_again` |
+//! | sections on demand | [`rules::section_presence`] | a section once it holds something (a child, an attribute); no empty worldbody | every section not read, made empty | `empty_sections_are_left_out_and_made_again` |
+//! | merged settings | [`rules::writes_merged_settings`] | the settings merged over the composition, in place of the outermost model's | the model's own settings | `settings_are_written_merged` |
+//! | merged keys | [`rules::merges_keys`] | with `merge_keyframes`, one key per name laid out over the composed model | plain keys, which fit the model read back | `merged_keys_read_back_as_keys_that_fit` |
+//! | attachment frame tag | [`rules::written_tag`] | an attachment frame as `<body name="robot/">` with its site's pose | a body with a literal name (decision D13) | `an_attachment_frame_reads_back_as_a_body` |
+//! | frames keeping bodies top level (decision D10) | [`rules::frame_keeps_bodies_top_level`], [`rules::passes_world_on`] | `<frame>` for a frame in the world over bodies with freejoints | MuJoCo's `<frame>` (decision D12) | `a_frame_over_free_bodies_is_written_as_a_frame` |
+//! | file names | [`rules::file_name`] | `stem-<sha1>.ext` (or `stem.ext` without `filename_with_hash`) | `FileAsset::named_as` drops `-<sha1>` | `files_read_back_under_their_names` |
+//! | base paths | [`rules::writes_attr`] | no `meshdir`, `texturedir`, `assetdir` (files are named as written) | files read by their written names | `base_paths_are_not_written` |
+//! | unnamed model | [`rules::implicit_model_name`] | `model="unnamed_model"` for a model without a name | a model read without a name is named so | `an_unnamed_model_reads_back_unnamed` |
 //! | escaping | [`text::escape_into`] | `& < > "` as entities, tab, line ends and non-ASCII as character references (as lxml) | quick-xml unescapes | `names_with_markup_characters_read_back` |
 //!
 // Implementation notes:
@@ -47,12 +48,11 @@
 //   class's, a reference's) comes from the walk's naming (`model::naming`): the walk
 //   keeps each instance's prefix and counts automatic names as it enters elements; a
 //   reference to an element ahead is named by the same rules (`Insts::name_of_id`).
-// - The rules decide, the writer spells: `policy` (what is written, and as what),
+// - The rules decide, the writer spells: `xml::rules` (what is written, and as what),
 //   `attrs` (an element's attributes), `text` (indentation and escaping), `written`
 //   (where each element was written).
 
 mod attrs;
-pub(crate) mod policy;
 pub(crate) mod text;
 mod written;
 
@@ -67,7 +67,7 @@ use crate::schema::Role;
 use crate::value::{FloatStyle, Value};
 
 pub use crate::write_options::WriteOptions;
-use policy::Presence;
+use crate::xml::rules::{self, Presence};
 use text::Text;
 use written::RawMark;
 pub use written::{Written, WrittenElement};
@@ -158,9 +158,9 @@ impl Model {
             pending: None,
             in_wrapper: false,
             entries: HashMap::with_hasher(IdHash),
-            frame_tags: policy::FrameTags::default(),
+            frame_tags: rules::FrameTags::default(),
         };
-        w.run(Walk::new(self).pruned(policy::is_silent), true)?;
+        w.run(Walk::new(self).pruned(rules::is_silent), true)?;
         if let Some((tag, attribute, character)) = w.text.bad_char {
             return Err(WriteError::InvalidCharacter { tag, attribute, character });
         }
@@ -189,17 +189,17 @@ enum Pending {
 /// The rules' decisions for one element, taken as the writer enters it.
 #[derive(Clone, Copy)]
 struct Decisions {
-    /// How it appears ([`policy::presence`]).
+    /// How it appears ([`rules::presence`]).
     presence: Presence,
-    /// The tag written ([`policy::written_tag`]).
+    /// The tag written ([`rules::written_tag`]).
     tag: &'static str,
     /// The depth written at ([`Writer::written_depth`]).
     depth: usize,
-    /// A `childclass` of its own model is above it ([`policy::childclass_above`]).
+    /// A `childclass` of its own model is above it ([`rules::childclass_above`]).
     childclass_above: bool,
-    /// Its children are under one ([`policy::childclass_below`]).
+    /// Its children are under one ([`rules::childclass_below`]).
     childclass_below: bool,
-    /// Its children are in MuJoCo's world ([`policy::passes_world_on`]).
+    /// Its children are in MuJoCo's world ([`rules::passes_world_on`]).
     world_below: bool,
 }
 
@@ -215,7 +215,7 @@ struct Writer<'a> {
     text: Text,
     options: &'a WriteOptions,
     /// The merged settings sections (`compiler`, `option`, ...), written in place of
-    /// the root model's own ([`policy::writes_merged_settings`]).
+    /// the root model's own ([`rules::writes_merged_settings`]).
     merged: &'a [Node],
     /// Where each element's start tag begins (offset, the frames leading to its
     /// model, node, tag written), when asked.
@@ -224,7 +224,7 @@ struct Writer<'a> {
     open: Vec<Open>,
     /// The element whose start tag is not finished.
     pending: Option<(Pending, Item<'a>)>,
-    /// Inside the `<default>` wrapper of the root classes ([`policy::in_root_wrapper`]),
+    /// Inside the `<default>` wrapper of the root classes ([`rules::in_root_wrapper`]),
     /// one level deeper than the walk says.
     in_wrapper: bool,
     /// Index entries looked up by references, with the map they came from: an
@@ -232,7 +232,7 @@ struct Writer<'a> {
     /// (the same shared map), and a class is looked up twice (is it there, its name).
     entries: HashMap<ElementId, (&'a ElemMap<Entry>, Option<&'a Entry>), IdHash>,
     /// Which attachment frames in the world are written as `<frame>`, as asked.
-    frame_tags: policy::FrameTags,
+    frame_tags: rules::FrameTags,
 }
 
 impl<'a> Writer<'a> {
@@ -250,9 +250,9 @@ impl<'a> Writer<'a> {
             if composed && item.depth == 0 {
                 self.reserve_output(&walk.insts);
             }
-            let section = policy::is_section(&item, composed);
+            let section = rules::is_section(&item, composed);
             let kind = item.node.kind();
-            if section && policy::merges_keys(self.options, kind) {
+            if section && rules::merges_keys(self.options, kind) {
                 walk.skip_subtree();
                 self.write_merged_keys(&walk.insts)?;
                 continue;
@@ -260,12 +260,12 @@ impl<'a> Writer<'a> {
             if !self.enter(&walk.insts, item, composed)? {
                 walk.skip_subtree();
             }
-            if section && policy::writes_merged_settings(kind) {
+            if section && rules::writes_merged_settings(kind) {
                 walk.skip_subtree();
                 if let Some(m) = self.merged.iter().find(|m| m.kind() == kind) {
-                    if policy::emits(m) {
+                    if rules::emits(m) {
                         let model = walk.insts.list[0].model;
-                        self.run(Walk::plain(model, m, 1).pruned(policy::is_silent), false)?;
+                        self.run(Walk::plain(model, m, 1).pruned(rules::is_silent), false)?;
                     }
                 }
             }
@@ -292,8 +292,8 @@ impl<'a> Writer<'a> {
         if composed && item.depth == 1 {
             self.place_in_wrapper(insts, &item)?;
         }
-        let section = policy::is_section(&item, composed);
-        let presence = policy::presence(&item, section, insts.list[item.inst].names.root_class);
+        let section = rules::is_section(&item, composed);
+        let presence = rules::presence(&item, section, insts.list[item.inst].names.root_class);
         if presence == Presence::Omitted {
             return Ok(false);
         }
@@ -328,12 +328,12 @@ impl<'a> Writer<'a> {
         let (inst, node) = (item.inst, item.node);
         let parent = self.open.last().map(|o| (o.inst, o.d));
         let childclass_above =
-            policy::childclass_above(parent.map(|(i, d)| (i, d.childclass_below)), inst);
-        let childclass_below = policy::childclass_below(childclass_above, || {
+            rules::childclass_above(parent.map(|(i, d)| (i, d.childclass_below)), inst);
+        let childclass_below = rules::childclass_below(childclass_above, || {
             node.attached().is_none() && self.sets_childclass(insts, inst, node)
         });
         let parent_in_world = parent.is_some_and(|(_, d)| d.world_below);
-        let tag = policy::written_tag(node, parent_in_world, &mut self.frame_tags);
+        let tag = rules::written_tag(node, parent_in_world, &mut self.frame_tags);
         let worldbody = section && node.kind().is(Role::Worldbody);
         Decisions {
             presence,
@@ -341,7 +341,7 @@ impl<'a> Writer<'a> {
             depth: self.written_depth(item.depth, presence == Presence::Transparent),
             childclass_above,
             childclass_below,
-            world_below: policy::passes_world_on(worldbody, parent_in_world, tag),
+            world_below: rules::passes_world_on(worldbody, parent_in_world, tag),
         }
     }
 
@@ -360,14 +360,14 @@ impl<'a> Writer<'a> {
 
     /// Opens the `<default>` wrapper of the root classes at the first of them (`item`
     /// at depth 1), or closes it at the first section after them
-    /// ([`policy::in_root_wrapper`], [`policy::wrapper_says_main`]).
+    /// ([`rules::in_root_wrapper`], [`rules::wrapper_says_main`]).
     fn place_in_wrapper(&mut self, insts: &Insts<'a>, item: &Item<'a>) -> Result<(), WriteError> {
-        let inside = policy::in_root_wrapper(item.node.kind());
+        let inside = rules::in_root_wrapper(item.node.kind());
         if inside && !self.in_wrapper {
             self.finish_parent(insts)?;
             // (Only the outermost model's root class, the first, can be its main class.)
             let root_class = insts.list[item.inst].names.root_class;
-            let says_main = policy::wrapper_says_main(root_class, item.node);
+            let says_main = rules::wrapper_says_main(root_class, item.node);
             self.text.line(1, if says_main { "<default class=\"main\">" } else { "<default>" });
             self.in_wrapper = true;
         } else if !inside {
@@ -398,7 +398,7 @@ impl<'a> Writer<'a> {
                 self.text.newline();
             }
             Some((Pending::OnDemand { depth }, item)) => {
-                if policy::writes_own_attrs(item.node) {
+                if rules::writes_own_attrs(item.node) {
                     // Attributes only: failures are reported by `bad_char` or not at all.
                     let tag = item.node.kind().tag();
                     let _ = self.start_tag(insts, &item, tag, depth, false);
@@ -455,7 +455,7 @@ impl<'a> Writer<'a> {
             // An attachment frame is a body of its parent's model, which has no class.
             return self.write_attrs(insts, item, true);
         }
-        if let Some(name) = policy::implicit_model_name(node) {
+        if let Some(name) = rules::implicit_model_name(node) {
             self.text.out.push_str(" model=\"");
             self.text.out.push_str(name);
             self.text.out.push('"');
@@ -464,7 +464,7 @@ impl<'a> Writer<'a> {
     }
 
     /// Writes the composed keys in place of the keyframe section
-    /// ([`policy::merges_keys`]).
+    /// ([`rules::merges_keys`]).
     fn write_merged_keys(&mut self, insts: &Insts<'a>) -> Result<(), WriteError> {
         let keys = crate::model::keys::merged_keys(insts.list[0].model)?;
         if keys.is_empty() {

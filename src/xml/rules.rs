@@ -1,6 +1,8 @@
-//! The writer's rules, one function each: they decide, the writer (`super`) writes.
-//! `super`'s module documentation lists them in a table, each with what it writes,
-//! the reader rule that inverts it and the test that round-trips it.
+//! The writer's rules, one function each, in one place for every part of `xml` that
+//! asks them: they decide, the writer (`xml::write`) writes, and the reader, the
+//! saver, the export and scenes ask the same functions. `xml::write`'s module
+//! documentation lists them in a table, each with what it writes, the reader rule that
+//! inverts it and the test that round-trips it.
 //!
 //! The rules the reader inverts by asking the same question of what it reads
 //! ([`folds_into_root_class`], [`is_composed_output`], [`is_auto_name`]) are asked
@@ -14,7 +16,7 @@ use crate::model::{Item, Model, settings};
 use crate::schema::{AttrType, ElementKind, Multiplicity, Namespace, RefTarget, Role};
 use crate::value::FileAsset;
 
-use super::WriteOptions;
+use crate::write_options::WriteOptions;
 
 // ---------------------------------------------------------------------------------
 // What is written at all.
