@@ -1001,3 +1001,89 @@ fn huge_keys_and_activation_counts_are_checked_and_bounded() {
     assert_eq!(too_large_to_merge(&m), ("composed keys' act", 1_000_000_000_000));
     assert!(counted(body, actuator).to_xml_string_with(&merged()).is_ok());
 }
+
+/// `check()` on numbers at the ends of what the reader takes (the largest integers,
+/// infinities, nan) in the attributes its rules compute with: a result, never a panic
+/// (an overflow would panic in a debug build).
+#[test]
+fn check_computes_with_extreme_numbers_without_panicking() {
+    let big = i64::MAX.to_string();
+    let models = [
+        format!(r#"<mujoco><asset><hfield name="h" nrow="{big}" ncol="{big}" size="1 1 1 1" elevation="1 2"/></asset></mujoco>"#),
+        format!(r#"<mujoco><asset><texture name="t" type="cube" builtin="flat" width="{big}" height="{big}"/></asset></mujoco>"#),
+        format!(r#"<mujoco><size nuser_body="{big}" nconmax="-{big}"/><worldbody><body user="1"/></worldbody></mujoco>"#),
+        r#"<mujoco><asset><mesh name="m" builtin="grid" params="1e300 1e300 1e300 1 1 1"/></asset></mujoco>"#.to_string(),
+        r#"<mujoco><worldbody><body><inertial pos="0 0 0" mass="inf" fullinertia="nan inf -inf 1e308 1e308 1e308"/></body></worldbody></mujoco>"#.to_string(),
+        format!(r#"<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body></worldbody><actuator><general joint="j" actdim="{big}" nsample="{big}"/></actuator><sensor><jointpos joint="j" nsample="{big}" interval="inf -inf"/></sensor></mujoco>"#),
+    ];
+    for text in &models {
+        // Read, or refused with a typed error; when read, check() answers.
+        if let Ok(m) = mjcf::Model::from_xml_str(text) {
+            let _ = m.check();
+        }
+    }
+}
+
+/// The same for every element kind a model's sections and bodies hold: each with all
+/// its numeric attributes at one extreme (the largest integers, infinities, nan, the
+/// largest and smallest doubles), alone in a body or its section: read or refused
+/// with a typed error, and when read `check()` answers.
+#[test]
+fn check_answers_every_element_with_extreme_numbers() {
+    use mjcf::{ArrayType, AttrType, ElementKind};
+    let extremes = [
+        (i64::MAX.to_string(), "1.7976931348623157e308"),
+        (i64::MIN.to_string(), "-1.7976931348623157e308"),
+        ("2147483648".to_string(), "inf"),
+        ("-2147483649".to_string(), "-inf"),
+        ("0".to_string(), "nan"),
+        ("-1".to_string(), "5e-324"),
+    ];
+    let worldbody = ElementKind::ROOT.child("worldbody").unwrap();
+    let body = worldbody.child("body").unwrap();
+    let mut places: Vec<(ElementKind, Option<&str>)> =
+        body.spec().children.iter().map(|k| (*k, None)).collect();
+    for section in ElementKind::ROOT.spec().children {
+        if *section == worldbody {
+            continue;
+        }
+        places.push((*section, None));
+        for k in section.spec().children {
+            places.push((*k, Some(section.tag())));
+        }
+    }
+    let mut read = 0;
+    for (kind, section) in places {
+        for (int, float) in &extremes {
+            let mut attrs = String::new();
+            for a in kind.spec().attrs {
+                let value = match a.ty {
+                    AttrType::Int => int.clone(),
+                    AttrType::Float => float.to_string(),
+                    AttrType::Array { elem, max_len } => {
+                        let one = if elem == ArrayType::Int { int.as_str() } else { float };
+                        vec![one; max_len.unwrap_or(6) as usize].join(" ")
+                    }
+                    _ => continue,
+                };
+                attrs.push_str(&format!(r#" {}="{value}""#, a.name));
+            }
+            let element = format!("<{}{attrs}/>", kind.tag());
+            let text = match section {
+                Some(s) => format!("<mujoco><{s}>{element}</{s}></mujoco>"),
+                None if kind.spec().parent == Some(ElementKind::ROOT) => {
+                    format!("<mujoco>{element}</mujoco>")
+                }
+                None => format!(
+                    r#"<mujoco><worldbody><body name="b"><geom size="1"/>{element}</body></worldbody></mujoco>"#
+                ),
+            };
+            if let Ok(m) = mjcf::Model::from_xml_str(&text) {
+                let _ = m.check();
+                let _ = m.advice();
+                read += 1;
+            }
+        }
+    }
+    assert!(read > 100, "{read} models read");
+}

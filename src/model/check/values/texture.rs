@@ -42,7 +42,7 @@ pub(crate) const CHECKS: &[Check] = &[
         test: |at| {
             let (nrow, ncol) = manual_dims(at)?;
             let elevation = at.own_floats("elevation").filter(|e| !e.is_empty())?;
-            (elevation.len() as i64 != nrow * ncol).then_some(())?;
+            (elevation.len() as i128 != i128::from(nrow) * i128::from(ncol)).then_some(())?;
             found("elevation", "elevation data length must match nrow*ncol")
         },
         fix: "give elevation nrow*ncol numbers",
