@@ -858,6 +858,33 @@ mod tests {
     }
 
     #[test]
+    fn an_element_s_joint_type_is_the_layout_s_attached_and_frame_joints_included() {
+        let robot = read(
+            r#"<mujoco><default><joint type="ball"/><default class="s"><joint type="slide"/>
+                 </default></default><worldbody>
+                 <body childclass="s"><joint name="a"/><joint name="b" type="hinge"/><geom size="1"/></body>
+                 <body><joint name="c"/><geom size="1"/></body></worldbody></mujoco>"#,
+        );
+        let mut arena = read(r#"<mujoco><default><joint type="slide"/></default></mujoco>"#);
+        let at = arena.attach_mut(&arena.worldbody(), &robot).unwrap();
+        arena.add_mut(at.frame(), crate::model::Element::new("joint")).unwrap();
+        let layout = arena.layout().unwrap();
+        let types: Vec<JointType> = layout.joints.iter().map(|j| j.joint_type).collect();
+        assert_eq!(types.len(), 4);
+        for t in [JointType::Ball, JointType::Slide, JointType::Hinge] {
+            assert!(types.contains(&t), "{types:?}");
+        }
+        for j in &layout.joints {
+            assert_eq!(
+                arena.element(&j.loc).unwrap().joint_type(),
+                Some(j.joint_type),
+                "{:?}",
+                j.loc
+            );
+        }
+    }
+
+    #[test]
     fn a_body_s_own_joints_come_before_its_children_s_wherever_they_stand() {
         let m = read(
             r#"<mujoco><worldbody>
