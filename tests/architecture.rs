@@ -9,6 +9,9 @@
 //!   modules (edges from `use crate::…`, `use super::…` and `crate::…`/`super::…`
 //!   paths in code).
 //!
+//! - a joint's type is read in `model/layout.rs` only (`JointType`): no other
+//!   library code compares a string with a joint type's keyword.
+//!
 //! - the file system is touched only in `src/files/` (one canonical path, one
 //!   reader with the caps and confinement, one writer for every file written).
 //!
@@ -793,4 +796,72 @@ fn modules_with_submodules_are_folders_with_mod_rs() {
         }
     }
     assert!(mixed.is_empty(), "move foo.rs into foo/mod.rs: {mixed:?}");
+}
+
+/// The joint types' keywords, as string literals.
+const JOINT_TYPE_WORDS: &[&str] = &["\"free\"", "\"ball\"", "\"slide\"", "\"hinge\""];
+
+/// The lines of `text`'s code (comment lines and the test module at its end left
+/// out) holding a joint type's keyword as a string literal, but for an XML
+/// attribute's value (`type="ball"` written into a model).
+fn joint_type_words(text: &str) -> Vec<(usize, String)> {
+    let code = ["#[cfg(test)]", "#[cfg(all(test"]
+        .iter()
+        .filter_map(|m| text.find(m))
+        .min()
+        .map_or(text, |at| &text[..at]);
+    let mut out = Vec::new();
+    for (n, line) in code.lines().enumerate() {
+        if line.trim_start().starts_with("//") {
+            continue;
+        }
+        let found = JOINT_TYPE_WORDS
+            .iter()
+            .any(|w| line.match_indices(w).any(|(at, _)| !line[..at].ends_with('=')));
+        if found {
+            out.push((n + 1, line.trim().to_string()));
+        }
+    }
+    out
+}
+
+/// A joint's type (its own `type`, its classes', a `<freejoint>`'s) and what follows
+/// from it (`qpos` and `qvel` widths) are `JointType`'s, in `model/layout.rs`: no
+/// other library file reads a joint type from its keyword. Test modules may.
+#[test]
+fn joint_types_are_read_in_the_layout_only() {
+    let mut found = Vec::new();
+    for (path, text) in sources() {
+        let path = path.display().to_string();
+        if path == "src/model/layout.rs"
+            || path.ends_with("/tests.rs")
+            || path.ends_with("_tests.rs")
+        {
+            continue;
+        }
+        for (n, line) in joint_type_words(&text) {
+            found.push(format!("{path}:{n}: {line}"));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "read the type with JointType (model::layout):\n{}",
+        found.join("\n")
+    );
+    let forms = [
+        "if e.string(\"type\") == Some(\"ball\") {",
+        "match t {\n    \"free\" => 7,\n    _ => 1,\n}",
+        "let s = matches!(ty, None | Some(\"hinge\" | \"slide\"));",
+    ];
+    for f in forms {
+        assert_eq!(joint_type_words(f).len(), 1, "{f}");
+    }
+    let fine = [
+        "/// a `\"ball\"` joint",
+        "let xml = r#\"<joint type=\"ball\"/>\"#;",
+        "#[cfg(test)]\nmod tests { const T: &str = \"free\"; }",
+    ];
+    for f in fine {
+        assert!(joint_type_words(f).is_empty(), "{f}");
+    }
 }

@@ -4,6 +4,8 @@
 use std::ffi::c_int;
 use std::ops::Range;
 
+use mjcf::JointType;
+
 use crate::error::BindError;
 use crate::fields::{self, DATA_FIELDS, Field, MODEL_FIELDS};
 use crate::sys::{self, mjData, mjModel};
@@ -228,13 +230,9 @@ fn rows_of(m: &mjModel, kind: ObjKind, id: usize, rows: &str) -> Option<Range<us
     };
     match (kind, rows) {
         (ObjKind::Joint, "nq" | "nv") => {
-            // Free: 7 positions, 6 dofs; ball: 4, 3; slide and hinge: 1, 1.
-            let (q, v) = match u32::try_from(model_int(m, "jnt_type", id)).ok()? {
-                sys::mjtJoint_mjJNT_FREE => (7, 6),
-                sys::mjtJoint_mjJNT_BALL => (4, 3),
-                _ => (1, 1),
-            };
-            let (adr, n) = if rows == "nq" { ("jnt_qposadr", q) } else { ("jnt_dofadr", v) };
+            let t = JointType::from_mujoco(model_int(m, "jnt_type", id))?;
+            let (adr, n) =
+                if rows == "nq" { ("jnt_qposadr", t.nq()) } else { ("jnt_dofadr", t.nv()) };
             let a = usize::try_from(model_int(m, adr, id)).ok()?;
             Some(a..a + n)
         }
@@ -409,5 +407,28 @@ pub(crate) fn raw(slot: &Slot, m: &mjModel, d: Option<&mjData>) -> Option<fields
         (Place::Model, _) => fields::model_field(m, slot.index),
         (Place::Data, Some(d)) => fields::data_field(d, m, slot.index),
         (Place::Data, None) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use mjcf::JointType;
+
+    use crate::sys;
+
+    /// `JointType`'s numbers (what `jnt_type` is read with) are MuJoCo's `mjtJoint`,
+    /// as its header (the generated bindings) numbers them.
+    #[test]
+    fn joint_types_are_numbered_as_mujoco_s_header_numbers_them() {
+        let header = [
+            (sys::mjtJoint_mjJNT_FREE, JointType::Free),
+            (sys::mjtJoint_mjJNT_BALL, JointType::Ball),
+            (sys::mjtJoint_mjJNT_SLIDE, JointType::Slide),
+            (sys::mjtJoint_mjJNT_HINGE, JointType::Hinge),
+        ];
+        for (number, t) in header {
+            assert_eq!(JointType::from_mujoco(number.into()), Some(t));
+            assert_eq!(i64::from(t.mujoco_number()), i64::from(number));
+        }
     }
 }

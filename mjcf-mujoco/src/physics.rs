@@ -4,6 +4,8 @@ use std::ffi::{CStr, c_long};
 use std::ptr::NonNull;
 use std::sync::Arc;
 
+use mjcf::JointType;
+
 use crate::bind::{self, BindTarget, Bound, ObjKind, Place, Slot};
 use crate::error::{BindError, Error};
 use crate::fields::Scalar;
@@ -594,7 +596,7 @@ impl Physics {
         };
         jb.iter().zip(jt).any(|(&b, &t)| {
             usize::try_from(b).is_ok_and(|b| b == body)
-                && t == crate::sys::mjtJoint_mjJNT_FREE as i32
+                && JointType::from_mujoco(t.into()) == Some(JointType::Free)
         })
     }
 

@@ -333,12 +333,7 @@ fn judge_layout(label: &str, model: &Model, compiled: &Compiled, tally: &mut Tal
             continue;
         };
         tally.joints += 1;
-        let want_type = match j.joint_type {
-            mjcf::JointType::Free => 0,
-            mjcf::JointType::Ball => 1,
-            mjcf::JointType::Slide => 2,
-            mjcf::JointType::Hinge => 3,
-        };
+        let want_type = j.joint_type.mujoco_number();
         let got = (qposadr[b.id()] as usize, dofadr[b.id()] as usize, types[b.id()]);
         if got != (j.qpos, j.dof, want_type) {
             tally.failures.push(format!(

@@ -21,12 +21,8 @@ fn merged() -> WriteOptions {
 fn span(c: &Compiled, joint: &str) -> std::ops::Range<usize> {
     let j = c.id(ObjKind::Joint, joint).unwrap_or_else(|| panic!("no joint {joint}"));
     let adr = c.ints("jnt_qposadr").unwrap()[j] as usize;
-    let width = match c.ints("jnt_type").unwrap()[j] {
-        0 => 7,
-        1 => 4,
-        _ => 1,
-    };
-    adr..adr + width
+    let t = JointType::from_mujoco(c.ints("jnt_type").unwrap()[j].into()).unwrap();
+    adr..adr + t.nq()
 }
 
 /// The compiled `judge` key's `qpos` of the joint `joint`.

@@ -1,7 +1,7 @@
 //! What steps and edits pick from: the elements of a model as recipes choose them
 //! ([`Pick`](super::Pick) takes one of them modulo their number).
 
-use crate::model::{Event, Loc, Model};
+use crate::model::{Event, JointType, Loc, Model};
 use crate::schema::{ElementKind, Namespace, Role};
 
 use super::recipe::{JointKind, Pick};
@@ -27,24 +27,16 @@ pub(super) fn is_frame(m: &Model, loc: &Loc) -> bool {
 /// Whether a joint of this kind fits in a body after its joints: at most 6 degrees of
 /// freedom, and no rotation after a ball (MuJoCo: "ball followed by rotation").
 pub(super) fn joint_fits(m: &Model, body: &Loc, kind: JointKind) -> bool {
-    let ball = m.element(body).is_some_and(|e| {
-        e.children().any(|c| c.kind().is(Role::Joint) && c.string("type") == Some("ball"))
-    });
+    let ball = m
+        .element(body)
+        .is_some_and(|e| e.children().any(|c| c.joint_type() == Some(JointType::Ball)));
     dofs(m, body) + kind.dofs() <= 6 && !(ball && kind != JointKind::Slide)
 }
 
 /// The degrees of freedom of a body's own joints (a freejoint has 6).
 pub(super) fn dofs(m: &Model, loc: &Loc) -> usize {
-    m.element(loc).map_or(6, |e| {
-        e.children()
-            .map(|c| match (c.kind().role(), c.string("type")) {
-                (Some(Role::Freejoint), _) | (Some(Role::Joint), Some("free")) => 6,
-                (Some(Role::Joint), Some("ball")) => 3,
-                (Some(Role::Joint), _) => 1,
-                _ => 0,
-            })
-            .sum()
-    })
+    m.element(loc)
+        .map_or(6, |e| e.children().filter_map(|c| c.joint_type()).map(JointType::nv).sum())
 }
 
 /// The named elements of this model's own tree in `ns` that pass `keep`, with their
@@ -61,7 +53,8 @@ pub(super) fn named(m: &Model, ns: Namespace, keep: impl Fn(&Model, &Loc) -> boo
 /// Whether a joint moves along or about one axis (a hinge or a slide).
 pub(super) fn scalar_joint(m: &Model, loc: &Loc) -> bool {
     m.element(loc).is_some_and(|e| {
-        e.kind().is(Role::Joint) && matches!(e.string("type"), None | Some("hinge" | "slide"))
+        e.kind().is(Role::Joint)
+            && matches!(e.joint_type(), Some(JointType::Hinge | JointType::Slide))
     })
 }
 
@@ -139,4 +132,28 @@ pub(super) fn elements(m: &Model, keep: impl Fn(&Target) -> bool) -> Vec<Target>
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_body_s_joints_count_by_the_type_in_force_their_classes_included() {
+        let m = Model::from_xml_str(
+            r#"<mujoco><default><default class="b"><joint type="ball"/></default></default>
+               <worldbody><body name="x"><joint name="cb" class="b"/><joint name="s" type="slide"/>
+                 <geom size="1"/></body>
+               <body name="f"><joint type="free"/><geom size="1"/></body></worldbody></mujoco>"#,
+        )
+        .unwrap();
+        let (x, f) = (m.find(Namespace::Body, "x").unwrap(), m.find(Namespace::Body, "f").unwrap());
+        assert_eq!(dofs(&m, &x), 4);
+        assert_eq!(dofs(&m, &f), 6);
+        // A ball by its class: no rotation after it, a slide fits.
+        assert!(!joint_fits(&m, &x, JointKind::Hinge));
+        assert!(joint_fits(&m, &x, JointKind::Slide));
+        assert!(!scalar_joint(&m, &m.find(Namespace::Joint, "cb").unwrap()));
+        assert!(scalar_joint(&m, &m.find(Namespace::Joint, "s").unwrap()));
+    }
 }

@@ -2,6 +2,8 @@
 //! bounds every application keeps ([`MAX_STEPS`], [`MAX_DEPTH`], [`MAX_ELEMENTS`]).
 //! [`ModelRecipe::build`] and [`EditRecipe::apply`] are in `builder`.
 
+use crate::model::JointType;
+
 /// The element names recipes use ([`Word`] picks one); a taken name gets a suffix.
 pub const WORDS: &[&str] =
     &["a", "b", "c", "base", "link", "torso", "hip", "knee", "foot", "tip", "head", "tail"];
@@ -144,17 +146,24 @@ impl JointKind {
     ///
     /// Time: O(1).
     pub fn dofs(self) -> usize {
-        if self == JointKind::Ball { 3 } else { 1 }
+        self.joint_type().nv()
     }
 
     /// The `type` keyword.
     ///
     /// Time: O(1).
     pub fn keyword(self) -> &'static str {
+        self.joint_type().keyword()
+    }
+
+    /// The joint type it makes.
+    ///
+    /// Time: O(1).
+    pub fn joint_type(self) -> JointType {
         match self {
-            JointKind::Hinge => "hinge",
-            JointKind::Slide => "slide",
-            JointKind::Ball => "ball",
+            JointKind::Hinge => JointType::Hinge,
+            JointKind::Slide => JointType::Slide,
+            JointKind::Ball => JointType::Ball,
         }
     }
 }

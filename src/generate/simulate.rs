@@ -11,7 +11,7 @@
 //! free geom (a freejoint) collide with every free geom; an articulated geom (other
 //! joints) collides with free geoms only.
 
-use crate::model::{Attrs, Event, Loc, Model};
+use crate::model::{Attrs, Event, JointType, Loc, Model};
 use crate::schema::Role;
 
 /// A geom's contact class: by the nearest moving body at or above it.
@@ -48,9 +48,7 @@ pub(super) fn contact_classes(m: &Model) -> Vec<(Loc, ContactClass)> {
                 let mut own = above;
                 if e.kind().is(Role::Body) || e.is_frame() {
                     for c in e.children() {
-                        let free = c.kind().is(Role::Freejoint)
-                            || (c.kind().is(Role::Joint) && c.string("type") == Some("free"));
-                        if free {
+                        if c.joint_type() == Some(JointType::Free) {
                             own = ContactClass::Free;
                             break;
                         }

@@ -33,6 +33,7 @@ use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace, Role};
 use crate::value::{Reference, Value};
 
+use super::layout::{self, JointType};
 use super::naming::{ElemCtx, InstNames, Named, Written, first_unnamed_joint};
 use super::settings::is_settings_section;
 use super::tree::{ElementId, Node};
@@ -666,6 +667,28 @@ impl<'a> ElementRef<'a> {
     /// Time: O(1).
     pub fn is_frame(&self) -> bool {
         self.node.attached().is_some()
+    }
+
+    /// The joint's type as MuJoCo compiles it, for a `<joint>` (its own `type`, else
+    /// its classes', else a hinge) or a `<freejoint>` (free); `None` for any other
+    /// element. The layout ([`Model::layout`]) gives each joint the same type.
+    ///
+    /// ```
+    /// use mjcf::{JointType, Model};
+    /// let m = Model::from_xml_str(r#"<mujoco><default><joint type="slide"/></default>
+    ///   <worldbody><body><joint name="j"/><geom size="1"/></body></worldbody></mujoco>"#)?;
+    /// let j = m.find(mjcf::Namespace::Joint, "j").unwrap();
+    /// assert_eq!(m.element(&j).unwrap().joint_type(), Some(JointType::Slide));
+    /// assert_eq!(m.element(&m.worldbody()).unwrap().joint_type(), None);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// Time: O(depth · log n) (its class in force, then the classes above it).
+    pub fn joint_type(&self) -> Option<JointType> {
+        matches!(self.node.kind().role(), Some(Role::Joint | Role::Freejoint)).then(|| {
+            let class = layout::class_in_force(self.model, self.node);
+            layout::joint_type(self.model, self.node, class)
+        })
     }
 
     /// The element's own identifier (no scope prefix), if set.

@@ -112,7 +112,8 @@ fn compose_fields(
 /// The most values one field of a composed key holds (`qpos` of a million free
 /// joints): the writer refuses longer ones, whose sizes come from `<replicate>`
 /// counts or an `actdim`, before making them.
-pub(crate) const MAX_KEY_VALUES: usize = 7 * crate::model::layout::MAX_LAYOUT_ENTRIES;
+pub(crate) const MAX_KEY_VALUES: usize =
+    JointType::Free.nq() * crate::model::layout::MAX_LAYOUT_ENTRIES;
 
 /// The composed keys of `model` (see the module documentation); none, with nothing
 /// laid out, when the model has no key.

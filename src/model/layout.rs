@@ -54,7 +54,7 @@ impl JointType {
     /// The positions (`qpos` entries) of a joint of this type.
     ///
     /// Time: O(1).
-    pub fn nq(self) -> usize {
+    pub const fn nq(self) -> usize {
         match self {
             JointType::Free => 7,
             JointType::Ball => 4,
@@ -65,7 +65,7 @@ impl JointType {
     /// The degrees of freedom (`qvel` entries) of a joint of this type.
     ///
     /// Time: O(1).
-    pub fn nv(self) -> usize {
+    pub const fn nv(self) -> usize {
         match self {
             JointType::Free => 6,
             JointType::Ball => 3,
@@ -73,12 +73,61 @@ impl JointType {
         }
     }
 
-    fn of(name: &str) -> JointType {
-        match name {
-            "free" => JointType::Free,
-            "ball" => JointType::Ball,
-            "slide" => JointType::Slide,
-            _ => JointType::Hinge,
+    /// Every joint type, in MuJoCo's numbering (`mjJNT_FREE` 0, `mjJNT_BALL` 1,
+    /// `mjJNT_SLIDE` 2, `mjJNT_HINGE` 3: `ALL[t]` is the type of a compiled model's
+    /// `jnt_type` `t`).
+    pub const ALL: [JointType; 4] =
+        [JointType::Free, JointType::Ball, JointType::Slide, JointType::Hinge];
+
+    /// The type a joint's `type` keyword names (`"free"`, `"ball"`, `"slide"`,
+    /// `"hinge"`), or `None` for any other word.
+    ///
+    /// ```
+    /// use mjcf::JointType;
+    /// assert_eq!(JointType::from_keyword("ball"), Some(JointType::Ball));
+    /// assert_eq!(JointType::from_keyword("Ball"), None);
+    /// ```
+    ///
+    /// Time: O(1).
+    pub fn from_keyword(word: &str) -> Option<JointType> {
+        JointType::ALL.into_iter().find(|t| t.keyword() == word)
+    }
+
+    /// The `type` keyword of this type (`"free"`, `"ball"`, `"slide"`, `"hinge"`).
+    ///
+    /// Time: O(1).
+    pub fn keyword(self) -> &'static str {
+        match self {
+            JointType::Free => "free",
+            JointType::Ball => "ball",
+            JointType::Slide => "slide",
+            JointType::Hinge => "hinge",
+        }
+    }
+
+    /// The type of MuJoCo's number for it (a compiled model's `jnt_type`: see
+    /// [`JointType::ALL`]), or `None` for a number MuJoCo does not use.
+    ///
+    /// ```
+    /// use mjcf::JointType;
+    /// assert_eq!(JointType::from_mujoco(0), Some(JointType::Free));
+    /// assert_eq!(JointType::from_mujoco(4), None);
+    /// ```
+    ///
+    /// Time: O(1).
+    pub fn from_mujoco(number: i64) -> Option<JointType> {
+        usize::try_from(number).ok().and_then(|i| JointType::ALL.get(i).copied())
+    }
+
+    /// MuJoCo's number for this type (its `mjtJoint`, a compiled model's `jnt_type`).
+    ///
+    /// Time: O(1).
+    pub fn mujoco_number(self) -> i32 {
+        match self {
+            JointType::Free => 0,
+            JointType::Ball => 1,
+            JointType::Slide => 2,
+            JointType::Hinge => 3,
         }
     }
 }
@@ -336,19 +385,19 @@ pub(crate) fn class_defaults<'m>(
 }
 
 /// The joint type of a joint element, as written or as its classes set it: `free`,
-/// `ball`, `slide` or `hinge` (the default).
+/// `ball`, `slide` or `hinge` (the default); a `<freejoint>` is free.
 pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -> JointType {
-    JointType::of(joint_keyword(model, node, class))
-}
-
-/// The keyword of [`joint_type`].
-fn joint_keyword(model: &Model, node: &Node, class: Option<ElementId>) -> &'static str {
     if node.kind().is(Role::Freejoint) {
-        return "free";
+        return JointType::Free;
     }
+    let of = |v: Option<&Value>| match v {
+        // A keyword names one of the four (the schema's); any other word is a hinge.
+        Some(Value::Keyword(k)) => Some(JointType::from_keyword(k).unwrap_or(JointType::Hinge)),
+        _ => None,
+    };
     let explicit = node.kind().attr_index("type").and_then(|i| node.attr(i));
-    if let Some(Value::Keyword(k)) = explicit {
-        return k;
+    if let Some(t) = of(explicit) {
+        return t;
     }
     // The class chain: the element's class, then its ancestors in the default tree.
     let mut cur = class;
@@ -357,17 +406,17 @@ fn joint_keyword(model: &Model, node: &Node, class: Option<ElementId>) -> &'stat
         // The class's defaults of the joint's tag.
         let joint_default =
             class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
-        if let Some(Value::Keyword(k)) =
-            joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i)))
+        if let Some(t) =
+            of(joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i))))
         {
-            return k;
+            return t;
         }
         cur = model
             .index
             .parent(id)
             .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
     }
-    "hinge"
+    JointType::Hinge
 }
 
 /// The controls and activations of an actuator element, as MuJoCo 4.0 counts them
@@ -766,6 +815,73 @@ mod tests {
             .iter()
             .map(|j| m.element(&j.loc).unwrap().identifier().unwrap().to_string())
             .collect()
+    }
+
+    #[test]
+    fn a_joint_type_s_keyword_number_and_widths_name_it_once() {
+        let widths: Vec<(&str, i32, usize, usize)> = JointType::ALL
+            .iter()
+            .map(|t| (t.keyword(), t.mujoco_number(), t.nq(), t.nv()))
+            .collect();
+        assert_eq!(
+            widths,
+            [("free", 0, 7, 6), ("ball", 1, 4, 3), ("slide", 2, 1, 1), ("hinge", 3, 1, 1)]
+        );
+        for t in JointType::ALL {
+            assert_eq!(JointType::from_keyword(t.keyword()), Some(t));
+            assert_eq!(JointType::from_mujoco(t.mujoco_number().into()), Some(t));
+        }
+        assert_eq!(JointType::from_keyword("freejoint"), None);
+        assert_eq!(JointType::from_mujoco(-1), None);
+        assert_eq!(JointType::from_mujoco(4), None);
+    }
+
+    #[test]
+    fn a_joint_s_type_is_its_own_else_its_classes_else_a_hinge() {
+        let m = read(
+            r#"<mujoco><default><default class="s"><joint type="slide"/>
+                 <default class="inner"/></default></default><worldbody>
+                 <body><freejoint name="f"/><geom size="1"/></body>
+                 <body><joint name="plain"/><geom size="1"/></body>
+                 <body childclass="inner"><joint name="classed"/><joint name="own" type="ball"/>
+                   <geom size="1"/></body>
+               </worldbody></mujoco>"#,
+        );
+        let ty = |name: &str| {
+            let loc = m.find(Namespace::Joint, name).unwrap();
+            m.layout().unwrap().joints.iter().find(|j| j.loc == loc).unwrap().joint_type
+        };
+        assert_eq!(ty("f"), JointType::Free);
+        assert_eq!(ty("classed"), JointType::Slide);
+        assert_eq!(ty("own"), JointType::Ball);
+        assert_eq!(ty("plain"), JointType::Hinge);
+    }
+
+    #[test]
+    fn an_element_s_joint_type_is_the_layout_s_attached_and_frame_joints_included() {
+        let robot = read(
+            r#"<mujoco><default><joint type="ball"/><default class="s"><joint type="slide"/>
+                 </default></default><worldbody>
+                 <body childclass="s"><joint name="a"/><joint name="b" type="hinge"/><geom size="1"/></body>
+                 <body><joint name="c"/><geom size="1"/></body></worldbody></mujoco>"#,
+        );
+        let mut arena = read(r#"<mujoco><default><joint type="slide"/></default></mujoco>"#);
+        let at = arena.attach_mut(&arena.worldbody(), &robot).unwrap();
+        arena.add_mut(at.frame(), crate::model::Element::new("joint")).unwrap();
+        let layout = arena.layout().unwrap();
+        let types: Vec<JointType> = layout.joints.iter().map(|j| j.joint_type).collect();
+        assert_eq!(types.len(), 4);
+        for t in [JointType::Ball, JointType::Slide, JointType::Hinge] {
+            assert!(types.contains(&t), "{types:?}");
+        }
+        for j in &layout.joints {
+            assert_eq!(
+                arena.element(&j.loc).unwrap().joint_type(),
+                Some(j.joint_type),
+                "{:?}",
+                j.loc
+            );
+        }
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! Carrying MuJoCo's integration state (`mjSTATE_INTEGRATION`) from a running
 //! simulation to the simulation of a newly compiled model, element by element.
 
+use mjcf::JointType;
+
 use crate::bind::ObjKind;
 use crate::fields::{self, Scalar};
 use crate::physics::Physics;
@@ -53,13 +55,10 @@ fn at(v: &[i32], i: usize) -> usize {
     v.get(i).and_then(|&x| usize::try_from(x).ok()).unwrap_or(usize::MAX)
 }
 
-/// Positions and degrees of freedom of a joint of MuJoCo type `t`.
+/// Positions and degrees of freedom of a joint of MuJoCo type `t` (none for a number
+/// MuJoCo does not use).
 fn widths(t: i32) -> (usize, usize) {
-    match u32::try_from(t).unwrap_or(u32::MAX) {
-        crate::sys::mjtJoint_mjJNT_FREE => (7, 6),
-        crate::sys::mjtJoint_mjJNT_BALL => (4, 3),
-        _ => (1, 1),
-    }
+    JointType::from_mujoco(t.into()).map_or((0, 0), |t| (t.nq(), t.nv()))
 }
 
 /// Carries the state of `old` into `new` (just made, at its defaults), recording

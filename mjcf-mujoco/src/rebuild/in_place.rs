@@ -17,7 +17,7 @@
 //! does when no compiler setting (`inertiafromgeom="true"`, `boundmass`,
 //! `boundinertia`, `balanceinertia`, `settotalmass`, `alignfree`) alters them.
 
-use mjcf::{Change, ElementRef, Model, Value};
+use mjcf::{Change, ElementRef, JointType, Model, Value};
 
 use crate::bind::{self, ObjKind};
 use crate::constants::{Class, class};
@@ -89,7 +89,8 @@ fn free_body(compiled: &Compiled, body: usize) -> bool {
         return true;
     };
     jb.iter().zip(jt).any(|(&b, &t)| {
-        usize::try_from(b).is_ok_and(|b| b == body) && t == crate::sys::mjtJoint_mjJNT_FREE as i32
+        usize::try_from(b).is_ok_and(|b| b == body)
+            && JointType::from_mujoco(t.into()) == Some(JointType::Free)
     })
 }
 
