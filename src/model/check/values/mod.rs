@@ -29,6 +29,7 @@ mod frame;
 mod geom;
 mod global;
 pub(crate) mod inertial;
+mod inline;
 mod joint;
 mod links;
 mod mesh;
@@ -276,6 +277,7 @@ const TABLES: &[&[Check]] = &[
     frame::CHECKS,
     inertial::CHECKS,
     mesh::CHECKS,
+    inline::CHECKS,
     assets::CHECKS,
     texture::CHECKS,
     flex::CHECKS,
