@@ -4,7 +4,12 @@
 //! message is the first one MuJoCo gives.
 
 use super::{At, Check, Found, found, found_element, numbers, on};
+use smol_str::SmolStr;
+
+use super::super::expansion::named_by_expansion;
+use crate::model::naming::is_builtin_name;
 use crate::model::tree::Node;
+use crate::schema::Namespace;
 use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
@@ -183,6 +188,12 @@ fn flex_data(at: &At<'_, '_>) -> Option<Found> {
     if !texcoord.is_empty() && texcoord.len() != 2 * nvert {
         return None;
     }
+    if at.own_str("material").is_some_and(|n| !known(at, Namespace::Material, n)) {
+        return None;
+    }
+    if let Some(b) = bodies.iter().find(|b| !known(at, Namespace::Body, b)) {
+        return found("body", format!("unknown body '{b}' in flex"));
+    }
     let repeated = elem.chunks(dim as usize + 1).any(|e| {
         let mut e = e.to_vec();
         e.sort_unstable();
@@ -190,6 +201,18 @@ fn flex_data(at: &At<'_, '_>) -> Option<Found> {
     });
     repeated.then_some(())?;
     found("element", "repeated vertex in element")
+}
+
+/// Whether `name` names an element of namespace `ns` in the element's model, as a
+/// reference resolves (a builtin name, one the model or its expansions give, or a
+/// name the writer gives).
+fn known(at: &At<'_, '_>, ns: Namespace, name: &str) -> bool {
+    let m = at.e.model;
+    is_builtin_name(ns, name)
+        || m.index.names.contains_key(&(ns, SmolStr::from(name)))
+        || m.find(ns, name).is_some()
+        || named_by_expansion(m, ns, name)
+        || name.contains('/') && m.from_full_name(ns, name).is_some()
 }
 
 /// A flex's `<edge stiffness>`, 0 when not given.

@@ -164,6 +164,18 @@ fn a_flexs_dim_elements_vertices_and_bodies_are_judged_in_mujocos_order() {
             r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 0"></flex></deformable></mujoco>"#,
             r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1"></flex></deformable></mujoco>"#,
         ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b nope" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b world b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"></flex></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b nope" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1"></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body><replicate count="2"><body name="r"><geom size=".1"/></body></replicate></worldbody><deformable><flex name="f" dim="2" body="b r0 r1" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"/></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><material name="mat"/></asset><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" material="mat" body="b b c" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"/></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"></flex></deformable></mujoco>"#,
+        ),
     ];
     assert_pairs("flex-inline-data", &pairs);
 }
