@@ -3,7 +3,7 @@
 //! vertices, each judged in the order MuJoCo 4.0.0's compiler judges them, so the
 //! message is the first one MuJoCo gives.
 
-use super::{At, Check, Found, found, found_element, numbers, on};
+use super::{At, Check, Found, found, found_element, hull, numbers, on};
 use smol_str::SmolStr;
 
 use super::super::expansion::named_by_expansion;
@@ -88,8 +88,12 @@ fn mesh_data(at: &At<'_, '_>) -> Option<Found> {
     } else {
         let nv = (vert.len() / 3) as i64;
         let face = whole(&face)?;
-        let (i, f) = face.iter().enumerate().find(|(_, f)| **f < 0 || **f >= nv)?;
-        format!("in face {}, vertex index {f} does not exist", i / 3)
+        match face.iter().enumerate().find(|(_, f)| **f < 0 || **f >= nv) {
+            Some((i, f)) => format!("in face {}, vertex index {f} does not exist", i / 3),
+            // Faces written: whether MuJoCo computes a hull depends on the geoms.
+            None if face.is_empty() => hull::message(at, &vert)?,
+            None => return None,
+        }
     };
     found_element(message)
 }

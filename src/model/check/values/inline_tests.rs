@@ -54,6 +54,70 @@ fn a_meshs_inline_vertices_and_faces_are_judged_in_mujocos_order() {
             r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 nan"/></asset></mujoco>"#,
             r#"<mujoco><compiler discardvisual="true"/><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 nan"/></asset></mujoco>"#,
         ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 0 0 0 0 0 0 0 0 0"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-16 0 0 0 1e-16 0 0 0 0"/></asset></mujoco>"#,
+            r#"<mujoco><compiler discardvisual="true"/><asset><mesh name="m" vertex="0 0 0 1e-7 0 0 0 1e-7 0 0 0 1e-7"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 2 0 0 3 0 0"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="1 1 1 1 1 1 1 1 1 1 1 1.0000001"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1e-6"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 1 1 0"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 1 1 1e-3"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-16 0 0 0 1 0 0 0 1"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 1 1 0" maxhullvert="4" inertia="shell"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" maxhullvert="4"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-9 0 0 0 1e-9 0 0 0 1e-9"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-4 0 0 0 1e-4 0 0 0 1e-4"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1e-9 1e-9 1e-9"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1e-4 1e-4 1e-4"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="0 0 1"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="-1 1 1"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="0 1 1"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="0 1 1" inertia="shell"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1 1 0" inertia="convex"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1 1 1e-3" inertia="convex"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><default><mesh scale="0 1 1"/></default><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset></mujoco>"#,
+            r#"<mujoco><default><mesh scale="0 1 1" inertia="shell"/></default><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1 0 1" inertia="legacy"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1 0 1" refquat="1 1 0 0" inertia="shell"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-7 0 0 0 1e-7 0 0 0 1e-7"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1e-7 0 0 0 1e-7 0 0 0 1e-7" inertia="shell"/></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1e-6 1e-6 1e-6"/></asset></mujoco>"#,
+            r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1" scale="1e-4 1e-4 1e-4"/></asset></mujoco>"#,
+        ),
     ];
     assert_pairs("mesh-inline-data", &pairs);
 }

@@ -28,6 +28,7 @@ mod flex;
 mod frame;
 mod geom;
 mod global;
+mod hull;
 pub(crate) mod inertial;
 mod inline;
 mod joint;
