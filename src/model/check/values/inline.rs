@@ -64,7 +64,8 @@ fn mesh_data(at: &At<'_, '_>) -> Option<Found> {
     if at.settings.discard_visual || at.has("file") || at.has("builtin") {
         return None;
     }
-    if at.e.node.children().iter().any(|c| c.kind().tag() == "plugin") {
+    let plugin = at.kind().child("plugin");
+    if at.e.node.children().iter().any(|c| Some(c.kind()) == plugin) {
         return None;
     }
     let vert = own(at, "vertex");
@@ -108,8 +109,9 @@ fn skin_data(at: &At<'_, '_>) -> Option<Found> {
     let vert = own(at, "vertex");
     let face = own(at, "face");
     let texcoord = own(at, "texcoord");
+    let bone = at.kind().child("bone");
     let bones: Vec<&Node> =
-        at.e.node.children().iter().filter(|c| c.kind().tag() == "bone").collect();
+        at.e.node.children().iter().filter(|c| Some(c.kind()) == bone).collect();
     let message = if vert.is_empty() || face.is_empty() || bones.is_empty() {
         "Missing data in skin".to_string()
     } else if vert.len() % 3 != 0 {
@@ -239,7 +241,8 @@ fn poisson(at: &At<'_, '_>) -> Option<Found> {
     matches!(elastic2d, None | Some("none")).then_some(())?;
     (number("young")? > 0.0).then_some(())?;
     let p = number("poisson")?;
-    (p < 0.0 || p >= 0.5).then_some(())?;
+    // nan passes MuJoCo's comparisons.
+    (!p.is_nan() && !(0.0..0.5).contains(&p)).then_some(())?;
     found("poisson", "Poisson ratio must be in [0, 0.5)")
 }
 

@@ -54,6 +54,13 @@ fn a_meshs_inline_vertices_and_faces_are_judged_in_mujocos_order() {
             r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 nan"/></asset></mujoco>"#,
             r#"<mujoco><compiler discardvisual="true"/><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 nan"/></asset></mujoco>"#,
         ),
+    ];
+    assert_pairs("mesh-inline-data", &pairs);
+}
+
+#[test]
+fn a_mesh_without_faces_is_judged_by_its_hull_as_mujoco_judges_it() {
+    let pairs = [
         (
             r#"<mujoco><asset><mesh name="m" vertex="0 0 0 0 0 0 0 0 0 0 0 0"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
             r#"<mujoco><asset><mesh name="m" vertex="0 0 0 1 0 0 0 1 0 0 0 1"/></asset><worldbody><geom type="mesh" mesh="m"/></worldbody></mujoco>"#,
