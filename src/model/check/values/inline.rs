@@ -34,7 +34,7 @@ pub(crate) const CHECKS: &[Check] = &[
     },
     Check {
         name: "flex-poisson",
-        on: |k| on::at(k, "deformable/flex") || on::at(k, "(world)body/flexcomp"),
+        on: |k| on::at(k, "(world)body/flexcomp"),
         test: poisson,
         fix: "give poisson in [0, 0.5)",
     },
@@ -120,6 +120,10 @@ fn skin_data(at: &At<'_, '_>) -> Option<Found> {
         "Vertex and texcoord data incompatible size".to_string()
     } else if face.len() % 3 != 0 {
         "Face data must be multiple of 3".to_string()
+    } else if let Some(f) =
+        whole(&face)?.into_iter().find(|f| *f < 0 || *f >= (vert.len() / 3) as i64)
+    {
+        format!("face vertex index {f} out of range in skin")
     } else {
         bone_message(&bones, vert.len() / 3)?
     };
@@ -177,8 +181,17 @@ fn flex_data(at: &At<'_, '_>) -> Option<Found> {
     if vert.len() % 3 != 0 {
         return found("vertex", "vert size must be a multiple of 3");
     }
-    if edge_stiffness(at.e.node) > 0.0 && dim > 1 || poisson(at).is_some() {
+    if edge_stiffness(at.e.node) > 0.0 && dim > 1 {
         return None;
+    }
+    let elasticity = |attr: &str| elasticity_number(at.e.node, attr);
+    if elastic2d(at.e.node) {
+        // Its 2d elasticity's checks: thickness, poisson, a 2d flex.
+        (elasticity("thickness")? > 0.0).then_some(())?;
+        if poisson_out(elasticity("poisson")?) {
+            return found("poisson", "Poisson ratio must be in [0, 0.5)");
+        }
+        (dim == 2).then_some(())?;
     }
     let nvert = if vert.is_empty() { bodies.len() } else { vert.len() / 3 };
     if !vert.is_empty() && bodies.len() != 1 && bodies.len() != nvert {
@@ -205,8 +218,13 @@ fn flex_data(at: &At<'_, '_>) -> Option<Found> {
         e.sort_unstable();
         e.windows(2).any(|w| w[0] == w[1])
     });
-    repeated.then_some(())?;
-    found("element", "repeated vertex in element")
+    if repeated {
+        return found("element", "repeated vertex in element");
+    }
+    // Without a 2d elasticity, MuJoCo judges the poisson ratio of a positive young's
+    // modulus after all the above.
+    (elasticity("young")? > 0.0 && poisson_out(elasticity("poisson")?)).then_some(())?;
+    found("poisson", "Poisson ratio must be in [0, 0.5)")
 }
 
 /// Whether `name` names an element of namespace `ns` in the element's model, as a
@@ -229,20 +247,30 @@ fn edge_stiffness(node: &Node) -> f64 {
         .unwrap_or(0.0)
 }
 
-/// `Poisson ratio must be in [0, 0.5)`: MuJoCo 4.0.0 refuses it of a flex (or a
-/// flexcomp's) whose elasticity has a positive young's modulus (judged here only
-/// without a 2d elasticity, whose other checks come first).
+/// The first number of `attr` of a flex's (or flexcomp's) `<elasticity>`.
+fn elasticity_number(node: &Node, attr: &str) -> Option<f64> {
+    child_value(node, "elasticity", attr).and_then(numbers).and_then(|v| v.first().copied())
+}
+
+/// Whether its `<elasticity>` has a 2d elasticity (`elastic2d` other than `none`).
+fn elastic2d(node: &Node) -> bool {
+    let e = child_value(node, "elasticity", "elastic2d").and_then(Value::as_str);
+    !matches!(e, None | Some("none"))
+}
+
+/// A poisson ratio outside `[0, 0.5)` (nan passes MuJoCo's comparisons).
+fn poisson_out(p: f64) -> bool {
+    !p.is_nan() && !(0.0..0.5).contains(&p)
+}
+
+/// `Poisson ratio must be in [0, 0.5)` of a flexcomp whose elasticity has a positive
+/// young's modulus (judged here only without a 2d elasticity, whose other checks come
+/// first; a `<flex>`'s is judged with its data, in MuJoCo's order).
 fn poisson(at: &At<'_, '_>) -> Option<Found> {
     let node = at.e.node;
-    let number = |attr: &str| {
-        child_value(node, "elasticity", attr).and_then(numbers).and_then(|v| v.first().copied())
-    };
-    let elastic2d = child_value(node, "elasticity", "elastic2d").and_then(Value::as_str);
-    matches!(elastic2d, None | Some("none")).then_some(())?;
-    (number("young")? > 0.0).then_some(())?;
-    let p = number("poisson")?;
-    // nan passes MuJoCo's comparisons.
-    (!p.is_nan() && !(0.0..0.5).contains(&p)).then_some(())?;
+    (!elastic2d(node)).then_some(())?;
+    let (young, p) = (elasticity_number(node, "young")?, elasticity_number(node, "poisson")?);
+    (young > 0.0 && poisson_out(p)).then_some(())?;
     found("poisson", "Poisson ratio must be in [0, 0.5)")
 }
 

@@ -130,61 +130,6 @@ fn a_mesh_without_faces_is_judged_by_its_hull_as_mujoco_judges_it() {
 }
 
 #[test]
-fn a_skins_inline_data_and_bone_weights_are_judged_in_mujocos_order() {
-    let pairs = [
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0" vertweight="1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2" texcoord="0 0 1 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2" texcoord="0 0 1 0 0 1"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0 1" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1" vertweight="1 1"/><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="2" vertweight="1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 5" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 -1" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 0"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1e-14"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1e-16"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 -1"/><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="2" vertweight="2"/></skin></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1" vertweight="1 1"/></skin></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 nan" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
-        ),
-    ];
-    assert_pairs("skin-inline-data", &pairs);
-}
-
-#[test]
 fn a_flexs_dim_elements_vertices_and_bodies_are_judged_in_mujocos_order() {
     let pairs = [
         (
@@ -252,7 +197,93 @@ fn a_flexs_dim_elements_vertices_and_bodies_are_judged_in_mujocos_order() {
 }
 
 #[test]
-fn a_poisson_ratio_out_of_range_is_refused_with_a_positive_young() {
+fn a_flexs_poisson_ratio_is_judged_where_mujoco_judges_it() {
+    let pairs = [
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity young="1" poisson="0.7"/></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity poisson="0.7"/></flex></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1 2"><elasticity young="1" poisson="0.5"/></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1 2"><elasticity young="1" poisson="0.4999"/></flex></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b nope" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity young="1" poisson="0.7" elastic2d="bend" thickness="0.1"/></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity young="1" poisson="0.3" elastic2d="bend" thickness="0.1"/></flex></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1"><elasticity young="1" poisson="0.7"/></flex></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity young="0" poisson="0.7"/></flex></deformable></mujoco>"#,
+        ),
+    ];
+    assert_pairs("flex-inline-data", &pairs);
+}
+
+#[test]
+fn a_skins_inline_data_and_bone_weights_are_judged_in_mujocos_order() {
+    let pairs = [
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0" vertweight="1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2" texcoord="0 0 1 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2" texcoord="0 0 1 0 0 1"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0 1" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2 0"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1" vertweight="1 1"/><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="2" vertweight="1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 5" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 -1" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 0"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1e-14"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1e-16"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 -1"/><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="2" vertweight="2"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1" vertweight="1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 nan" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 3"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 -1" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><skin vertex="0 0 0 1 0 0 0 1 0" face="0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></deformable></mujoco>"#,
+        ),
+        (
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0" face="0 -1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
+            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><asset><skin vertex="0 0 0 1 0 0 0 1 0" face="2 1 0 0 1 2"><bone body="b" bindpos="0 0 0" bindquat="1 0 0 0" vertid="0 1 2" vertweight="1 1 1"/></skin></asset></mujoco>"#,
+        ),
+    ];
+    assert_pairs("skin-inline-data", &pairs);
+}
+
+#[test]
+fn a_flexcomps_poisson_ratio_out_of_range_is_refused_with_a_positive_young() {
     let pairs = [
         (
             r#"<mujoco><worldbody><flexcomp name="f" type="grid" count="3 3 1" spacing=".1 .1 .1" dim="2"><elasticity young="100" poisson="0.5"/></flexcomp></worldbody></mujoco>"#,
@@ -269,14 +300,6 @@ fn a_poisson_ratio_out_of_range_is_refused_with_a_positive_young() {
         (
             r#"<mujoco><worldbody><flexcomp name="f" type="grid" count="3 3 1" spacing=".1 .1 .1" dim="2"><elasticity young="100" poisson="0.5" elastic2d="none"/></flexcomp></worldbody></mujoco>"#,
             r#"<mujoco><worldbody><flexcomp name="f" type="grid" count="3 3 1" spacing=".1 .1 .1" dim="2"><elasticity young="-1" poisson="0.5"/></flexcomp></worldbody></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity young="1" poisson="0.7"/></flex></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="2" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 2"><elasticity poisson="0.7"/></flex></deformable></mujoco>"#,
-        ),
-        (
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1 2"><elasticity young="1" poisson="0.5"/></flex></deformable></mujoco>"#,
-            r#"<mujoco><worldbody><body name="b"><geom size=".1"/></body></worldbody><deformable><flex name="f" dim="1" body="b b b" vertex="0 0 0 1 0 0 0 1 0" element="0 1 1 2"><elasticity young="1" poisson="0.4999"/></flex></deformable></mujoco>"#,
         ),
     ];
     assert_pairs("flex-poisson", &pairs);
