@@ -28,7 +28,9 @@ mod flex;
 mod frame;
 mod geom;
 mod global;
+mod hull;
 pub(crate) mod inertial;
+mod inline;
 mod joint;
 mod links;
 mod mesh;
@@ -276,6 +278,7 @@ const TABLES: &[&[Check]] = &[
     frame::CHECKS,
     inertial::CHECKS,
     mesh::CHECKS,
+    inline::CHECKS,
     assets::CHECKS,
     texture::CHECKS,
     flex::CHECKS,
