@@ -150,8 +150,9 @@ pub enum ErrorKind {
         /// The identifier.
         name: SmolStr,
     },
-    /// A required attribute that is missing or would be cleared.
-    #[error("attribute '{attribute}' of <{tag}> is required")]
+    /// A required attribute that is missing or would be cleared (a nested default
+    /// class's `class`, which MuJoCo calls an "empty class name", included).
+    #[error("attribute '{attribute}' of <{tag}> is required{}", mujoco_words(tag, attribute))]
     MissingRequired {
         /// The element's tag.
         tag: &'static str,
@@ -697,6 +698,15 @@ pub enum Error {
     /// Exporting to a folder failed.
     #[error(transparent)]
     Export(#[from] ExportError),
+}
+
+/// MuJoCo's own words for a missing attribute, where they differ from the crate's: a
+/// nested default class without a `class` is MuJoCo 4.0.0's "empty class name".
+fn mujoco_words(tag: &str, attribute: &str) -> &'static str {
+    match (tag, attribute) {
+        ("default", "class") => " (MuJoCo: \"empty class name\")",
+        _ => "",
+    }
 }
 
 #[cfg(test)]

@@ -372,3 +372,16 @@ fn lossless_a_removed_attribute_glued_to_the_next_keeps_the_tag_readable() {
     assert_eq!(saved, text.replace("<body name=\"b \"pos=", "<body pos="));
     assert_eq!(write(&read(&saved)), write(&m));
 }
+
+/// A nested default class without a name is refused in MuJoCo 4.0.0's words too
+/// ("empty class name", for `<default/>` and for `class=""` alike).
+#[test]
+fn a_nameless_nested_class_is_refused_in_mujoco_s_words() {
+    for text in [
+        "<mujoco><default><default/></default></mujoco>",
+        r#"<mujoco><default><default class=""/></default></mujoco>"#,
+    ] {
+        let e = mjcf::Model::from_xml_str(text).unwrap_err();
+        assert!(e.to_string().contains("(MuJoCo: \"empty class name\")"), "{e}");
+    }
+}
