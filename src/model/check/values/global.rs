@@ -2,22 +2,11 @@
 //! `Option`, `Size`, `Statistic` and `Visual` readers): each judges the value written,
 //! the sections merged across attachments (see [`super::Values`]).
 
-use super::{At, Check, Found, found, on};
+use super::{At, Check, Found, NUSER, found, on};
 
-/// `<size>`'s counts MuJoCo takes from -1 up ("nconmax must be >= -1").
-const SIZE_COUNTS: [&str; 11] = [
-    "nconmax",
-    "nstack",
-    "njmax",
-    "nuser_body",
-    "nuser_jnt",
-    "nuser_geom",
-    "nuser_site",
-    "nuser_cam",
-    "nuser_tendon",
-    "nuser_actuator",
-    "nuser_sensor",
-];
+/// `<size>`'s counts MuJoCo takes from -1 up ("nconmax must be >= -1"), besides the
+/// user-data counts ([`NUSER`]).
+const SIZE_COUNTS: [&str; 3] = ["nconmax", "nstack", "njmax"];
 
 pub(crate) const CHECKS: &[Check] = &[
     Check {
@@ -43,7 +32,8 @@ pub(crate) const CHECKS: &[Check] = &[
         name: "size-count-range",
         on: |k| on::at(k, "size"),
         test: |at| {
-            let attr = SIZE_COUNTS.into_iter().find(|a| at.int(a).is_some_and(|n| n < -1))?;
+            let attr =
+                SIZE_COUNTS.into_iter().chain(NUSER).find(|a| at.int(a).is_some_and(|n| n < -1))?;
             found(attr, format!("{attr} must be >= -1"))
         },
         fix: "give the count -1 (MuJoCo's choice) or more",

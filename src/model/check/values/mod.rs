@@ -86,21 +86,17 @@ impl Settings {
                 .and_then(|v| v.as_str().map(str::to_string))
                 .unwrap_or(default.into())
         };
-        let nuser = [
-            "nuser_body",
-            "nuser_jnt",
-            "nuser_geom",
-            "nuser_site",
-            "nuser_cam",
-            "nuser_tendon",
-            "nuser_actuator",
-            "nuser_sensor",
-        ]
-        .into_iter()
-        .map(|a| {
-            (a, get(&size, a).and_then(|v| numbers(&v)?.first().copied()).map_or(-1, |x| x as i64))
-        })
-        .collect();
+        let nuser = NUSER
+            .into_iter()
+            .map(|a| {
+                (
+                    a,
+                    get(&size, a)
+                        .and_then(|v| numbers(&v)?.first().copied())
+                        .map_or(-1, |x| x as i64),
+                )
+            })
+            .collect();
         let range = get(&compiler, "inertiagrouprange").and_then(|v| numbers(&v));
         let range = match range.as_deref() {
             Some([a, b, ..]) => [*a as i64, *b as i64],
@@ -124,6 +120,18 @@ impl Settings {
         self.nuser.iter().find(|(n, _)| *n == name).map_or(-1, |(_, v)| *v)
     }
 }
+
+/// `<size>`'s user-data counts, one per kind of element with `user` numbers.
+pub(crate) const NUSER: [&str; 8] = [
+    "nuser_body",
+    "nuser_jnt",
+    "nuser_geom",
+    "nuser_site",
+    "nuser_cam",
+    "nuser_tendon",
+    "nuser_actuator",
+    "nuser_sensor",
+];
 
 /// One check: its name, the elements it judges, the test, and what to do.
 pub(crate) struct Check {
