@@ -116,6 +116,15 @@ pub enum ErrorKind {
     /// A second singleton or on-demand child.
     #[error("a <{0}> child already exists")]
     DuplicateChild(&'static str),
+    /// A top-level `<default>` read with a `class` other than `main`, which MuJoCo
+    /// refuses in its own words ("top-level default class 'main' cannot be
+    /// renamed"). The root class may be named in a model built through the API: the
+    /// writer nests it (`<default><default class="name">`), which MuJoCo compiles.
+    #[error(
+        "the top-level <default> is named '{}': MuJoCo refuses it (\"top-level default class 'main' cannot be renamed\"); leave it unnamed or name it main, and put the named class inside it",
+        cut(.0)
+    )]
+    RootClassRenamed(SmolStr),
     /// An attribute the schema does not define for this element.
     #[error("'{}' is not a valid attribute for <{tag}>{}", cut(.attribute), hint_one(*.suggestion))]
     UnknownAttribute {

@@ -61,6 +61,39 @@ fn include_cycle_a_b_a_is_an_error_in_memory() {
     assert!(matches!(err.kind(), ErrorKind::IncludeCycle(p) if p.ends_with("a.xml")), "{err}");
 }
 
+/// MuJoCo 4.0.0 reads every top-level `<default>` as its one root class `main` and
+/// refuses one named otherwise ("top-level default class 'main' cannot be renamed"),
+/// in the main file, given a second time, or in an included file; `main` and an empty
+/// name are accepted (each shape compiled with MuJoCo 4.0.0). The reader refuses
+/// them too, with MuJoCo's words and the place.
+#[test]
+fn a_top_level_default_named_other_than_main_is_refused_where_it_stands() {
+    for (text, at) in [
+        ("<mujoco><default class=\"top\"/></mujoco>", (1, 9)),
+        (
+            "<mujoco>\n<default/>\n  <default class=\"top\"><geom size=\"1\"/></default>\n</mujoco>",
+            (3, 3),
+        ),
+    ] {
+        let err = Model::from_xml_str(text).unwrap_err();
+        assert_eq!(err.kind(), &ErrorKind::RootClassRenamed("top".into()), "{text}");
+        assert_eq!(err.pos().map(|p| (p.line, p.column)), Some(at), "{text}");
+        assert!(err.to_string().contains("top-level default class 'main' cannot be renamed"));
+    }
+    let included = ReadOptions::new()
+        .asset("d.xml", br#"<mujoco><default class="top"/></mujoco>"#.to_vec())
+        .read_str(r#"<mujoco><include file="d.xml"/></mujoco>"#)
+        .unwrap_err();
+    assert_eq!(included.kind(), &ErrorKind::RootClassRenamed("top".into()));
+    assert!(included.file().is_some_and(|f| f.ends_with("d.xml")), "{included}");
+    for fine in
+        ["<mujoco><default class=\"main\"/></mujoco>", "<mujoco><default class=\"\"/></mujoco>"]
+    {
+        let m = Model::from_xml_str(fine).unwrap();
+        assert_eq!(m.check(), [], "{fine}");
+    }
+}
+
 /// The kind, file name and line:column of the error reading `main` (a path).
 fn where_refused(main: &Path) -> (ErrorKind, String, (u32, u32)) {
     let err = Model::from_path(main).unwrap_err();

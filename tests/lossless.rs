@@ -230,6 +230,39 @@ fn what_cannot_be_saved_is_a_typed_error() {
     assert_eq!(with.save(), Err(SaveError::NoPath));
 }
 
+/// MuJoCo's root class is `main`: a file's top-level `<default>` may be named nothing
+/// else, and a class inside it may not be named `main`. A root class renamed through
+/// the API is saved where the file spells it only when MuJoCo reads that; otherwise
+/// the save is a typed error and nothing is written (the plain writer nests it).
+#[test]
+fn a_renamed_root_class_is_saved_only_where_mujoco_reads_the_name() {
+    let top = "<mujoco><default><geom rgba=\"1 0 0 1\"/></default></mujoco>";
+    let wrapped = "<mujoco><default><default class=\"/\"><geom rgba=\"1 0 0 1\"/></default></default></mujoco>";
+    let renamed = |text: &str, name: &str| {
+        let m = Model::from_xml_str(text).unwrap();
+        let m = m.set(&m.default_class(), Attrs::new().set("class", name)).unwrap();
+        (m.to_source_files().map(|f| f[0].text.clone()), m)
+    };
+    for (text, name) in [(top, "robot"), (wrapped, "main")] {
+        let (saved, m) = renamed(text, name);
+        assert_eq!(saved, Err(SaveError::RootClassRenamed(name.into())));
+        let message = saved.unwrap_err().to_string();
+        assert!(
+            message.contains("cannot be renamed")
+                && message.contains("repeated default class name")
+        );
+        // The plain writer nests the class, and what it writes reads back.
+        assert_eq!(Model::from_xml_str(&m.to_xml_string().unwrap()).unwrap().check(), []);
+    }
+    for (text, name, spelled) in
+        [(top, "main", "<default class=\"main\">"), (wrapped, "robot", "<default class=\"robot\">")]
+    {
+        let saved = renamed(text, name).0.unwrap();
+        assert!(saved.contains(spelled), "{saved}");
+        Model::from_xml_str(&saved).unwrap();
+    }
+}
+
 #[test]
 fn confined_models_and_save_as_write_nothing_outside_their_folder() {
     let dir = temp_dir("outside");

@@ -443,12 +443,20 @@ proptest! {
 
     /// Reading MJCF text rendered by hand from the same steps (other quoting, tabs,
     /// exponent floats, upper-case keywords, a declaration and a comment) gives the
-    /// same output as building the model through the API.
+    /// same output as building the model through the API. A root class named through
+    /// the API has no such text: rendered on the top-level `<default>`, it is what
+    /// MuJoCo refuses, and so does the reader (decision D16).
     #[test]
     fn reading_rendered_text_equals_building_through_the_api((root, acts) in actions(true)) {
         let b = build(&root, &acts);
         let text = b.text();
-        let read = Model::from_xml_str(&text).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        let read = Model::from_xml_str(&text);
+        if let Some(name) = root.filter(|r| r != "main") {
+            let refused = read.err().map(|e| e.kind().clone());
+            prop_assert_eq!(refused, Some(mjcf::ErrorKind::RootClassRenamed(name.into())), "text:\n{}", text);
+            return Ok(());
+        }
+        let read = read.map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         prop_assert_eq!(write(&read), write(&b.model), "text:\n{}", text);
         let one_line = WriteOptions { pretty_print: false, precision: Some(17), ..WriteOptions::default() };
         prop_assert_eq!(read.to_xml_string_with(&one_line).unwrap(), b.model.to_xml_string_with(&one_line).unwrap());

@@ -136,7 +136,16 @@ fn every_element_and_attribute_of_mujoco_40_reads_edits_and_writes_back() {
                 read = read.asset(&file, contents.to_vec());
             }
             let what = format!("{}@{attr} = {text:?} in {xml}", tags.join("/"));
-            let m = read.read_str(&xml).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let m = if tags == ["default"] && attr == "class" {
+                // The root class named in a file is what MuJoCo refuses (decision
+                // D16); named through the API, it is written nested.
+                let e = read.read_str(&xml).expect_err(&what);
+                assert!(matches!(e.kind(), mjcf::ErrorKind::RootClassRenamed(_)), "{what}: {e}");
+                let m = Model::from_xml_str("<mujoco><default/></mujoco>").unwrap();
+                m.set_attr(&m.default_class(), attr, text.as_str()).unwrap()
+            } else {
+                read.read_str(&xml).unwrap_or_else(|e| panic!("{what}: {e}"))
+            };
             let loc = locate(&m, &tags);
             assert!(m.get(&loc).unwrap().attr(attr).is_some(), "{what}: not kept");
             if matches!(kind.attr(kind.attr_index(attr).unwrap()).ty, AttrType::Basepath { .. }) {

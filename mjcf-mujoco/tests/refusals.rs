@@ -120,6 +120,7 @@ fn read_error_message(kind: &ErrorKind) -> &'static [&'static str] {
         ErrorKind::DuplicateChild(_) => &["unique element"],
         ErrorKind::DuplicateIdentifier { .. } => &["repeated name", "repeated default class name"],
         ErrorKind::MissingRequired { .. } => &["required attribute missing"],
+        ErrorKind::RootClassRenamed(_) => &["top-level default class 'main' cannot be renamed"],
         ErrorKind::InvalidValue { .. } => &[
             "bad format",
             "has too much data",
@@ -146,7 +147,7 @@ fn crate_objections(path: &Path) -> Vec<(String, Vec<&'static str>)> {
 
 /// The pairs "known" (the crate objects to the refused model with MuJoCo's class of
 /// problem) when this was written: the floor, which can only go up.
-const KNOWN_FLOOR: usize = 328;
+const KNOWN_FLOOR: usize = 329;
 
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]

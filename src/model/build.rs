@@ -422,6 +422,26 @@ pub(crate) fn check_class_named(
     }
 }
 
+/// Checks that a top-level `<default>` read from text is unnamed or named `main`, as
+/// MuJoCo's reader requires (its root class is always `main`); a file naming it
+/// otherwise is one MuJoCo refuses, though the API may name the root class (the
+/// writer nests it).
+pub(crate) fn check_root_class_name(
+    parent: ElementKind,
+    kind: ElementKind,
+    attrs: &[Attr],
+) -> Result<(), ErrorKind> {
+    if parent != ElementKind::ROOT || kind != ElementKind::DEFAULT {
+        return Ok(());
+    }
+    let Some(i) = kind.identifier() else { return Ok(()) };
+    let name = attrs.iter().find(|(k, _)| *k as usize == i).and_then(|(_, v)| v.as_str());
+    match name {
+        Some(n) if !n.is_empty() && n != "main" => Err(ErrorKind::RootClassRenamed(n.into())),
+        _ => Ok(()),
+    }
+}
+
 /// Gives a nameless `mesh`, `hfield` or `texture` with a file the file's stem as name,
 /// as the reference does; and a nameless asset `model` the name of the model its file
 /// holds, as MuJoCo does (`<attach model=…>` names it so).

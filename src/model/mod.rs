@@ -43,8 +43,8 @@ use tree::{ElementId, Node};
 pub(crate) use build::push_segment as push_path;
 pub use build::{Attrs, Element};
 pub(crate) use build::{
-    Basepaths, Input, ModelFiles, ValueCtx, check_class_named, check_required, empty_node,
-    empty_node_with_id, name_from_file,
+    Basepaths, Input, ModelFiles, ValueCtx, check_class_named, check_required,
+    check_root_class_name, empty_node, empty_node_with_id, name_from_file,
 };
 pub use cascade::{Referrers, Removal};
 pub use check::{Advice, AdviceKind, Problem, ProblemKind};

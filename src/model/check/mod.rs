@@ -345,9 +345,8 @@ impl Model {
     /// binding's `refusals` catalog: 758 distinct messages of its compiler and XML
     /// reader, 453 reachable from MJCF text, 90 needing a file's content, 215
     /// unreachable; 329 pairs of a refused model and its compiled twin for 319 of the
-    /// 453): the reader or `check()` objects to 328 refused models with MuJoCo's
-    /// message and to none of the twins; the one it is silent on is a
-    /// renamed top-level default class, which the writer writes as MuJoCo takes it.
+    /// 453): the reader or `check()` objects to all 329 refused models with MuJoCo's
+    /// message and to none of the twins.
     ///
     /// Time: O(N) for a composed model of N elements, plus, for dangling references,
     /// O(n log n) per model and namespace they name into (ranking its `n` names

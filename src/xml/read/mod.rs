@@ -40,7 +40,7 @@ use crate::files::{self, FileContext};
 use crate::model::tree::{Attr, ElementId, no_attrs, take_attrs};
 use crate::model::{
     Basepaths, Input, Model, ModelFiles, ValueCtx, check_class_named, check_required,
-    name_from_file,
+    check_root_class_name, name_from_file,
 };
 use crate::schema::{AttrType, ElementKind, Multiplicity};
 use crate::value::Value;
@@ -705,7 +705,9 @@ fn read_element(
         (Multiplicity::Singleton, Some(e)) if parent == 0 || r.arena[e].given_in != parent_tag => {
             r.arena[e].given_in = parent_tag;
             attrs.extend(r.arena[e].attrs.iter().cloned());
-            let res = r.read_attrs(kind, tag, &mut attrs, offset);
+            let res = r.read_attrs(kind, tag, &mut attrs, offset).and_then(|()| {
+                check_root_class_name(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))
+            });
             r.arena[e].attrs = take_attrs(&mut attrs);
             r.scratch = attrs;
             res?;
@@ -717,6 +719,7 @@ fn read_element(
         }
         (m, _) => {
             r.read_attrs(kind, tag, &mut attrs, offset)?;
+            check_root_class_name(parent_kind, kind, &attrs).map_err(|k| r.err(k, offset))?;
             if m != Multiplicity::Singleton {
                 name_from_file(kind, &mut attrs);
                 check_required(kind, &attrs).map_err(|k| r.err(k, offset))?;

@@ -92,6 +92,16 @@ pub enum SaveError {
         /// The reason the system gives.
         reason: String,
     },
+    /// The root default class renamed where the file spells it so that MuJoCo reads
+    /// no model: on a top-level `<default>`, any name but `main` ("top-level default
+    /// class 'main' cannot be renamed"); on the class inside it (the shape
+    /// `<default><default class="/">`), `main` ("repeated default class name").
+    /// Nothing was saved; [`Model::to_xml_string`] writes the class as MuJoCo
+    /// compiles it.
+    #[error(
+        "the root default class is renamed '{0}', a name MuJoCo refuses where the file spells the class (a top-level <default> takes only main: \"top-level default class 'main' cannot be renamed\"; a class inside it not main: \"repeated default class name\"); nothing was saved (to_xml_string writes it as MuJoCo compiles it)"
+    )]
+    RootClassRenamed(String),
     /// A required reference to an element that was removed.
     #[error("attribute '{attribute}' of <{tag}> is required, but the element it named was removed")]
     MissingRequired {
@@ -603,8 +613,32 @@ impl Saver<'_> {
                 _ => {}
             }
         }
+        // The root class renamed: MuJoCo reads a top-level `<default>` named other
+        // than `main`, or a class `main` inside one, as no model.
+        if Some(rec.id) == crate::model::layout::root_class(self.model) {
+            let class = kind.identifier().map(|i| kind.attr(i).name);
+            let named = set.iter().any(|(k, _)| Some(tag.name_of(&tag.tokens[*k])) == class)
+                || append.iter().any(|(n, _)| Some(*n) == class);
+            let top = self.top_level_default(r);
+            match node.identifier() {
+                Some(n) if named && !n.is_empty() && (n == "main") != top => {
+                    return Err(SaveError::RootClassRenamed(n.into()));
+                }
+                _ => {}
+            }
+        }
         append.extend(main);
         Ok(tag.rewrite(&set, &remove, &append, open))
+    }
+
+    /// Whether the record `r` is a `<default>` tag at the top level of its file.
+    fn top_level_default(&self, r: u32) -> bool {
+        let rec = &self.src.records[r as usize];
+        let p = rec.parent;
+        rec.kind == RecordKind::Element
+            && p != NO_RECORD
+            && self.src.records[p as usize].parent == NO_RECORD
+            && self.model.node_by_id(rec.id).is_some_and(|n| n.kind() == ElementKind::DEFAULT)
     }
 
     /// Whether the record `r` is a file's root `<default>` (the root class's outer
