@@ -30,6 +30,7 @@
 //! What MuJoCo compiles but likely not as meant (an attached model's key written
 //! without `merge_keyframes`) is [`Model::advice`], not `check()`.
 
+use super::angles;
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
 use crate::model::follow;
@@ -272,6 +273,12 @@ impl Model {
         base: &str,
         placement: Placement,
     ) -> Result<Attachment, EditError> {
+        // The child in the conventions (angle unit, euler sequence) in force for the
+        // whole composition, which every model in it shares (`compose::angles`).
+        let ours = settings::merged(self).map_err(|k| EditError::new(k, String::new()))?;
+        let converted =
+            angles::into_conventions(&ours, child).map_err(|k| EditError::new(k, String::new()))?;
+        let child = converted.as_ref().unwrap_or(child);
         if at.scope().is_empty() {
             // In place: every check comes first, then the edit copies only what other
             // versions share (nothing, when `self` owns the path alone).

@@ -87,6 +87,13 @@ impl Model {
         if !other.index.scopes.is_empty() {
             return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
         }
+        // The source in this model's conventions (angle unit, euler sequence), where
+        // both set them and they differ (`compose::angles`).
+        let ours =
+            crate::model::settings::merged(self).map_err(|k| EditError::new(k, String::new()))?;
+        let converted = super::angles::into_conventions(&ours, other)
+            .map_err(|k| EditError::new(k, String::new()))?;
+        let other = converted.as_ref().unwrap_or(other);
         let mut c = Copier { dest: self, override_attributes, ids: HashMap::new() };
         let mut path = String::new();
         let root = c
