@@ -360,3 +360,92 @@ pub(crate) fn replicate_euler(e: &[f64], change: &Change) -> Option<Vec<f64>> {
     out[j] = *angle;
     Some(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn change(from: (bool, &[u8; 3]), to: (bool, &[u8; 3])) -> Change {
+        Change {
+            from: Angles::new(from.0, *from.1),
+            to: Angles::new(to.0, *to.1),
+            angle: None,
+            eulerseq: None,
+        }
+    }
+
+    /// The rotation of an `axisangle`, as MuJoCo builds it.
+    fn quat_of(a: [f64; 4], degrees: bool) -> [f64; 4] {
+        let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        let angle = if degrees { a[3].to_radians() } else { a[3] };
+        let (s, c) = (angle / 2.0).sin_cos();
+        [c, s * a[0] / n, s * a[1] / n, s * a[2] / n]
+    }
+
+    fn same_rotation(p: [f64; 4], q: [f64; 4]) -> bool {
+        let d = |s: f64| p.iter().zip(q).map(|(a, b)| (a - s * b).abs()).fold(0.0, f64::max);
+        d(1.0) < 1e-12 || d(-1.0) < 1e-12
+    }
+
+    #[test]
+    fn an_euler_in_any_sequence_becomes_an_axisangle_of_the_same_rotation() {
+        let seqs: [&[u8; 3]; 6] = [b"xyz", b"ZYX", b"zXy", b"xyx", b"XzX", b"yYz"];
+        let angles = [[10.0, -20.0, 30.0], [170.0, 80.0, -179.0], [0.0, 90.0, 0.0], [0.0; 3]];
+        for seq in seqs {
+            for degrees in [true, false] {
+                for e in angles {
+                    let e = if degrees { e } else { e.map(f64::to_radians) };
+                    let q = euler_rotation(&Angles::new(degrees, *seq), e);
+                    for to_degrees in [true, false] {
+                        let a = axis_angle_of(q, to_degrees);
+                        assert!(same_rotation(q, quat_of(a, to_degrees)), "{seq:?} {e:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn no_rotation_is_an_axisangle_with_a_unit_axis() {
+        assert_eq!(axis_angle_of([1.0, 0.0, 0.0, 0.0], true), [0.0, 0.0, 1.0, 0.0]);
+        // The rotation with w < 0 is the same, the angle at most half a turn.
+        let a = axis_angle_of([-0.5f64.sqrt(), 0.0, 0.0, -0.5f64.sqrt()], true);
+        assert!((a[3] - 90.0).abs() < 1e-12 && (a[2] - 1.0).abs() < 1e-12, "{a:?}");
+    }
+
+    #[test]
+    fn a_replicate_turning_about_one_axis_keeps_the_axis_in_the_new_sequence() {
+        let c = change((true, b"zyx"), (false, b"XYZ"));
+        let out = replicate_euler(&[90.0, 0.0, 0.0], &c).unwrap();
+        assert_eq!(out, [0.0, 0.0, 90f64.to_radians()]);
+        assert_eq!(replicate_euler(&[0.0; 3], &c).unwrap(), [0.0; 3]);
+        assert_eq!(replicate_euler(&[10.0, 5.0, 0.0], &c), None);
+        // An axis the new sequence lacks.
+        let c = change((true, b"xyz"), (true, b"zyz"));
+        assert_eq!(replicate_euler(&[10.0, 0.0, 0.0], &c), None);
+        // Only the unit changes: scaled, on any axes.
+        let c = change((false, b"xyz"), (true, b"xyz"));
+        let out = replicate_euler(&[PI, PI / 2.0, 0.0], &c).unwrap();
+        assert!((out[0] - 180.0).abs() < 1e-12 && (out[1] - 90.0).abs() < 1e-12);
+    }
+
+    fn compiler(attrs: &str) -> Vec<Node> {
+        let m = Model::from_xml_str(&format!("<mujoco><compiler {attrs}/></mujoco>")).unwrap();
+        settings::own_sections(&m)
+    }
+
+    #[test]
+    fn only_values_both_sides_set_and_differ_are_converted() {
+        let between = |a: &str, b: &str| Change::between(&compiler(a), &compiler(b));
+        assert!(between("", r#"angle="radian""#).unwrap().is_none());
+        assert!(between(r#"angle="radian""#, "").unwrap().is_none());
+        assert!(between(r#"angle="radian""#, r#"angle="radian""#).unwrap().is_none());
+        let c = between(r#"angle="radian""#, r#"angle="degree""#).unwrap().unwrap();
+        assert!((c.scale() - PI / 180.0).abs() < 1e-15 && !c.seq_changes());
+        let c = between(r#"eulerseq="XYZ""#, r#"angle="radian" eulerseq="zyx""#).unwrap().unwrap();
+        assert!(c.seq_changes() && !c.unit_changes() && !c.from.degrees());
+        // A sequence MuJoCo refuses cannot be converted.
+        let e = between(r#"eulerseq="xyz""#, r#"eulerseq="xyq""#).unwrap_err();
+        assert!(matches!(e, ErrorKind::AttributeConflict { attribute: "eulerseq", .. }));
+    }
+}
