@@ -45,7 +45,8 @@ impl Rng {
 }
 
 /// A child model in `unit` and `seq`: every element kind whose numbers the compiler
-/// reads by `angle` or `eulerseq`, own or from default classes.
+/// reads by `angle` or `eulerseq`, own or from default classes (a `<flexcomp>`'s
+/// orientation places the bodies it makes).
 fn child_xml(seed: u64, unit: &str, seq: &str) -> String {
     let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let range =
@@ -84,6 +85,7 @@ fn child_xml(seed: u64, unit: &str, seq: &str) -> String {
       </body>
       <body name="b3" pos="0 0 -0.3"><joint name="ball1" class="ball"/><geom name="g4" size="0.1"/></body>
     </body>
+    <flexcomp name="fc" type="grid" count="2 2 1" spacing="0.1 0.1 0.1" pos="0 0 2" euler="{fc}" dim="2" radius="0.01" mass="1"/>
     <replicate count="3" euler="{rep} 0 0">
       <body name="r" pos="1 0 0"><geom name="rg" size="0.05"/></body>
     </replicate>
@@ -109,6 +111,7 @@ fn child_xml(seed: u64, unit: &str, seq: &str) -> String {
         b2 = r.euler(unit),
         ref2 = format!("{:.5}", r.angle(unit, 1.0)),
         rep = format!("{:.5}", r.angle(unit, 1.0)),
+        fc = r.euler(unit),
     )
 }
 
