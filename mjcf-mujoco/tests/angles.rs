@@ -44,6 +44,11 @@ impl Rng {
     }
 }
 
+/// A number with 5 decimals.
+fn n5(x: f64) -> String {
+    format!("{x:.5}")
+}
+
 /// A child model in `unit` and `seq`: every element kind whose numbers the compiler
 /// reads by `angle` or `eulerseq`, own or from default classes (a `<flexcomp>`'s
 /// orientation places the bodies it makes).
@@ -92,25 +97,25 @@ fn child_xml(seed: u64, unit: &str, seq: &str) -> String {
   </worldbody>
 </mujoco>"#,
         root_range = range(&mut r),
-        springref = format!("{:.5}", r.angle(unit, 1.0)),
+        springref = n5(r.angle(unit, 1.0)),
         class_geom = r.euler(unit),
-        ball = format!("{:.5}", r.angle(unit, 1.5).abs() + 0.1),
+        ball = n5(r.angle(unit, 1.5).abs() + 0.1),
         class_site = r.axisangle(unit),
         class_cam = r.euler(unit),
         b0 = r.euler(unit),
         inertial = r.euler(unit),
-        ref0 = format!("{:.5}", r.angle(unit, 1.0)),
+        ref0 = n5(r.angle(unit, 1.0)),
         g1 = r.axisangle(unit),
         s0 = r.euler(unit),
         c1 = r.axisangle(unit),
         f0 = r.euler(unit),
         b1 = r.axisangle(unit),
         h1_range = range(&mut r),
-        ref1 = format!("{:.5}", r.angle(unit, 1.0)),
+        ref1 = n5(r.angle(unit, 1.0)),
         g2 = r.euler(unit),
         b2 = r.euler(unit),
-        ref2 = format!("{:.5}", r.angle(unit, 1.0)),
-        rep = format!("{:.5}", r.angle(unit, 1.0)),
+        ref2 = n5(r.angle(unit, 1.0)),
+        rep = n5(r.angle(unit, 1.0)),
         fc = r.euler(unit),
     )
 }
@@ -213,10 +218,13 @@ fn assert_same(alone: &Judged, composed: &Judged, prefix: &str, what: &str) -> u
     compared
 }
 
+/// A compiler's `angle` and `eulerseq`.
+type Conventions = (&'static str, &'static str);
+
 /// The (child, host) conventions tried: unit and sequence differing, each alone and
 /// both, both ways; sequences of moving, fixed, mixed and repeated axes (the host's
 /// has the axis of the child's first letter, about which the `<replicate>` turns).
-const PAIRS: &[((&str, &str), (&str, &str))] = &[
+const PAIRS: &[(Conventions, Conventions)] = &[
     (("degree", "xyz"), ("radian", "xyz")),
     (("radian", "xyz"), ("degree", "xyz")),
     (("degree", "xyz"), ("degree", "ZYX")),
