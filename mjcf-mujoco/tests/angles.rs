@@ -1,6 +1,6 @@
 //! MuJoCo judges the conversion of angles when models whose `<compiler angle>` or
 //! `<compiler eulerseq>` differ are composed (`attach_to_world`, `attach_in`,
-//! `include_copy`, a `part` attached): every body, geom, site, camera and joint of
+//! `include_copy`, a `part` attached, and the composition saved as a scene): every body, geom, site, camera and joint of
 //! the child compiles in the composed model to what it compiles to in the child's own
 //! file (local poses, inertial frames, joint ranges, `qpos0`, and the spring forces at
 //! `qpos0`, which `springref` sets),
@@ -144,7 +144,21 @@ struct Judged {
 
 fn compile(model: &Model) -> Judged {
     let xml = model.to_xml_string().unwrap();
-    let c = mujoco().compile_xml(&xml, &BTreeMap::new()).unwrap_or_else(|e| panic!("{e}\n{xml}"));
+    judged(mujoco().compile_xml(&xml, &BTreeMap::new()).unwrap_or_else(|e| panic!("{e}\n{xml}")))
+}
+
+/// `model` saved as a scene (each attached model a file of its own, with its own
+/// `<compiler>`, MuJoCo's `<attach>`), compiled.
+fn compile_scene(model: &Model, n: usize) -> Judged {
+    let dir = std::env::temp_dir().join(format!("mjcf-angles-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let saved = model.save_scene(&dir, "scene.xml").unwrap();
+    let c = mujoco().compile_path(saved.path());
+    let _ = std::fs::remove_dir_all(&dir);
+    judged(c.unwrap())
+}
+
+fn judged(c: Compiled) -> Judged {
     let mut physics = Physics::new(&c).unwrap();
     physics.forward().unwrap();
     let qpos0 = physics.qpos().to_vec();
@@ -249,6 +263,9 @@ fn a_child_in_other_angle_conventions_compiles_in_the_host_as_in_its_own_file() 
             let (world, _) = host.attach_to_world(&child).unwrap();
             let composed = compile(&world);
             compared += assert_same(&alone, &composed, "kid/", &what);
+            // Saved as a scene, the converted child is a file of its own.
+            let scene = compile_scene(&world, n);
+            compared += assert_same(&alone, &scene, "kid/", &format!("{what}, scene"));
             // The host's own elements are untouched.
             compared += assert_same(&host_alone, &composed, "", &what);
             // Inside a body, by attach_in.
