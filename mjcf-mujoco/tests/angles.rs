@@ -1,12 +1,12 @@
 //! MuJoCo judges the conversion of angles when models whose `<compiler angle>` or
 //! `<compiler eulerseq>` differ are composed (`attach_to_world`, `attach_in`,
-//! `include_copy`, a `part` attached, and the composition saved as a scene): every body, geom, site, camera and joint of
-//! the child compiles in the composed model to what it compiles to in the child's own
-//! file (local poses, inertial frames, joint ranges, `qpos0`, and the spring forces at
-//! `qpos0`, which `springref` sets),
-//! over generated children in degrees and radians, with every euler sequence kind
-//! (moving axes, fixed axes, mixed, repeated axes), orientations and joint values
-//! in default classes, joint types from classes, and a `<replicate>`.
+//! `include_copy`, a `part` attached, the composition saved as a scene): every body,
+//! geom, site, camera and joint of the child compiles in the composed model to what
+//! it compiles to in the child's own file (local poses, inertial frames, joint
+//! ranges, `qpos0`, and the spring forces at `qpos0`, which `springref` sets), over
+//! generated children in degrees and radians, with every euler sequence kind (moving
+//! axes, fixed axes, mixed, repeated axes), orientations and joint values in default
+//! classes, joint types from classes, a `<flexcomp>` and a `<replicate>`.
 
 mod support;
 
