@@ -236,3 +236,13 @@ fn a_later_edit_of_the_host_s_unit_still_conflicts_with_the_attachment() {
     let err = scene.set_attr(&compiler, "angle", "degree").unwrap_err();
     assert!(matches!(err.kind(), ErrorKind::AttributeConflict { attribute: "angle", .. }), "{err}");
 }
+
+#[test]
+fn a_fleet_shares_the_converted_copy_the_first_attach_holds() {
+    let arena = host(r#"angle="radian""#);
+    let (scene, a) = arena.attach_to_world(&kid()).unwrap();
+    let converted = scene.attached(&a).unwrap().clone();
+    let (scene, b) = scene.attach_to_world(&converted).unwrap();
+    assert!(scene.attached(&b).unwrap().ptr_eq(&converted));
+    assert_eq!(scene.attached(&a).unwrap(), scene.attached(&b).unwrap());
+}

@@ -24,6 +24,11 @@
 //! says the receiving model's value. Where one of them leaves it unset, nothing is
 //! converted: the merged settings take the value that is set, as before.
 //!
+//! Each attach or copy converts anew, in O(size of the incoming model): the held
+//! copies of a fleet attached this way are not shared (nor are the part files a
+//! saved scene writes for them); attaching the converted copy held by the first
+//! attachment shares it, as it needs no conversion.
+//!
 //! # How
 //! - a unit change scales: `euler`, the fourth number of `axisangle`, a limited
 //!   hinge's or ball's `range`, a hinge's `ref` and `springref`;

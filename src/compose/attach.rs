@@ -96,7 +96,9 @@ impl Model {
     /// ball's `range` and a hinge's `ref` and `springref`, set on each joint), so
     /// MuJoCo compiles every element as in the child's own file (decision D16).
     /// Where one side leaves the attribute unset, the merged settings take the other
-    /// side's value and nothing is converted.
+    /// side's value and nothing is converted. Each such attach converts anew
+    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
+    /// the first attach holds ([`Model::attached`]), which is then shared.
     ///
     /// # Examples
     /// ```
