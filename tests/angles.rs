@@ -246,3 +246,24 @@ fn a_fleet_shares_the_converted_copy_the_first_attach_holds() {
     assert!(scene.attached(&b).unwrap().ptr_eq(&converted));
     assert_eq!(scene.attached(&a).unwrap(), scene.attached(&b).unwrap());
 }
+
+#[test]
+fn a_child_whose_unit_comes_from_its_own_attachment_is_converted_with_it() {
+    // The middle model sets no unit; the model attached to it says degrees, so the
+    // middle model's own numbers are degrees too (its merged settings).
+    let mut middle = Model::from_xml_str(
+        r#"<mujoco model="mid"><worldbody><body name="m" euler="0 0 90"/></worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let world = middle.worldbody();
+    middle.attach_mut(&world, &kid()).unwrap();
+    let (scene, a) = host(r#"angle="radian""#).attach_to_world(&middle).unwrap();
+    let half = std::f64::consts::FRAC_PI_2;
+    assert!(close(&floats(&scene, Namespace::Body, "mid/m", "euler"), &[0.0, 0.0, half]));
+    assert!(close(&floats(&scene, Namespace::Body, "mid/kid/b", "euler"), &[0.0, 0.0, half]));
+    // The compiler that set the unit says radians now; the middle one still sets none.
+    let held = scene.attached(&a).unwrap();
+    assert!(held.get(&held.section("compiler").unwrap()).unwrap().attr("angle").is_none());
+    let inner = held.attached("kid").unwrap();
+    assert_eq!(inner.string(&inner.section("compiler").unwrap(), "angle").unwrap(), "radian");
+}

@@ -300,3 +300,25 @@ fn a_child_attached_inside_an_attachment_is_converted_to_the_outermost_conventio
     let n = assert_same(&compile(&child), &compile(&scene), "middle/kid/", "nested");
     assert!(n > 20, "{n}");
 }
+
+#[test]
+#[ignore = "needs MuJoCo (MUJOCO_LIB); run by .ci/run"]
+fn a_model_whose_unit_comes_from_what_it_holds_attached_is_converted_whole() {
+    let child = Model::from_xml_str(&child_xml(3, "degree", "ZYX")).unwrap();
+    // The middle model sets nothing itself: its numbers read as the child's settings
+    // say, which its merged settings take.
+    let mut middle = Model::from_xml_str(
+        r#"<mujoco model="middle"><worldbody>
+        <body name="m" euler="0 30 60"><joint name="mj" range="-45 45"/><geom name="mg" size="0.1"/></body>
+        </worldbody></mujoco>"#,
+    )
+    .unwrap();
+    let world = middle.worldbody();
+    middle.attach_mut(&world, &child).unwrap();
+    let host = Model::from_xml_str(&host_xml("radian", "xYz")).unwrap();
+    let (scene, _) = host.attach_to_world(&middle).unwrap();
+    let composed = compile(&scene);
+    let n = assert_same(&compile(&middle), &composed, "middle/", "middle");
+    assert!(n > 30, "{n}");
+    assert!(assert_same(&compile(&host), &composed, "", "host") > 3);
+}
