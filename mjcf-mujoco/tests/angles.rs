@@ -95,6 +95,7 @@ fn child_xml(seed: u64, unit: &str, seq: &str) -> String {
       <body name="r" pos="1 0 0"><geom name="rg" size="0.05"/></body>
     </replicate>
   </worldbody>
+  <actuator><position name="p0" joint="h0" ctrlrange="-30 30" ctrllimited="true" kp="1"/></actuator>
 </mujoco>"#,
         root_range = range(&mut r),
         springref = n5(r.angle(unit, 1.0)),
@@ -173,6 +174,8 @@ const FIELDS: &[(ObjKind, &[(&str, usize)])] = &[
     (ObjKind::Site, &[("site_pos", 3), ("site_quat", 4)]),
     (ObjKind::Camera, &[("cam_pos", 3), ("cam_quat", 4)]),
     (ObjKind::Joint, &[("jnt_pos", 3), ("jnt_axis", 3), ("jnt_range", 2)]),
+    // Not converted by MuJoCo: a position actuator's ctrlrange on a hinge.
+    (ObjKind::Actuator, &[("actuator_ctrlrange", 2)]),
 ];
 
 /// `x` and `y` agree to 1e-9; quaternions (`quat`) up to their sign, which gives the
