@@ -62,8 +62,19 @@ fn conflicts_are_refused_at_attach_and_at_later_edits() {
     let parent = parent.set_attr(&parent.section("compiler").unwrap(), "angle", "radian").unwrap();
     let child = Model::new("c");
     let child = child.set_attr(&child.section("compiler").unwrap(), "angle", "degree").unwrap();
-    let err = parent.attach_to_world(&child).unwrap_err();
-    assert!(matches!(err.kind(), ErrorKind::AttributeConflict { attribute: "angle", .. }), "{err}");
+    // A unit that differs is converted (decision D17, `tests/angles.rs`); another
+    // compiler setting must agree.
+    let (converted, a) = parent.attach_to_world(&child).unwrap();
+    let held = converted.attached(&a).unwrap();
+    assert_eq!(held.string(&held.section("compiler").unwrap(), "angle").unwrap(), "radian");
+    let strict =
+        parent.set_attr(&parent.section("compiler").unwrap(), "autolimits", false).unwrap();
+    let loose = child.set_attr(&child.section("compiler").unwrap(), "autolimits", true).unwrap();
+    let err = strict.attach_to_world(&loose).unwrap_err();
+    assert!(
+        matches!(err.kind(), ErrorKind::AttributeConflict { attribute: "autolimits", .. }),
+        "{err}"
+    );
     // Attached first, then a conflicting edit on either side is refused.
     let plain = Model::new("p");
     let (scene, _) = plain.attach_to_world(&child).unwrap();

@@ -200,10 +200,13 @@ fn a_fleet_built_in_place_folds_settings_as_the_functional_one() {
     let robot_a = robot_a.set_attr(&robot_a.section("option").unwrap(), "timestep", 0.002).unwrap();
     let robot_a =
         robot_a.set_attr(&robot_a.section("compiler").unwrap(), "angle", "radian").unwrap();
+    let robot_a =
+        robot_a.set_attr(&robot_a.section("compiler").unwrap(), "autolimits", true).unwrap();
     let robot_b = robot("b");
     let robot_b = robot_b.set_attr(&robot_b.section("size").unwrap(), "memory", "1M").unwrap();
     let clash = robot("c");
-    let clash = clash.set_attr(&clash.section("compiler").unwrap(), "angle", "degree").unwrap();
+    // (A unit that differs is converted, decision D17; `autolimits` must agree.)
+    let clash = clash.set_attr(&clash.section("compiler").unwrap(), "autolimits", false).unwrap();
     let mut m = Model::new("arena");
     let mut f = m.clone();
     // a, a, a (the fold of a's settings is known to change nothing after the first),

@@ -1,7 +1,9 @@
 //! `attach`, `detach`, scope renames, and edits that reach into attachments.
 //!
 //! An attachment is a frame node in the parent's body tree that holds the child
-//! `Model` value itself (shared, never copied or rewritten) and its scope name. Every
+//! `Model` value itself (shared, never copied or rewritten, except a child whose
+//! compiler `angle` or `eulerseq` differs from the parent's, which is held converted
+//! into the parent's conventions: decision D17) and its scope name. Every
 //! position-dependent thing (prefixes, merged settings, default-class names, auto
 //! names) is derived by the writer, so detaching is removing that node: the parent
 //! comes back exactly as it was before the attach.
@@ -25,11 +27,13 @@
 //! | a key longer than the model (an attached model's key held to its own model with `merge_keyframes`, or a joint removed) | `check_with(&options)`: `KeyLength` | shorten the key |
 //! | a removed element still referred to | `check()`: `RemovedReference`, `MissingRequired` | [`Model::references_to`] before removing |
 //! | a global setting that disagrees between the models | `attach` refuses: `ErrorKind::AttributeConflict` | make the settings agree |
+//! | the compiler's `angle` (degrees or radians) or `eulerseq` set differently in both models | `attach` converts the child's orientations and joint values into the parent's conventions (decision D17, `compose::angles`); only a `<replicate>` turning about several axes whose sequence changes, or a sequence that is not three of `xyzXYZ`, is refused (`ErrorKind::AttributeConflict`) | give the replicate one axis, or both models one sequence |
 //! | names: each attached model's names get a unique scope prefix | never a clash (`robot`, `robot_1`, ...) | — |
 //!
 //! What MuJoCo compiles but likely not as meant (an attached model's key written
 //! without `merge_keyframes`) is [`Model::advice`], not `check()`.
 
+use super::angles;
 use crate::error::ValueError;
 use crate::error::{EditError, ErrorKind};
 use crate::model::follow;
@@ -81,7 +85,20 @@ impl Model {
     /// - [`ErrorKind::InvalidValue`] (with [`ValueError::SlashInIdentifier`]): the
     ///   child's model name holds a `/`;
     /// - [`ErrorKind::AttributeConflict`]: a global setting of the child (or of what
-    ///   is attached to it) disagrees with this model's merged settings.
+    ///   is attached to it) disagrees with this model's merged settings; or the
+    ///   child's `eulerseq` cannot be converted (a `<replicate>` turning about several
+    ///   axes, a sequence that is not three of `xyzXYZ`).
+    ///
+    /// A child whose compiler `angle` or `eulerseq` is set and differs from this
+    /// model's (merged, over everything attached) is not refused: the model held by
+    /// the attachment is the child converted into this model's conventions (its
+    /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
+    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint), so
+    /// MuJoCo compiles every element as in the child's own file (decision D17).
+    /// Where one side leaves the attribute unset, the merged settings take the other
+    /// side's value and nothing is converted. Each such attach converts anew
+    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
+    /// the first attach holds ([`Model::attached`]), which is then shared.
     ///
     /// # Examples
     /// ```
@@ -272,6 +289,12 @@ impl Model {
         base: &str,
         placement: Placement,
     ) -> Result<Attachment, EditError> {
+        // The child in the conventions (angle unit, euler sequence) in force for the
+        // whole composition, which every model in it shares (`compose::angles`).
+        let ours = settings::merged(self).map_err(|k| EditError::new(k, String::new()))?;
+        let converted =
+            angles::into_conventions(&ours, child).map_err(|k| EditError::new(k, String::new()))?;
+        let child = converted.as_ref().unwrap_or(child);
         if at.scope().is_empty() {
             // In place: every check comes first, then the edit copies only what other
             // versions share (nothing, when `self` owns the path alone).

@@ -30,11 +30,16 @@ struct Copier<'a> {
 impl Model {
     /// Copies `other`'s content into this model (dm_control's `include_copy`).
     ///
-    /// Global settings merge by the schema's rules and a conflicting value is an error;
+    /// Global settings merge by the schema's rules and a conflicting value is an error,
+    /// except the compiler's `angle` and `eulerseq`: where both models set one and the
+    /// values differ, `other`'s orientations and joint values are converted into this
+    /// model's conventions (see decision D17), so each element compiles as it did in
+    /// its own file;
     /// every repeated element of `other` is copied (fresh ids) after this model's own;
     /// references between copied elements point at the copies. With
     /// `override_attributes`, root attributes and settings are overwritten instead of
-    /// checked, and named elements merge into same-named elements of this model.
+    /// checked (the source's `angle` and `eulerseq` too, so its numbers are copied as
+    /// they are), and named elements merge into same-named elements of this model.
     ///
     /// The root's `model` attribute is replaced, as in the reference, but the model's
     /// [`name`](Model::name) (the one that scopes it when attached) stays.
@@ -55,7 +60,8 @@ impl Model {
     /// - [`ErrorKind::AttributeConflict`]: without `override_attributes`, an
     ///   attribute of a merged element (a global setting, a root default-class
     ///   default) that must agree does not; or the result's settings disagree with
-    ///   an attached model's;
+    ///   an attached model's; or `other`'s `eulerseq` cannot be converted (a
+    ///   `<replicate>` turning about several axes);
     /// - [`ErrorKind::DuplicateIdentifier`]: a copied element's name is taken, or
     ///   (a name read from MJCF, `robot/x`) starts with the scope of an attachment of
     ///   this model and a `/`, so that the attachment's names would meet it;
@@ -87,6 +93,19 @@ impl Model {
         if !other.index.scopes.is_empty() {
             return Err(EditError::new(ErrorKind::SourceHasAttachments, String::new()));
         }
+        // Without `override_attributes`, the source in this model's conventions
+        // (angle unit, euler sequence) where both set them and they differ
+        // (`compose::angles`); with it, the source's settings replace ours, so its
+        // numbers keep their meaning as they are.
+        let converted = if override_attributes {
+            None
+        } else {
+            let ours = crate::model::settings::merged(self)
+                .map_err(|k| EditError::new(k, String::new()))?;
+            super::angles::into_conventions(&ours, other)
+                .map_err(|k| EditError::new(k, String::new()))?
+        };
+        let other = converted.as_ref().unwrap_or(other);
         let mut c = Copier { dest: self, override_attributes, ids: HashMap::new() };
         let mut path = String::new();
         let root = c

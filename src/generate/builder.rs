@@ -154,6 +154,14 @@ impl Builder {
                     || m.element(&place)
                         .and_then(|e| e.parent())
                         .is_some_and(|p| p.kind().is(Role::Worldbody)));
+        // Models in other angle conventions are attached converted (decision D17);
+        // the generators skip such an attach, as when it was refused, so that a seed
+        // keeps giving the models it gave.
+        let ours = crate::model::settings::merged(m).ok()?;
+        let theirs = crate::model::settings::merged(child).ok()?;
+        if crate::compose::angles::Change::between(&ours, &theirs).ok()?.is_some() {
+            return None;
+        }
         let (mut next, a) = m.attach(&place, child).ok()?;
         let frame_loc = a.frame().clone();
         let inertial = || {

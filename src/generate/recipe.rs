@@ -300,7 +300,9 @@ pub struct Settings {
     /// attached); unused by [`Palette::Simulates`], which keeps MuJoCo's 0.002.
     pub timestep: Option<u8>,
     /// `compiler/@angle`: `radian` (true) or `degree` (false); two models that set
-    /// it differently cannot be attached to one another (the attach is skipped).
+    /// it differently are not attached to one another (the attach is skipped, as
+    /// before `attach` converted such a child, decision D17, so that a seed keeps
+    /// giving the same models).
     pub radian: Option<bool>,
 }
 

@@ -72,6 +72,7 @@ fn from_columns(x: [f64; 3], y: [f64; 3], z: [f64; 3]) -> [f64; 4] {
 
 /// How the compiler reads orientations: angles in degrees or radians, and the euler
 /// sequence.
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Angles {
     degrees: bool,
     seq: [u8; 3],
@@ -92,6 +93,21 @@ impl Angles {
                 .and_then(|s| <[u8; 3]>::try_from(s.as_bytes()).ok())
                 .unwrap_or(*b"xyz"),
         }
+    }
+
+    /// Angles in degrees (`true`) or radians, read in the sequence `seq`.
+    pub(crate) fn new(degrees: bool, seq: [u8; 3]) -> Angles {
+        Angles { degrees, seq }
+    }
+
+    /// Whether angles are in degrees.
+    pub(crate) fn degrees(&self) -> bool {
+        self.degrees
+    }
+
+    /// The euler sequence.
+    pub(crate) fn seq(&self) -> [u8; 3] {
+        self.seq
     }
 
     pub(crate) fn radians(&self, a: f64) -> f64 {
@@ -124,7 +140,7 @@ pub(crate) fn local_pose(node: &Node, angles: &Angles) -> Pose {
     } else if let Some(a) = floats(node, "axisangle").filter(|a| a.len() == 4) {
         axis_angle([a[0], a[1], a[2]], angles.radians(a[3]))
     } else if let Some(e) = floats(node, "euler").filter(|e| e.len() == 3) {
-        euler(angles, [e[0], e[1], e[2]])
+        euler_rotation(angles, [e[0], e[1], e[2]])
     } else if let Some(a) = floats(node, "xyaxes").filter(|a| a.len() == 6) {
         let x = unit([a[0], a[1], a[2]]);
         let y0 = [a[3], a[4], a[5]];
@@ -139,8 +155,9 @@ pub(crate) fn local_pose(node: &Node, angles: &Angles) -> Pose {
     Pose { pos, quat }
 }
 
-/// The rotation of euler angles `e`, in the compiler's sequence and angle unit.
-fn euler(angles: &Angles, e: [f64; 3]) -> [f64; 4] {
+/// The rotation of euler angles `e`, in the compiler's sequence and angle unit, as
+/// MuJoCo composes it (`ResolveOrientation`).
+pub(crate) fn euler_rotation(angles: &Angles, e: [f64; 3]) -> [f64; 4] {
     let mut q = [1.0, 0.0, 0.0, 0.0];
     for (i, c) in angles.seq.iter().enumerate() {
         let axis = match c.to_ascii_lowercase() {
@@ -191,6 +208,6 @@ pub(crate) fn replicate_step(node: &Node, angles: &Angles) -> Pose {
         .map_or([0.0; 3], |p| [0, 1, 2].map(|i| p.get(i).copied().unwrap_or(0.0)));
     let quat = floats(node, "euler")
         .filter(|e| e.len() == 3)
-        .map_or(IDENTITY.quat, |e| euler(angles, [e[0], e[1], e[2]]));
+        .map_or(IDENTITY.quat, |e| euler_rotation(angles, [e[0], e[1], e[2]]));
     Pose { pos, quat }
 }

@@ -5,6 +5,10 @@
 //! attachment's merged values, in attach order, depth first. Only explicitly set values
 //! take part; `min`, `max` and `max_bytes` combine, `replace` attributes (the compiler's
 //! folders) are never taken from an attachment, and every other attribute must agree.
+//! (The compiler's `angle` and `eulerseq` agree by construction where both models set
+//! them: `attach` and `include_copy` convert an incoming model into the receiving
+//! model's conventions first, `compose::angles`; an edit that makes them disagree
+//! afterwards is refused here, as any conflict.)
 //!
 //! The fold is derived, never edited: each model value caches its result (shared by
 //! the versions that cannot differ in it), every operation that can change the fold

@@ -33,8 +33,10 @@
 //! with the same names, counts, numbers and options, except:
 //! - **compiler settings**: each file is compiled with its own `<compiler>`; the
 //!   composed text has one, the merged one, for every element (a child that sets
-//!   `angle="radian"` makes the whole composed text radians, the parent's and other
-//!   children's elements included; in the scene only that child's file is);
+//!   `angle="radian"` under a parent that sets no `angle` makes the whole composed
+//!   text radians, the parent's and other children's elements included; in the scene
+//!   only that child's file is. Where both set it differently, the child was
+//!   converted when attached (decision D17) and both compile the same);
 //! - **keys of attached models**: MuJoCo lays out a part's keys over the whole
 //!   model at its own joints (`qpos0` elsewhere); the composed text (without
 //!   `merge_keyframes`) writes them as they are, which MuJoCo pads at the end. The
