@@ -109,7 +109,7 @@ class Problem:
 
     @property
     def path(self) -> str:
-        """The path of the element with the problem."""
+        """The element with the problem as the writer names it (`robot_1/torso`)."""
     @property
     def element(self) -> Element:
         """The element with the problem."""

@@ -107,7 +107,8 @@ impl PyElement {
         Ok(self.element_ref()?.parent().map(|p| PyElement::new(&self.model, p.loc())))
     }
 
-    /// Same element of equal models.
+    /// The same element (same locator) of equal models; elements of models built
+    /// separately are different elements.
     fn __eq__(&self, other: PyRef<'_, PyElement>) -> bool {
         self.loc == other.loc && self.model == other.model
     }
@@ -178,7 +179,7 @@ impl PyAttachment {
 }
 
 /// A problem `Model.check()` found: `str(problem)` says what and where; `path` is
-/// the element's path, `element` the element.
+/// the element as the writer names it (`robot_1/torso`), `element` the element.
 #[pyclass(module = "mjcf", name = "Problem", frozen)]
 #[derive(Clone, Debug)]
 pub(crate) struct PyProblem {
@@ -189,7 +190,8 @@ pub(crate) struct PyProblem {
 
 #[pymethods]
 impl PyProblem {
-    /// The path of the element with the problem (`worldbody/body[name=torso]/geom[2]`).
+    /// The element with the problem as the writer names it (`robot_1/torso`,
+    /// `//unnamed_geom_3`), or its scope prefix and tag if it has no namespace.
     #[getter]
     fn path(&self) -> &str {
         &self.path

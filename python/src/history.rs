@@ -75,7 +75,7 @@ impl PyHistory {
         self.inner.position()
     }
 
-    /// The label each version was pushed with (`""` for the first), oldest first.
+    /// The label each version was pushed with (`"start"` for the first), oldest first.
     fn labels(&self) -> Vec<String> {
         (0..self.inner.len()).filter_map(|i| self.inner.label(i).map(str::to_string)).collect()
     }
