@@ -33,19 +33,23 @@ class MjcfError(Exception):
     """The base of every error this package raises for a model it cannot read, edit, write or save."""
 
 class ReadError(MjcfError):
-    """MJCF text or files that cannot be read; `file`, `line` and `column` say where (each may be None)."""
+    """MJCF text or files that cannot be read; `file`, `line` and `column` say where, `kind` names the error's kind."""
 
     file: Optional[str]
     line: Optional[int]
     column: Optional[int]
+    kind: str
 
 class EditError(MjcfError):
-    """An edit or a look-up that cannot be made; `path` is the element it was aimed at. The model is unchanged."""
+    """An edit or a look-up that cannot be made; `path` is the element it was aimed at, `kind` the error's kind."""
 
     path: str
+    kind: str
 
 class WriteError(MjcfError):
     """A model that cannot be written as MJCF text (a required reference whose target was removed, ...)."""
+
+    kind: str
 
 class SaveError(MjcfError):
     """A model that cannot be saved or exported to files; `path` is the file or folder concerned, if any."""

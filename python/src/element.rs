@@ -157,7 +157,8 @@ impl PyAttachment {
         PyElement::new(&self.model, self.attachment.frame().clone())
     }
 
-    /// The scope: the prefix of the attached model's names (`"robot"`, `"robot_1"`).
+    /// The scope path at attach time, the prefix of the attached model's names
+    /// (`"robot"`, `"robot_1"`; `"arena/robot"` inside an attached model).
     #[getter]
     fn scope(&self) -> &str {
         self.attachment.scope()

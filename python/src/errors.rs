@@ -14,19 +14,19 @@ create_exception!(
     mjcf,
     ReadError,
     MjcfError,
-    "MJCF text or files that cannot be read; `file`, `line` and `column` say where (each may be None)."
+    "MJCF text or files that cannot be read; `file`, `line` and `column` say where (each may be None), `kind` names the crate's ErrorKind (`\"InvalidChild\"`)."
 );
 create_exception!(
     mjcf,
     EditError,
     MjcfError,
-    "An edit or a look-up that cannot be made; `path` is the element it was aimed at. The model is unchanged."
+    "An edit or a look-up that cannot be made; `path` is the element it was aimed at, `kind` names the crate's ErrorKind (`\"UnknownName\"`). The model is unchanged."
 );
 create_exception!(
     mjcf,
     WriteError,
     MjcfError,
-    "A model that cannot be written as MJCF text (a required reference whose target was removed, ...)."
+    "A model that cannot be written as MJCF text (a required reference whose target was removed, ...); `kind` names the crate's WriteError variant."
 );
 create_exception!(
     mjcf,
@@ -43,11 +43,15 @@ pub(crate) fn register(py: Python<'_>, m: &Bound<'_, PyModule>) -> PyResult<()> 
     for name in ["file", "line", "column"] {
         read.setattr(name, py.None())?;
     }
+    read.setattr("kind", "")?;
     m.add("ReadError", read)?;
     let edit = py.get_type::<EditError>();
     edit.setattr("path", "")?;
+    edit.setattr("kind", "")?;
     m.add("EditError", edit)?;
-    m.add("WriteError", py.get_type::<WriteError>())?;
+    let write = py.get_type::<WriteError>();
+    write.setattr("kind", "")?;
+    m.add("WriteError", write)?;
     let save = py.get_type::<SaveError>();
     save.setattr("path", py.None())?;
     m.add("SaveError", save)?;
@@ -64,19 +68,31 @@ pub(crate) fn read(py: Python<'_>, e: &mjcf::ReadError) -> PyErr {
     let _ = value.setattr("file", file);
     let _ = value.setattr("line", pos.map(|p| p.line));
     let _ = value.setattr("column", pos.map(|p| p.column));
+    let _ = value.setattr("kind", kind_name(e.kind()));
     err
+}
+
+/// The name of an error's kind: its variant's name (`"UnknownName"`,
+/// `"DuplicateIdentifier"`), from its derived `Debug` text.
+fn kind_name(kind: &impl std::fmt::Debug) -> String {
+    let debug = format!("{kind:?}");
+    debug.split(|c: char| !c.is_alphanumeric()).next().unwrap_or_default().to_string()
 }
 
 /// An `EditError` with the crate's message and the element path.
 pub(crate) fn edit(py: Python<'_>, e: &mjcf::EditError) -> PyErr {
     let err = EditError::new_err(e.to_string());
-    let _ = err.value(py).setattr("path", e.path());
+    let value = err.value(py);
+    let _ = value.setattr("path", e.path());
+    let _ = value.setattr("kind", kind_name(e.kind()));
     err
 }
 
-/// A `WriteError` with the crate's message.
-pub(crate) fn write(e: &mjcf::WriteError) -> PyErr {
-    WriteError::new_err(e.to_string())
+/// A `WriteError` with the crate's message and kind.
+pub(crate) fn write(py: Python<'_>, e: &mjcf::WriteError) -> PyErr {
+    let err = WriteError::new_err(e.to_string());
+    let _ = err.value(py).setattr("kind", kind_name(e));
+    err
 }
 
 /// A `SaveError` with a message and the path concerned.
@@ -105,7 +121,7 @@ pub(crate) fn save(py: Python<'_>, e: &mjcf::SaveError) -> PyErr {
 pub(crate) fn export(py: Python<'_>, e: &mjcf::ExportError) -> PyErr {
     use mjcf::ExportError as X;
     match e {
-        X::Write(w) => write(w),
+        X::Write(w) => write(py, w),
         X::SymlinkedFolder { path } | X::Io { path, .. } => {
             save_with_path(py, e.to_string(), Some(path))
         }

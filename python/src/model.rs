@@ -122,7 +122,7 @@ impl PyModel {
         filename_with_hash: Option<bool>,
     ) -> PyResult<String> {
         let o = convert::write_options(precision, zero_threshold, pretty_print, filename_with_hash);
-        py.detach(|| self.inner.to_xml_string_with(&o)).map_err(|e| errors::write(&e))
+        py.detach(|| self.inner.to_xml_string_with(&o)).map_err(|e| errors::write(py, &e))
     }
 
     /// The files `to_xml()`'s text names, by the names it gives them, as bytes:
@@ -138,7 +138,7 @@ impl PyModel {
         filename_with_hash: Option<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let o = convert::write_options(precision, zero_threshold, pretty_print, filename_with_hash);
-        let files = py.detach(|| self.inner.assets(&o)).map_err(|e| errors::write(&e))?;
+        let files = py.detach(|| self.inner.assets(&o)).map_err(|e| errors::write(py, &e))?;
         let out = PyDict::new(py);
         for (name, file) in files {
             out.set_item(name, PyBytes::new(py, file.contents()))?;
