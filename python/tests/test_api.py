@@ -295,3 +295,11 @@ def test_every_public_name_has_a_docstring():
         for attr, value in vars(obj).items():
             if not attr.startswith("_") and callable(value) or isinstance(value, property):
                 assert getattr(obj, attr).__doc__, f"{name}.{attr}"
+
+
+def test_the_readme_example_runs(repo):
+    text = (repo / "python/README.md").read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    namespace = {}
+    exec(compile(code, "python/README.md", "exec"), namespace)
+    assert namespace["model"].nbody == 1 + 2 * 2  # the world, two frames with a torso each
