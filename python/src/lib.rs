@@ -1,7 +1,7 @@
 //! The Python package `mjcf`: MuJoCo MJCF models as persistent values, over the
 //! `mjcf` crate.
 //!
-//! Every Python object here is a thin handle on a crate value: a [`model::PyModel`]
+//! Every Python object here is a thin handle on a crate value: a `model::PyModel`
 //! holds an `mjcf::Model` (a cheap, structure-sharing clone), an element handle holds
 //! a model and the element's locator, so a handle stays valid for the model value it
 //! was taken from whatever edits follow. Nothing is mutated in place but a
