@@ -309,3 +309,29 @@ def test_the_readme_example_runs(repo):
     namespace = {}
     exec(compile(code, "python/README.md", "exec"), namespace)
     assert namespace["model"].nbody == 1 + 2 * 2  # the world, two frames with a torso each
+
+
+def test_bad_inputs_raise_typed_errors_and_leave_models_unchanged():
+    a, other = arena(), arena()
+    xml = a.to_xml()
+    # An element of another model value (built separately) is not in this one.
+    with pytest.raises(mjcf.EditError, match="is not in this model") as e:
+        a.set(other.lookup("geom", "floor"), size=[1, 1, 1])
+    assert e.value.kind == "StaleLocator"
+    with pytest.raises(mjcf.EditError, match="cannot be written in XML"):
+        mjcf.Model("bad\x01name")
+    with pytest.raises(mjcf.EditError, match="cannot be written in XML"):
+        a.with_name("bad\x01name")
+    with pytest.raises(mjcf.EditError, match="invalid value"):
+        a.set(a.lookup("geom", "floor"), type="plnae")
+    with pytest.raises(mjcf.EditError, match="invalid scope path"):
+        a.attached("")
+    with pytest.raises(TypeError):
+        a.detach(123)
+    with pytest.raises(TypeError):
+        a.add("worldbody", "geom")
+    with pytest.raises(TypeError):
+        mjcf.Model.from_xml(xml, {1: b""})
+    with pytest.raises(OverflowError):
+        mjcf.History(a).go_to(-1)
+    assert a.to_xml() == xml
