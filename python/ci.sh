@@ -15,8 +15,11 @@ mujoco_version="$(cat mjcf-mujoco/MUJOCO_VERSION)"
 venv="${MJCF_PYTHON_VENV:-target/python-venv}"
 rm -rf "$venv"
 python3 -m venv "$venv"
+start=$SECONDS
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     ./python "mujoco==$mujoco_version" "pytest==9.2.0" "mypy==2.4.1"
+echo "python: venv, wheel built and installed in $((SECONDS - start)) s"
 "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
 # From outside the checkout, so that only the installed package is found.
 (cd "$venv" && bin/python -m mypy.stubtest mjcf)
+echo "python: done in $((SECONDS - start)) s"

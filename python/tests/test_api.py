@@ -59,6 +59,10 @@ def test_element_reads_tag_name_attributes_and_children():
         floor["pos"]
     assert [c.tag for c in m.worldbody().children()] == ["geom", "site"]
     assert floor.parent() == m.worldbody() and m.root().parent() is None
+    with pytest.raises(TypeError):
+        floor["size"] = [1, 1, 1]  # read-only: edits go through the model
+    with pytest.raises(AttributeError):
+        floor.tag = "site"
 
 
 def test_attribute_values_from_numbers_strings_bools_and_sequences():
