@@ -339,3 +339,45 @@ def test_bad_inputs_raise_typed_errors_and_leave_models_unchanged():
     with pytest.raises(OverflowError):
         mjcf.History(a).go_to(-1)
     assert a.to_xml() == xml
+
+
+def _runs_beside(call):
+    """Whether another Python thread ran in the middle half of `call()`: it can only
+    if the call releases the GIL (the thread wakes every millisecond)."""
+    import time
+
+    stamps, stop = [], threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            stamps.append(time.perf_counter())
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=tick)
+    thread.start()
+    try:
+        time.sleep(0.01)
+        t0 = time.perf_counter()
+        call()
+        t1 = time.perf_counter()
+    finally:
+        stop.set()
+        thread.join()
+    lo, hi = t0 + 0.25 * (t1 - t0), t0 + 0.75 * (t1 - t0)
+    return sum(lo < s < hi for s in stamps), t1 - t0
+
+
+def test_reading_and_writing_release_the_gil(repo):
+    robot = mjcf.Model.from_path(repo / "examples/models/quadruped.xml")
+    m = mjcf.Model("many")
+    for _ in range(4000):
+        m, _ = m.attach(m.worldbody(), robot)
+    xml = m.to_xml()  # about 17 MB
+    ticks, seconds = _runs_beside(lambda: m.to_xml())
+    assert ticks > 0, f"no tick in the middle of a {seconds:.3f} s write"
+    ticks, seconds = _runs_beside(lambda: mjcf.Model.from_xml(xml))
+    assert ticks > 0, f"no tick in the middle of a {seconds:.3f} s read"
+    # A native call that holds the GIL (a list built and sorted in C) lets no tick
+    # in: the probe tells the two apart.
+    ticks, seconds = _runs_beside(lambda: sorted(range(3_000_000), reverse=True))
+    assert ticks == 0, f"{ticks} ticks in {seconds:.3f} s while the GIL was held"
