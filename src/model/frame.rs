@@ -74,15 +74,19 @@ pub(crate) fn placed_frame_attrs(
     // the model's root class.
     let class = super::layout::class_of(site).or_else(|| nearest_childclass(model, path));
     let class = class.or_else(|| super::layout::root_class(model));
-    if own("pos").is_none() {
-        if let Some(v) = super::layout::effective(model, site, class, "pos") {
+    let need_pos = own("pos").is_none();
+    let need_orientation = ORIENTATIONS.iter().all(|n| own(n).is_none());
+    if need_pos || need_orientation {
+        // The class chain walked once (each step finds a node by its id), not once
+        // per attribute asked of it.
+        let defaults: Vec<&Node> =
+            super::layout::class_defaults(model, site.kind(), class).collect();
+        let given = |name: &str| defaults.iter().find_map(|d| d.attr(d.kind().attr_index(name)?));
+        if let Some(v) = given("pos").filter(|_| need_pos) {
             set(&mut attrs, "pos", v.clone());
         }
-    }
-    if ORIENTATIONS.iter().all(|n| own(n).is_none()) {
-        if let Some((name, v)) = ORIENTATIONS
-            .iter()
-            .find_map(|n| Some((*n, super::layout::effective(model, site, class, n)?)))
+        if let Some((name, v)) =
+            ORIENTATIONS.iter().find_map(|n| Some((*n, given(n)?))).filter(|_| need_orientation)
         {
             set(&mut attrs, name, v.clone());
         }

@@ -372,14 +372,24 @@ pub(crate) fn class_defaults<'m>(
     class: Option<ElementId>,
 ) -> impl Iterator<Item = &'m Node> + 'm {
     let tag = if kind.is(Role::Tendon) { "tendon" } else { kind.tag() };
+    // The root class, where most chains end (and most start), is found without a
+    // lookup by id (which walks the index up and the tree down).
+    let root = model.root.child_of_kind(ElementKind::DEFAULT);
+    let by_id = move |id: ElementId| match root {
+        Some(r) if r.id() == id => Some(r),
+        _ => model.node_by_id(id),
+    };
     let classes = std::iter::successors(class, move |id| {
+        if root.is_some_and(|r| r.id() == *id) {
+            return None; // the root class is outermost
+        }
         model
             .index
             .parent(*id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)))
+            .filter(|p| by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)))
     });
     classes.filter_map(move |id| {
-        let class_node = model.node_by_id(id)?;
+        let class_node = by_id(id)?;
         class_node.kind().child(tag).and_then(|k| class_node.child_of_kind(k))
     })
 }
