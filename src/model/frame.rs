@@ -55,7 +55,12 @@ pub(crate) fn placed_frame_attrs(
         }
     };
     let mut attrs = frame_attrs(site, body_kind);
-    let own = |name: &str| site.kind().attr_index(name).and_then(|i| site.attr(i));
+    // By the attributes set (a handful), not by a search of the schema's names.
+    fn set_on<'n>(node: &'n Node, name: &str) -> Option<&'n Value> {
+        let kind = node.kind();
+        node.attrs().iter().find(|(i, _)| kind.attr(*i as usize).name == name).map(|(_, v)| v)
+    }
+    let own = |name: &str| set_on(site, name);
     if let Some(ft) = own("fromto").and_then(Value::as_floats).filter(|f| f.len() == 6) {
         let mid: Vec<f64> = (0..3).map(|i| (ft[i] + ft[i + 3]) / 2.0).collect();
         // MuJoCo's z axis points from `to` back to `from`.
@@ -81,7 +86,7 @@ pub(crate) fn placed_frame_attrs(
         // per attribute asked of it.
         let defaults: Vec<&Node> =
             super::layout::class_defaults(model, site.kind(), class).collect();
-        let given = |name: &str| defaults.iter().find_map(|d| d.attr(d.kind().attr_index(name)?));
+        let given = |name: &str| defaults.iter().find_map(|d| set_on(d, name));
         if let Some(v) = given("pos").filter(|_| need_pos) {
             set(&mut attrs, "pos", v.clone());
         }
