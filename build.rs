@@ -814,6 +814,19 @@ fn merge_mujoco40(elems: &mut Vec<Elem>, printed: &[Printed], types: &str) {
                     a.path_namespace = Some(folder.to_string());
                 }
             }
+            ["retype", key, name, ty] => {
+                let targets = with_key(elems, key);
+                assert!(!targets.is_empty(), "{at}: no element at {key}");
+                let attr = typed_attr(name, ty, &[], &at);
+                for t in targets {
+                    let a = elems[t].attrs.iter_mut().find(|a| a.name == *name);
+                    let a = a.unwrap_or_else(|| panic!("{at}: {key} has no {name}"));
+                    assert!(a.ty != attr.ty, "{at}: {key}@{name} has that type already");
+                    let (required, conflict_allowed) = (a.required, a.conflict_allowed);
+                    let conflict_behavior = a.conflict_behavior.take();
+                    *a = Attr { required, conflict_allowed, conflict_behavior, ..attr.clone() };
+                }
+            }
             ["required", key, name] => {
                 let targets = with_key(elems, key);
                 assert!(!targets.is_empty(), "{at}: no element at {key}");

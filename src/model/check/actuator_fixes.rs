@@ -178,6 +178,18 @@ const FIXES: &[Fix] = &[
     ),
     ("pid inputs", "actuator-pid", Some("input"), "use inputs among pos, vel, ff"),
     (
+        "fixed and affine gains take one input",
+        "actuator-input",
+        Some("input"),
+        "give one input (pos, vel or pressure), or none",
+    ),
+    (
+        "input is not available for muscle",
+        "actuator-input",
+        Some("input"),
+        "remove input: muscle and user gains take none",
+    ),
+    (
         "pid controller states require the pos",
         "actuator-pid",
         Some("input"),

@@ -51,6 +51,7 @@ pub(crate) const INPUT_VEL: i64 = 2;
 pub(crate) const INPUT_FF: i64 = 4;
 pub(crate) const INPUT_VOLTAGE: i64 = 8;
 pub(crate) const INPUT_NONE: i64 = 16;
+pub(crate) const INPUT_PRESSURE: i64 = 32;
 /// The so3 charts.
 pub(crate) const CHART_EXPMAP: i64 = 1;
 pub(crate) const CHART_QUAT: i64 = 2;
@@ -210,6 +211,7 @@ fn input(node: &Node) -> Option<Option<i64>> {
                     "vel" => INPUT_VEL,
                     "ff" => INPUT_FF,
                     "voltage" => INPUT_VOLTAGE,
+                    "pressure" => INPUT_PRESSURE,
                     _ => return Some(None),
                 };
                 // Canonical order, no repeats.
@@ -343,6 +345,15 @@ fn one_actuator<'m>(spec: &mut Spec<'m>, node: &'m Node) -> Result<(), Option<&'
     }
     general_attributes(spec, node)?;
     transmission(spec, node)?;
+    // The shortcuts set the input signature as they set the gains (MuJoCo 4.0.0's
+    // compiled `actuator_ctrlspec`), whatever a class's `<general input>` gave.
+    match tag {
+        "motor" | "damper" | "muscle" | "adhesion" => spec.ctrlspec = 0,
+        "position" => spec.ctrlspec = INPUT_POS,
+        "velocity" | "intvelocity" => spec.ctrlspec = INPUT_VEL,
+        "cylinder" => spec.ctrlspec = INPUT_PRESSURE,
+        _ => {}
+    }
     match tag {
         "general" => {
             if let Some(i) = input(node) {

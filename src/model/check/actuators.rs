@@ -23,8 +23,8 @@ use crate::value::{Reference, Value};
 use super::ProblemKind;
 use super::actuator_fixes::fix_for;
 use super::actuator_spec::{
-    CHART_EXPMAP, CHART_QUAT, INPUT_FF, INPUT_NONE, INPUT_POS, INPUT_VEL, INPUT_VOLTAGE, Limited,
-    Read, Spec, Trn, read,
+    CHART_EXPMAP, CHART_QUAT, INPUT_FF, INPUT_NONE, INPUT_POS, INPUT_PRESSURE, INPUT_VEL,
+    INPUT_VOLTAGE, Limited, Read, Spec, Trn, read,
 };
 use super::walk::{Event, Rule};
 
@@ -210,6 +210,24 @@ impl Actuators {
         }
         if spec.dyntype == "pid" && spec.gaintype != "pid" {
             return Err(Some(format!("dyntype 'pid' requires gaintype 'pid', actuator '{name}'")));
+        }
+        // An input signature outside the servos (MuJoCo 4.0.0's words; checked with it).
+        if spec.ctrlspec != 0 {
+            match spec.gaintype {
+                "fixed" | "affine"
+                    if ![INPUT_POS, INPUT_VEL, INPUT_PRESSURE].contains(&spec.ctrlspec) =>
+                {
+                    return refuse(
+                        "fixed and affine gains take one input, 'pos', 'vel' or 'pressure',",
+                    );
+                }
+                "muscle" | "user" => {
+                    return Err(Some(format!(
+                        "input is not available for muscle and user gains, actuator '{name}'"
+                    )));
+                }
+                _ => {}
+            }
         }
         let joint_or_tendon = matches!(spec.trn, Trn::Joint | Trn::JointInParent | Trn::Tendon);
         if spec.damping.iter().any(|d| *d != 0.0) && !joint_or_tendon {
@@ -665,6 +683,16 @@ mod tests {
             r#"<pid joint="j" input="pos ff"/>"#,
         ),
         (
+            r#"fixed and affine gains take one input, 'pos', 'vel' or 'pressure', in actuator"#,
+            r#"<general joint="j" input="pos vel"/>"#,
+            r#"<general joint="j" input="pressure"/>"#,
+        ),
+        (
+            r#"input is not available for muscle and user gains"#,
+            r#"<general joint="j" gaintype="user" input="vel"/>"#,
+            r#"<general joint="j" gaintype="user"/>"#,
+        ),
+        (
             r#"pid controller states require the pos input"#,
             r#"<pid joint="j" slewmax="1" input="vel ff"/>"#,
             r#"<pid joint="j" slewmax="1" input="pos ff"/>"#,
@@ -798,6 +826,11 @@ mod tests {
             r#"pid controller states require the pos input"#,
             r#"<mujoco><default><pid ki="1"/></default>{}<actuator><pid joint="j" input="vel"/></actuator></mujoco>"#,
             r#"<mujoco><default><pid ki="1"/></default>{}<actuator><pid joint="j" input="pos"/></actuator></mujoco>"#,
+        ),
+        (
+            r#"fixed and affine gains take one input, 'pos', 'vel' or 'pressure', in actuator"#,
+            r#"<mujoco><default><general input="ff"/></default>{}<actuator><general joint="j"/></actuator></mujoco>"#,
+            r#"<mujoco><default><general input="ff"/></default>{}<actuator><position joint="j"/></actuator></mujoco>"#,
         ),
         (
             r#"damping requires joint or tendon transmission"#,

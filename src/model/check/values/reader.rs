@@ -1,8 +1,8 @@
 //! The checks of single elements that MuJoCo's XML reader makes as it reads them: a
 //! `<text>` without data, text attributes of a fixed number of characters, and
-//! keyword lists given a keyword twice. (A top-level default class with a name other
-//! than `main`, which MuJoCo's reader refuses, is not one: the writer writes it as a
-//! class inside an unnamed top-level `<default>`, which MuJoCo compiles.)
+//! keyword lists given a keyword twice, an actuator's `input` that is no input
+//! signature. (A file's top-level default class named other than `main`, which
+//! MuJoCo's reader refuses, is refused by this crate's reader: decision D16.)
 
 use crate::schema::Role;
 use crate::value::Value;
@@ -23,12 +23,22 @@ const FLAGS: &[(&[&str], &str, &[&str])] = &[
         "data",
         &["found", "force", "torque", "dist", "pos", "normal", "tangent", "linvel", "angvel"],
     ),
-    (
-        &["actuator/pid", "actuator/dcmotor", "default/pid", "default/dcmotor"],
-        "input",
-        &["pos", "vel", "ff", "voltage"],
-    ),
+    (INPUT_AT, "input", INPUTS),
 ];
+
+/// The elements with an `input` (MuJoCo's `ReadInputSpec`), and its tokens in their
+/// canonical order (MuJoCo 4.0.0's: the source read has no `pressure`).
+const INPUT_AT: &[&str] = &[
+    "actuator/general",
+    "actuator/orientation",
+    "actuator/pid",
+    "actuator/dcmotor",
+    "default/general",
+    "default/orientation",
+    "default/pid",
+    "default/dcmotor",
+];
+const INPUTS: &[&str] = &["pos", "vel", "ff", "voltage", "pressure"];
 
 pub(crate) const CHECKS: &[Check] = &[
     Check {
@@ -51,6 +61,12 @@ pub(crate) const CHECKS: &[Check] = &[
             found("eulerseq", "attribute 'eulerseq' must have exactly 3 characters")
         },
         fix: "give eulerseq three axes (xyz, XYZ, zyx, ...)",
+    },
+    Check {
+        name: "actuator-input-tokens",
+        on: |k| INPUT_AT.iter().any(|p| on::at(k, p)),
+        test: input_tokens,
+        fix: "give input one of expmap, quat, none, or inputs among pos vel ff voltage pressure in that order",
     },
     Check {
         name: "keyword-twice",
@@ -97,6 +113,33 @@ fn keyword_twice(at: &At<'_, '_>) -> Option<Found> {
     None
 }
 
+/// An `input` as MuJoCo 4.0.0's reader takes it: a chart (`expmap`, `quat`) or `none`
+/// as the whole text, else input tokens, each known ("invalid keyword"), in canonical
+/// order ("inputs must be listed in canonical order"); a repeat is `keyword-twice`'s.
+fn input_tokens(at: &At<'_, '_>) -> Option<Found> {
+    let text = own_text(at, "input")?;
+    if ["expmap", "quat", "none"].contains(&text) {
+        return None;
+    }
+    let mut seen: Vec<usize> = Vec::new();
+    for word in text.split_ascii_whitespace() {
+        let Some(i) = INPUTS.iter().position(|t| *t == word) else {
+            return found("input", format!("invalid keyword: '{word}'"));
+        };
+        if seen.contains(&i) {
+            return None;
+        }
+        seen.push(i);
+    }
+    if seen.windows(2).any(|w| w[1] < w[0]) {
+        return found(
+            "input",
+            "inputs must be listed in canonical order [pos, vel, ff, voltage, pressure]",
+        );
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::tests::assert_pairs;
@@ -105,7 +148,22 @@ mod tests {
     #[test]
     fn what_mujoco_s_reader_refuses_of_one_element_is_found() {
         let custom = |c: &str| format!("<mujoco><custom>{c}</custom></mujoco>");
+        let acts = |a: &str| {
+            format!(
+                r#"<mujoco><worldbody><body><joint name="j"/><joint name="b" type="ball"/><geom size="1"/></body></worldbody><actuator>{a}</actuator></mujoco>"#
+            )
+        };
         let pairs = [
+            (
+                "actuator-input-tokens",
+                vec![
+                    (acts(r#"<general joint="j" input="vel pos"/>"#), acts(r#"<general joint="j" input="pressure"/>"#)),
+                    (acts(r#"<general joint="j" input="bogus"/>"#), acts(r#"<general joint="j" input="quat"/>"#)),
+                    (acts(r#"<orientation joint="b" input="vel pos"/>"#), acts(r#"<orientation joint="b" input="pos"/>"#)),
+                    (acts(r#"<pid joint="j" input="none pos"/>"#), acts(r#"<pid joint="j" input="pos ff"/>"#)),
+                    (acts(r#"<dcmotor joint="j" input="ff vel" motorconst="1" resistance="1"/>"#), acts(r#"<dcmotor joint="j" input="vel ff" motorconst="1" resistance="1"/>"#)),
+                ],
+            ),
             (
                 "text-empty",
                 vec![
