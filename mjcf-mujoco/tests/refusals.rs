@@ -147,7 +147,7 @@ fn crate_objections(path: &Path) -> Vec<(String, Vec<&'static str>)> {
 
 /// The pairs "known" (the crate objects to the refused model with MuJoCo's class of
 /// problem) when this was written: the floor, which can only go up.
-const KNOWN_FLOOR: usize = 333;
+const KNOWN_FLOOR: usize = 337;
 
 #[test]
 #[ignore = "needs MuJoCo: set MUJOCO_LIB"]

@@ -344,8 +344,8 @@ impl Model {
     /// How far it reaches is measured against MuJoCo 4.0.0's own refusals (the
     /// binding's `refusals` catalog: 760 distinct messages of its compiler and XML
     /// reader, 455 reachable from MJCF text, 90 needing a file's content, 215
-    /// unreachable; 333 pairs of a refused model and its compiled twin for 323 of the
-    /// 455): the reader or `check()` objects to all 333 refused models with MuJoCo's
+    /// unreachable; 337 pairs of a refused model and its compiled twin for 327 of the
+    /// 455): the reader or `check()` objects to all 337 refused models with MuJoCo's
     /// message and to none of the twins.
     ///
     /// Time: O(N) for a composed model of N elements, plus, for dangling references,
