@@ -12,7 +12,8 @@
 //!
 //! Checks: the unedited model saves its text byte for byte; the edited one saves (or
 //! refuses with `SaveError::MissingRequired` / `UnnamedTarget`, a reference left to an
-//! element removed or unnamed), its text reads back as the edited model (equal, or
+//! element removed or unnamed, or `RootClassRenamed`, a root class renamed where the
+//! file spells it so that MuJoCo would refuse the text), its text reads back as the edited model (equal, or
 //! written alike), saving what was read back gives the same text, and every byte of
 //! the text outside the tags the edits may change is kept, in order. Those tags are
 //! found by this target's own reading of the text (quick-xml, positions counted from
@@ -357,7 +358,11 @@ fn run(text: &str, edits: &mut Unstructured<'_>) {
     }
     let saved = match m.to_source_files() {
         Ok(f) => f,
-        Err(SaveError::MissingRequired { .. } | SaveError::UnnamedTarget { .. }) => return,
+        Err(
+            SaveError::MissingRequired { .. }
+            | SaveError::UnnamedTarget { .. }
+            | SaveError::RootClassRenamed(_),
+        ) => return,
         Err(e) => panic!("an edited model does not save: {e}"),
     };
     let out = &saved[0].text;
