@@ -250,7 +250,9 @@ impl Model {
     }
 
     /// The view of the element at `loc`, if it exists in this version
-    /// ([`Model::get`] without the error).
+    /// ([`Model::get`] without the error). The view starts a context of its own
+    /// (naming its instance is left to the first name asked), which the views made
+    /// from it share.
     ///
     /// Time: O(levels · depth · log n) (locating the element).
     pub fn element(&self, loc: &Loc) -> Option<ElementRef<'_>> {
@@ -360,8 +362,15 @@ impl<'a> ElementRef<'a> {
     /// unnamed element (`//unnamed_geom_0`, `robot//unnamed_geom_2`, `//unnamed_geom_1_`
     /// inside a `<replicate>`); `None` for elements without a namespace.
     ///
-    /// Time: O(levels · depth · log n) for named elements and frames; O(n) more for
-    /// unnamed ones (n of the element's model), whose number is their position.
+    /// Time: O(log n + the name's length) (its index entry, then the name spelt);
+    /// O(depth · log n) more for a joint of an attachment frame (its frame found).
+    /// The handles of one instance made from one another ([`ElementRef::children`],
+    /// [`ElementRef::parent`], [`Model::walk`]) share what the name needs, each part
+    /// made once, the first time one of them asks: the instance's prefix (O(the
+    /// prefix's length) from the instance above it; O(levels · depth · log n) from
+    /// the outermost model for a handle made by [`Model::element`]) and, for an
+    /// unnamed element, whose number is its position, the positions of its model's
+    /// elements (O(n), n of the element's model).
     ///
     /// # Examples
     /// ```
@@ -451,9 +460,15 @@ impl<'a> ElementRef<'a> {
 
     /// The composed parent: for a top-level body of an attached model, its
     /// attachment frame; for an element directly in a section of an attached model,
-    /// that section of the outermost model; `None` for the root.
+    /// that section of the outermost model (directly in its root default class: that
+    /// class, which is a class of its own beside the outermost model's); `None` for
+    /// the root.
     ///
-    /// Time: O(levels · depth · log n).
+    /// Time: O(1) for a handle made by [`ElementRef::children`] or [`Model::walk`]
+    /// (it keeps the handle it was made from); otherwise O(depth · log n) (its
+    /// parent found by its id), O(levels · depth · log n) for a top-level body of an
+    /// attached model whose handle was made by [`Model::element`] (its frame found
+    /// from the outermost model).
     ///
     /// # Examples
     /// ```
@@ -504,8 +519,10 @@ impl<'a> ElementRef<'a> {
     /// children then the attached model's bodies; a top-level section's own
     /// elements then those of every attached model.
     ///
-    /// Time: O(width + levels · depth · log n), plus O(a · depth · log n) for the
-    /// root or a top-level section; the list is made when this is called.
+    /// Time: O(width); for an attachment frame, O(1) more (the attached model's
+    /// handles share one new context, made from this handle's); for the root or a
+    /// top-level section of the outermost model, O(a · depth · log n) more (the
+    /// attached models' content gathered). The list is made when this is called.
     ///
     /// # Examples
     /// ```
