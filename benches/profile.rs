@@ -12,8 +12,8 @@
 //! `floor-chain` (quick-xml events and attributes), `nested N` (W6, N levels),
 //! `attach N` (W7: one more robot onto a fleet of N), `detach` (W4), `names N` (the
 //! name of every element of the W1 fleet of N robots, through handles walked from the
-//! root by `children()`). REPS defaults to 1 (the setup is counted too: compare runs
-//! that differ in REPS to subtract it).
+//! root by `children()`), `walk N` (the preorder walk of that fleet). REPS defaults
+//! to 1 (the setup is counted too: compare runs that differ in REPS to subtract it).
 
 mod workloads;
 
@@ -83,6 +83,14 @@ fn main() {
                 std::hint::black_box(fleet.detach(&scope).expect("detaches"));
             }
         }
+        "walk" => {
+            let n = arg(1, 100);
+            let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
+            for _ in 0..reps {
+                let entered = fleet.walk().filter(|e| matches!(e, mjcf::Event::Enter(_))).count();
+                eprintln!("walk: {entered} elements entered");
+            }
+        }
         "names" => {
             let n = arg(1, 100);
             let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
@@ -93,7 +101,7 @@ fn main() {
         }
         _ => {
             eprintln!(
-                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach|names [N] [REPS]"
+                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach|names|walk [N] [REPS]"
             );
             std::process::exit(2);
         }

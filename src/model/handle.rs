@@ -137,8 +137,9 @@ pub struct Preorder<'a> {
     /// The context of each instance the walk has given a handle in.
     shared: Vec<Option<Arc<Shared<'a>>>>,
     /// The handles entered and not yet left (the last: the parent of what is
-    /// entered next).
-    open: Vec<ElementRef<'a>>,
+    /// entered next), each with the parent its children keep, made when the first
+    /// is entered.
+    open: Vec<(ElementRef<'a>, Option<Arc<ElementRef<'a>>>)>,
     /// Whether the last event entered an element (whose subtree can be skipped).
     entered: bool,
 }
@@ -178,13 +179,14 @@ impl<'a> Iterator for Preorder<'a> {
         Some(match step {
             Step::Enter(item) => {
                 let shared = self.shared(item.inst);
-                let up = self.open.last().and_then(ElementRef::as_up);
+                let up =
+                    self.open.last_mut().map(|(h, up)| up.get_or_insert_with(|| h.as_up()).clone());
                 let view = ElementRef { shared, node: item.node, up };
-                self.open.push(view.clone());
+                self.open.push((view.clone(), None));
                 Event::Enter(view)
             }
             Step::Leave(item) => match self.open.pop() {
-                Some(view) => Event::Leave(view),
+                Some((view, _)) => Event::Leave(view),
                 // (Every element left was entered.)
                 None => Event::Leave(ElementRef {
                     shared: self.shared(item.inst),
@@ -280,8 +282,8 @@ pub struct ElementRef<'a> {
 
 impl<'a> ElementRef<'a> {
     /// This handle as the parent its children keep (without its own parent).
-    fn as_up(&self) -> Option<Arc<ElementRef<'a>>> {
-        Some(Arc::new(ElementRef { shared: self.shared.clone(), node: self.node, up: None }))
+    fn as_up(&self) -> Arc<ElementRef<'a>> {
+        Arc::new(ElementRef { shared: self.shared.clone(), node: self.node, up: None })
     }
 
     /// A handle on `node` of the same instance, whose composed parent is `up`.
@@ -543,12 +545,15 @@ impl<'a> ElementRef<'a> {
     pub fn children(&self) -> impl Iterator<Item = ElementRef<'a>> + 'a {
         let s = &self.shared;
         let kind = self.node.kind();
-        let up = self.as_up();
         let children = self.node.children();
+        let top_level = s.frames.is_empty()
+            && (kind == ElementKind::ROOT || kind.spec().parent == Some(ElementKind::ROOT));
+        if children.is_empty() && !top_level && self.node.attached().is_none() {
+            return Vec::new().into_iter();
+        }
+        let up = Some(self.as_up());
         let mut out = Vec::with_capacity(children.len());
-        if s.frames.is_empty()
-            && (kind == ElementKind::ROOT || kind.spec().parent == Some(ElementKind::ROOT))
-        {
+        if top_level {
             // The root and the top-level sections gather the attached models'
             // content: the composed walk's rules.
             let mut walk = Walk::new(s.top);
