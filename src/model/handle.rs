@@ -7,9 +7,11 @@
 //! state and, once a name asks, its model's automatic-name positions), and, for a
 //! handle that [`ElementRef::children`] made, the handle it was made from (its
 //! composed parent). So `full_name` costs the name, not a walk of the composition
-//! from the root, and `children` and `parent` cost the answer, not a search from the
-//! top. A handle made by [`Model::element`] starts a context of its own, filled the
-//! first time it is asked.
+//! from the root, and `children` (and `parent`, for a handle `children` made) costs
+//! the answer, not a search from the top. The walk's handles share their instances'
+//! contexts but keep no parent (keeping one cost the walk of a fleet about 30% more
+//! instructions per element). A handle made by [`Model::element`] starts a context
+//! of its own, filled the first time it is asked.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -136,12 +138,6 @@ pub struct Preorder<'a> {
     walk: Walk<'a>,
     /// The context of each instance the walk has given a handle in.
     shared: Vec<Option<Arc<Shared<'a>>>>,
-    /// The handles entered and not yet left (the last: the parent of what is
-    /// entered next), each with the parent its children keep, made when the first
-    /// is entered.
-    open: Vec<(ElementRef<'a>, Option<Arc<ElementRef<'a>>>)>,
-    /// Whether the last event entered an element (whose subtree can be skipped).
-    entered: bool,
 }
 
 impl<'a> Preorder<'a> {
@@ -149,10 +145,7 @@ impl<'a> Preorder<'a> {
     ///
     /// Time: O(1).
     pub fn skip_subtree(&mut self) {
-        if std::mem::take(&mut self.entered) {
-            self.walk.skip_subtree();
-            self.open.pop();
-        }
+        self.walk.skip_subtree();
     }
 
     /// The context of instance `inst` of the walk.
@@ -175,25 +168,11 @@ impl<'a> Iterator for Preorder<'a> {
 
     fn next(&mut self) -> Option<Event<'a>> {
         let step = self.walk.next()?;
-        self.entered = matches!(step, Step::Enter(_));
+        let (Step::Enter(item) | Step::Leave(item)) = step;
+        let view = ElementRef { shared: self.shared(item.inst), node: item.node, up: None };
         Some(match step {
-            Step::Enter(item) => {
-                let shared = self.shared(item.inst);
-                let up =
-                    self.open.last_mut().map(|(h, up)| up.get_or_insert_with(|| h.as_up()).clone());
-                let view = ElementRef { shared, node: item.node, up };
-                self.open.push((view.clone(), None));
-                Event::Enter(view)
-            }
-            Step::Leave(item) => match self.open.pop() {
-                Some((view, _)) => Event::Leave(view),
-                // (Every element left was entered.)
-                None => Event::Leave(ElementRef {
-                    shared: self.shared(item.inst),
-                    node: item.node,
-                    up: None,
-                }),
-            },
+            Step::Enter(_) => Event::Enter(view),
+            Step::Leave(_) => Event::Leave(view),
         })
     }
 }
@@ -222,7 +201,7 @@ impl Model {
     /// # Ok::<(), mjcf::EditError>(())
     /// ```
     pub fn walk(&self) -> Preorder<'_> {
-        Preorder { walk: Walk::new(self), shared: Vec::new(), open: Vec::new(), entered: false }
+        Preorder { walk: Walk::new(self), shared: Vec::new() }
     }
 
     /// The view of the element at `loc`.
@@ -466,8 +445,8 @@ impl<'a> ElementRef<'a> {
     /// class, which is a class of its own beside the outermost model's); `None` for
     /// the root.
     ///
-    /// Time: O(1) for a handle made by [`ElementRef::children`] or [`Model::walk`]
-    /// (it keeps the handle it was made from); otherwise O(depth · log n) (its
+    /// Time: O(1) for a handle made by [`ElementRef::children`] (it keeps the handle
+    /// it was made from); otherwise O(depth · log n) (its
     /// parent found by its id), O(levels · depth · log n) for a top-level body of an
     /// attached model whose handle was made by [`Model::element`] (its frame found
     /// from the outermost model).
