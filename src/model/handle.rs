@@ -36,7 +36,7 @@ struct Naming<'a> {
 }
 
 /// What the handles of one model instance of a composition share.
-struct Shared<'a> {
+pub(super) struct Shared<'a> {
     /// The model the handles were taken from (the outermost).
     top: &'a Model,
     /// The model of the instance.
@@ -46,13 +46,13 @@ struct Shared<'a> {
     /// The context of the instance it is attached in and its attachment frame there,
     /// when it was made from a handle of that one (its naming then grows from that
     /// one's).
-    outer: Option<(Arc<Shared<'a>>, &'a Node)>,
+    pub(super) outer: Option<(Arc<Shared<'a>>, &'a Node)>,
     /// Its naming, made the first time a name is asked (`None`: the frames lead
     /// nowhere, which a handle's frames always do).
     naming: OnceLock<Option<Naming<'a>>>,
     /// Every element's automatic-name position in the model, counted the first time
     /// an unnamed element's name is asked.
-    auto: OnceLock<HashMap<ElementId, (u32, bool), IdHash>>,
+    pub(super) auto: OnceLock<HashMap<ElementId, (u32, bool), IdHash>>,
 }
 
 impl<'a> Shared<'a> {
@@ -250,7 +250,7 @@ impl Model {
 pub struct ElementRef<'a> {
     /// Its instance's context, shared with the handles of the same instance made
     /// from one another.
-    shared: Arc<Shared<'a>>,
+    pub(super) shared: Arc<Shared<'a>>,
     node: &'a Node,
     /// Its composed parent, when it was made from it, without a parent of its own: a
     /// chain of handles would be dropped one stack frame per level (and a drop of our
@@ -476,7 +476,7 @@ impl<'a> ElementRef<'a> {
         let is_section = pnode.kind().spec().parent == Some(ElementKind::ROOT);
         // The sections whose content the outermost model's gathers (an attached
         // model's root default class is a class of its own, beside the outermost
-        // one's, and a nested class has the root class's kind).
+        // one's).
         let merged = is_section && !pnode.kind().is(Role::DefaultClass);
         let at = |shared, node| Some(ElementRef { shared, node, up: None });
         match s.frames.split_last() {

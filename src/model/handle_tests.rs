@@ -185,3 +185,29 @@ fn a_handle_deep_in_a_long_chain_drops_without_deep_recursion() {
     drop(h);
     assert_eq!(up.children().count(), 1);
 }
+
+/// The handles `children` makes share their instance's context: naming one unnamed
+/// element counts its model's positions once, for all of them, and a frame's
+/// attached bodies get one context, grown from the frame's.
+#[test]
+fn handles_of_one_instance_share_one_context_counted_once() {
+    let m = composed();
+    let wb = m.get(&m.worldbody()).expect("worldbody");
+    let children: Vec<ElementRef<'_>> = wb.children().collect();
+    let (plane, frame) = (&children[0], children.iter().find(|c| c.is_frame()).expect("frame"));
+    assert!(std::sync::Arc::ptr_eq(&plane.shared, &frame.shared));
+    assert!(plane.shared.auto.get().is_none());
+    assert_eq!(plane.full_name().as_deref(), Some("//unnamed_geom_0"));
+    let counted = plane.shared.auto.get().expect("counted once named");
+    let before = std::ptr::from_ref(counted);
+    for c in &children {
+        c.full_name();
+    }
+    assert!(std::ptr::eq(before, frame.shared.auto.get().expect("the same count")));
+    let inside: Vec<ElementRef<'_>> =
+        frame.children().filter(|c| !std::sync::Arc::ptr_eq(&c.shared, &frame.shared)).collect();
+    assert!(!inside.is_empty());
+    assert!(inside.iter().all(|c| std::sync::Arc::ptr_eq(&c.shared, &inside[0].shared)));
+    let outer = inside[0].shared.outer.as_ref().map(|(o, _)| o);
+    assert!(outer.is_some_and(|o| std::sync::Arc::ptr_eq(o, &frame.shared)));
+}
