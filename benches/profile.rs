@@ -10,8 +10,10 @@
 //! Workloads: `build N` (the W1 fleet), `write N` (writing it), `read-tree`,
 //! `read-rtree`, `read-chain` (W3) and their floors `floor-tree`, `floor-rtree`,
 //! `floor-chain` (quick-xml events and attributes), `nested N` (W6, N levels),
-//! `attach N` (W7: one more robot onto a fleet of N), `detach` (W4). REPS defaults to 1 (the setup is counted
-//! too: compare runs that differ in REPS to subtract it).
+//! `attach N` (W7: one more robot onto a fleet of N), `detach` (W4), `names N` (the
+//! name of every element of the W1 fleet of N robots, through handles walked from the
+//! root by `children()`), `walk N` (the preorder walk of that fleet). REPS defaults
+//! to 1 (the setup is counted too: compare runs that differ in REPS to subtract it).
 
 mod workloads;
 
@@ -81,12 +83,41 @@ fn main() {
                 std::hint::black_box(fleet.detach(&scope).expect("detaches"));
             }
         }
+        "walk" => {
+            let n = arg(1, 100);
+            let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
+            for _ in 0..reps {
+                let entered = fleet.walk().filter(|e| matches!(e, mjcf::Event::Enter(_))).count();
+                eprintln!("walk: {entered} elements entered");
+            }
+        }
+        "names" => {
+            let n = arg(1, 100);
+            let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
+            for _ in 0..reps {
+                let (elements, chars) = names_by_handles(&fleet);
+                eprintln!("names: {elements} elements, {chars} characters of names");
+            }
+        }
         _ => {
             eprintln!(
-                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach [N] [REPS]"
+                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach|names|walk [N] [REPS]"
             );
             std::process::exit(2);
         }
     }
     eprintln!("{what}: {:?}", t.elapsed());
+}
+
+/// The full name of every element of `m`, through handles walked down from the root
+/// with `children()`: how many elements, and the names' total length.
+fn names_by_handles(m: &mjcf::Model) -> (usize, usize) {
+    let mut stack = vec![m.get(&m.root()).expect("the root")];
+    let (mut elements, mut chars) = (0, 0);
+    while let Some(e) = stack.pop() {
+        elements += 1;
+        chars += std::hint::black_box(e.full_name()).map_or(0, |n| n.len());
+        stack.extend(e.children());
+    }
+    (elements, chars)
 }

@@ -268,3 +268,37 @@ fn locators_are_values() {
         [m.worldbody(), m.worldbody(), m.actuator()].into_iter().collect();
     assert_eq!(set.len(), 2);
 }
+
+/// An attached model's root default class is a class of its own beside the outermost
+/// model's (the walk and `children` put its defaults under it), so `parent` of one of
+/// its defaults is that class, whether the handle came from `children` or from a
+/// locator; and an element of an attached model's `<asset>` has the outermost
+/// `<asset>` as its parent either way.
+#[test]
+fn parents_of_attached_defaults_and_assets_agree_with_children() -> Result<(), EditError> {
+    let robot = Model::from_xml_str(
+        r#"<mujoco model="robot"><default><geom rgba="1 0 0 1"/></default>
+          <asset><texture name="t" type="2d" builtin="checker" width="8" height="8"/></asset>
+          <worldbody><body name="torso"><geom size="0.1"/></body></worldbody></mujoco>"#,
+    )
+    .expect("reads");
+    let mut arena = Model::new("arena");
+    arena.attach_mut(&arena.worldbody(), &robot)?;
+    let root = arena.get(&arena.root())?;
+    let classes: Vec<_> =
+        root.children().filter(|c| c.tag() == "default" && !c.scope().is_empty()).collect();
+    assert_eq!(classes.len(), 1, "the robot's root class, beside the arena's");
+    let class = &classes[0];
+    let mut defaults = 0;
+    for d in class.children() {
+        assert_eq!(d.parent().map(|p| p.loc()), Some(class.loc()));
+        assert_eq!(arena.get(&d.loc())?.parent().map(|p| p.loc()), Some(class.loc()));
+        defaults += 1;
+    }
+    assert!(defaults > 0);
+    let asset = root.child("asset").expect("the arena's asset section");
+    let texture = asset.children().find(|t| !t.scope().is_empty()).expect("the robot's texture");
+    assert_eq!(texture.parent().map(|p| p.loc()), Some(asset.loc()));
+    assert_eq!(arena.get(&texture.loc())?.parent().map(|p| p.loc()), Some(asset.loc()));
+    Ok(())
+}

@@ -33,6 +33,8 @@ WORKLOADS = [
     ("write the N=1000 fleet", ["write", "1000", "{r}"], 1, 3),
     ("read the realistic 10k-body tree", ["read-rtree", "{r}"], 1, 3),
     ("read the plain 10k-body tree", ["read-tree", "{r}"], 1, 3),
+    ("name the N=100 fleet by handles", ["names", "100", "{r}"], 1, 2),
+    ("walk the N=100 fleet", ["walk", "100", "{r}"], 1, 2),
 ]
 SLOWER = 1.10
 

@@ -16,6 +16,7 @@ mod elems;
 mod eq;
 pub(crate) mod follow;
 pub(crate) mod frame;
+mod handle;
 mod index;
 pub(crate) mod keys;
 pub(crate) mod layout;
@@ -48,9 +49,9 @@ pub(crate) use build::{
 };
 pub use cascade::{Referrers, Removal};
 pub use check::{Advice, AdviceKind, Problem, ProblemKind};
-pub use cursor::{ElementRef, Event, Preorder};
 pub(crate) use cursor::{Insts, Item, Step, Walk};
 pub(crate) use elems::ElemMap;
+pub use handle::{ElementRef, Event, Preorder};
 pub(crate) use index::{Entry, Index, MergedCache, ReadIndex, slashed_segment};
 pub use layout::{JointType, Layout, LayoutActuator, LayoutJoint, LayoutMocap, MAX_LAYOUT_ENTRIES};
 pub(crate) use scope::not_attached as scope_not_attached;
@@ -673,5 +674,7 @@ impl fmt::Debug for Model {
     }
 }
 
+#[cfg(test)]
+mod handle_tests;
 #[cfg(test)]
 mod tests;

@@ -442,7 +442,11 @@ impl Model {
     /// `mj_name2id`. `None` if `loc` is not in this model or the element has no
     /// namespace. See [`ElementRef::full_name`](crate::ElementRef::full_name).
     ///
-    /// Time: as [`ElementRef::full_name`](crate::ElementRef::full_name).
+    /// Time: as [`ElementRef::full_name`](crate::ElementRef::full_name) of a handle
+    /// made by [`Model::element`], which shares nothing with another call:
+    /// O(levels · depth · log n), and O(n) more for an unnamed element (its model's
+    /// elements counted). To name many elements, name the handles of one walk
+    /// ([`Model::walk`], [`ElementRef::children`](crate::ElementRef::children)).
     pub fn full_name(&self, loc: &Loc) -> Option<String> {
         self.element(loc)?.full_name()
     }
