@@ -345,14 +345,13 @@ fn one_actuator<'m>(spec: &mut Spec<'m>, node: &'m Node) -> Result<(), Option<&'
     }
     general_attributes(spec, node)?;
     transmission(spec, node)?;
-    // The shortcuts set the input signature as they set the gains (MuJoCo 4.0.0's
-    // compiled `actuator_ctrlspec`), whatever a class's `<general input>` gave.
-    match tag {
-        "motor" | "damper" | "muscle" | "adhesion" => spec.ctrlspec = 0,
-        "position" => spec.ctrlspec = INPUT_POS,
-        "velocity" | "intvelocity" => spec.ctrlspec = INPUT_VEL,
-        "cylinder" => spec.ctrlspec = INPUT_PRESSURE,
-        _ => {}
+    // A shortcut clears the input signature a class's `<general input>` gave, in a
+    // class as on an element (MuJoCo 4.0.0: a class's `<general input="ff">` then
+    // `<position>` leaves a `<general>` of that class no input; the other order
+    // gives it `ff`). The signature MuJoCo then compiles for the shortcut (`pos` for
+    // a position servo, `pressure` for a cylinder) is one its gains take.
+    if !matches!(tag, "general" | "orientation" | "pid" | "dcmotor") {
+        spec.ctrlspec = 0;
     }
     match tag {
         "general" => {
@@ -424,7 +423,14 @@ fn general_attributes(spec: &mut Spec<'_>, node: &Node) -> Result<(), Option<&'s
         spec.dyntype = known(k, DYN).ok_or(None)?;
     }
     if let Some(k) = keyword(node, "gaintype") {
-        spec.gaintype = known(k, GAIN).ok_or(None)?;
+        let gaintype = known(k, GAIN).ok_or(None)?;
+        // Another gain type clears the input signature a class gave (MuJoCo 4.0.0:
+        // a class's `input="ff"` reaches a `<general>` that keeps the gain type, and
+        // not one that sets `gaintype="affine"` or `"user"`).
+        if gaintype != spec.gaintype {
+            spec.ctrlspec = 0;
+        }
+        spec.gaintype = gaintype;
     }
     if let Some(k) = keyword(node, "biastype") {
         spec.biastype = known(k, BIAS).ok_or(None)?;

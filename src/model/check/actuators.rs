@@ -833,6 +833,21 @@ mod tests {
             r#"<mujoco><default><general input="ff"/></default>{}<actuator><position joint="j"/></actuator></mujoco>"#,
         ),
         (
+            r#"input is not available for muscle and user gains"#,
+            r#"<mujoco><default><general input="vel" gaintype="user"/></default>{}<actuator><general joint="j"/></actuator></mujoco>"#,
+            r#"<mujoco><default><general input="vel"/></default>{}<actuator><general joint="j" gaintype="user"/></actuator></mujoco>"#,
+        ),
+        (
+            r#"fixed and affine gains take one input, 'pos', 'vel' or 'pressure', in actuator"#,
+            r#"<mujoco><default><general input="ff"/></default>{}<actuator><general joint="j" gaintype="fixed"/></actuator></mujoco>"#,
+            r#"<mujoco><default><general input="ff"/></default>{}<actuator><general joint="j" gaintype="affine"/></actuator></mujoco>"#,
+        ),
+        (
+            r#"fixed and affine gains take one input, 'pos', 'vel' or 'pressure', in actuator"#,
+            r#"<mujoco><default><general input="ff"/></default>{}<actuator><general joint="j"/></actuator></mujoco>"#,
+            r#"<mujoco><default><general input="ff"/><position kp="1"/></default>{}<actuator><general joint="j"/></actuator></mujoco>"#,
+        ),
+        (
             r#"damping requires joint or tendon transmission"#,
             r#"<mujoco><default><position damping="1"/></default>{}<actuator><motor site="s"/></actuator></mujoco>"#,
             r#"<mujoco><default><position damping="1"/></default>{}<actuator><motor joint="j"/></actuator></mujoco>"#,
