@@ -350,8 +350,9 @@ fn one_actuator<'m>(spec: &mut Spec<'m>, node: &'m Node) -> Result<(), Option<&'
     // `<position>` leaves a `<general>` of that class no input; the other order
     // gives it `ff`). The signature MuJoCo then compiles for the shortcut (`pos` for
     // a position servo, `pressure` for a cylinder) is one its gains take.
-    if !matches!(tag, "general" | "orientation" | "pid" | "dcmotor") {
-        spec.ctrlspec = 0;
+    match tag {
+        "general" | "orientation" | "pid" | "dcmotor" => {}
+        _ => spec.ctrlspec = 0,
     }
     match tag {
         "general" => {
