@@ -195,34 +195,54 @@ fn limited(k: &str) -> Option<Limited> {
     }
 }
 
-/// The `input` attribute as MuJoCo's `ReadInputSpec` reads it: `None` when not given,
-/// `Some(None)` for text it refuses.
-fn input(node: &Node) -> Option<Option<i64>> {
-    let text = keyword(node, "input")?;
-    Some(match text.trim() {
-        "expmap" => Some(CHART_EXPMAP),
-        "quat" => Some(CHART_QUAT),
-        "none" => Some(INPUT_NONE),
-        tokens => {
-            let mut spec = 0;
-            for t in tokens.split_whitespace() {
-                let bit = match t {
-                    "pos" => INPUT_POS,
-                    "vel" => INPUT_VEL,
-                    "ff" => INPUT_FF,
-                    "voltage" => INPUT_VOLTAGE,
-                    "pressure" => INPUT_PRESSURE,
-                    _ => return Some(None),
-                };
-                // Canonical order, no repeats.
-                if bit <= spec {
-                    return Some(None);
-                }
-                spec |= bit;
-            }
-            Some(spec)
+/// What MuJoCo's reader refuses of an `input` text.
+pub(crate) enum BadInput<'t> {
+    /// A token that is no input ("invalid keyword").
+    Unknown(&'t str),
+    /// A token given twice ("duplicate keyword").
+    Twice,
+    /// Tokens out of their canonical order.
+    OutOfOrder,
+}
+
+/// The input tokens, in their canonical order, with their signature bits (MuJoCo
+/// 4.0.0's `mjtCtrlInput`; the source read has no `pressure`).
+pub(crate) const INPUT_TOKENS: &[(&str, i64)] = &[
+    ("pos", INPUT_POS),
+    ("vel", INPUT_VEL),
+    ("ff", INPUT_FF),
+    ("voltage", INPUT_VOLTAGE),
+    ("pressure", INPUT_PRESSURE),
+];
+
+/// The signature an `input` text spells, as MuJoCo's `ReadInputSpec` reads it: a
+/// chart (`expmap`, `quat`) or `none` as the whole text, else tokens, each known and
+/// given once, in canonical order.
+pub(crate) fn parse_input(text: &str) -> Result<i64, BadInput<'_>> {
+    match text {
+        "expmap" => return Ok(CHART_EXPMAP),
+        "quat" => return Ok(CHART_QUAT),
+        "none" => return Ok(INPUT_NONE),
+        _ => {}
+    }
+    let (mut spec, mut ordered) = (0, true);
+    for word in text.split_ascii_whitespace() {
+        let Some(&(_, bit)) = INPUT_TOKENS.iter().find(|(t, _)| *t == word) else {
+            return Err(BadInput::Unknown(word));
+        };
+        if spec & bit != 0 {
+            return Err(BadInput::Twice);
         }
-    })
+        ordered &= bit > spec;
+        spec |= bit;
+    }
+    if ordered { Ok(spec) } else { Err(BadInput::OutOfOrder) }
+}
+
+/// The `input` attribute as MuJoCo reads it: `None` when not given, `Some(None)` for
+/// text it refuses.
+fn input(node: &Node) -> Option<Option<i64>> {
+    keyword(node, "input").map(|text| parse_input(text).ok())
 }
 
 /// The attributes every actuator tag reads alike, which a class's actuator default of

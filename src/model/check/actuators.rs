@@ -172,7 +172,7 @@ impl Actuators {
         target: Option<&Target<'_>>,
         c: &mut Compiled,
     ) -> Result<(), Verdict> {
-        let refuse = |what: &str| Err(Some(format!("{what} in actuator '{name}'")));
+        let refuse = |what: &str| refusal(what, name);
         if spec.gaintype == "so3" || spec.biastype == "so3" {
             so3(name, spec, target, c)?;
         }
@@ -362,6 +362,11 @@ impl Actuators {
     }
 }
 
+/// MuJoCo's refusal `what` of the actuator `name`, in its words.
+fn refusal(what: &str, name: &str) -> Result<(), Verdict> {
+    Err(Some(format!("{what} in actuator '{name}'")))
+}
+
 /// The so3 servo's checks (`gaintype`/`biastype so3`).
 fn so3(
     name: &str,
@@ -369,7 +374,7 @@ fn so3(
     target: Option<&Target<'_>>,
     c: &mut Compiled,
 ) -> Result<(), Verdict> {
-    let refuse = |what: &str| Err(Some(format!("{what} in actuator '{name}'")));
+    let refuse = |what: &str| refusal(what, name);
     if spec.gaintype != "so3" || spec.biastype != "so3" {
         return refuse("gaintype and biastype must both be 'so3'");
     }
@@ -417,7 +422,7 @@ fn so3(
 
 /// The pid servo's checks (`gaintype pid`).
 fn pid(name: &str, spec: &mut Spec<'_>, c: &mut Compiled) -> Result<(), Verdict> {
-    let refuse = |what: &str| Err(Some(format!("{what} in actuator '{name}'")));
+    let refuse = |what: &str| refusal(what, name);
     if spec.biastype != "affine" {
         return refuse("pid requires biastype 'affine'");
     }

@@ -634,11 +634,15 @@ impl Saver<'_> {
     /// Whether the record `r` is a `<default>` tag at the top level of its file.
     fn top_level_default(&self, r: u32) -> bool {
         let rec = &self.src.records[r as usize];
-        let p = rec.parent;
-        rec.kind == RecordKind::Element
-            && p != NO_RECORD
-            && self.src.records[p as usize].parent == NO_RECORD
+        self.at_file_top(r)
+            && rec.kind == RecordKind::Element
             && self.model.node_by_id(rec.id).is_some_and(|n| n.kind() == ElementKind::DEFAULT)
+    }
+
+    /// Whether the record `r` is a child of its file's root tag.
+    fn at_file_top(&self, r: u32) -> bool {
+        let p = self.src.records[r as usize].parent;
+        p != NO_RECORD && self.src.records[p as usize].parent == NO_RECORD
     }
 
     /// Whether the record `r` is a file's root `<default>` (the root class's outer
@@ -650,9 +654,7 @@ impl Saver<'_> {
     /// never folded).
     fn folds(&self, r: u32, node: &Node) -> bool {
         let rec = &self.src.records[r as usize];
-        let p = rec.parent;
-        let at_root = p != NO_RECORD && self.src.records[p as usize].parent == NO_RECORD;
-        if !at_root || rec.kind != RecordKind::Element || !node.attrs().is_empty() {
+        if !self.at_file_top(r) || rec.kind != RecordKind::Element || !node.attrs().is_empty() {
             return false;
         }
         if Some(rec.id) != crate::model::layout::root_class(self.model) {

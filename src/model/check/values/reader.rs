@@ -8,6 +8,7 @@ use crate::schema::Role;
 use crate::value::Value;
 
 use super::{At, Check, Found, found, found_element, on};
+use crate::model::check::actuator_spec::{BadInput, parse_input};
 
 /// The attributes that take a list of keywords, each at most once (MuJoCo's
 /// `MapValues`): where they are, and their keywords.
@@ -26,8 +27,7 @@ const FLAGS: &[(&[&str], &str, &[&str])] = &[
     (INPUT_AT, "input", INPUTS),
 ];
 
-/// The elements with an `input` (MuJoCo's `ReadInputSpec`), and its tokens in their
-/// canonical order (MuJoCo 4.0.0's: the source read has no `pressure`).
+/// The elements with an `input` (MuJoCo's `ReadInputSpec`).
 const INPUT_AT: &[&str] = &[
     "actuator/general",
     "actuator/orientation",
@@ -38,6 +38,7 @@ const INPUT_AT: &[&str] = &[
     "default/pid",
     "default/dcmotor",
 ];
+/// The input tokens (`actuator_spec::INPUT_TOKENS`' names).
 const INPUTS: &[&str] = &["pos", "vel", "ff", "voltage", "pressure"];
 
 pub(crate) const CHECKS: &[Check] = &[
@@ -113,35 +114,30 @@ fn keyword_twice(at: &At<'_, '_>) -> Option<Found> {
     None
 }
 
-/// An `input` as MuJoCo 4.0.0's reader takes it: a chart (`expmap`, `quat`) or `none`
-/// as the whole text, else input tokens, each known ("invalid keyword"), in canonical
-/// order ("inputs must be listed in canonical order"); a repeat is `keyword-twice`'s.
+/// An `input` as MuJoCo 4.0.0's reader takes it (`actuator_spec::parse_input`): an
+/// unknown token is "invalid keyword", tokens out of canonical order are refused; a
+/// repeat is `keyword-twice`'s.
 fn input_tokens(at: &At<'_, '_>) -> Option<Found> {
-    let text = own_text(at, "input")?;
-    if ["expmap", "quat", "none"].contains(&text) {
-        return None;
-    }
-    let mut seen: Vec<usize> = Vec::new();
-    for word in text.split_ascii_whitespace() {
-        let Some(i) = INPUTS.iter().position(|t| *t == word) else {
-            return found("input", format!("invalid keyword: '{word}'"));
-        };
-        if seen.contains(&i) {
-            return None;
-        }
-        seen.push(i);
-    }
-    if seen.windows(2).any(|w| w[1] < w[0]) {
-        return found(
+    match parse_input(own_text(at, "input")?) {
+        Err(BadInput::Unknown(word)) => found("input", format!("invalid keyword: '{word}'")),
+        Err(BadInput::OutOfOrder) => found(
             "input",
             "inputs must be listed in canonical order [pos, vel, ff, voltage, pressure]",
-        );
+        ),
+        Ok(_) | Err(BadInput::Twice) => None,
     }
-    None
 }
 
 #[cfg(test)]
 mod tests {
+    /// The repeat check's input tokens are the parser's.
+    #[test]
+    fn the_input_tokens_are_the_parser_s() {
+        let parser: Vec<&str> =
+            crate::model::check::actuator_spec::INPUT_TOKENS.iter().map(|(t, _)| *t).collect();
+        assert_eq!(super::INPUTS, parser.as_slice());
+    }
+
     use super::super::tests::assert_pairs;
 
     /// Each pair's verdicts are MuJoCo 4.0.0's.
