@@ -229,6 +229,30 @@ impl ElementKind {
         self.spec().children.iter().copied().find(|c| c.tag() == tag)
     }
 
+    /// The kind of the defaults a default class of this kind holds for elements of
+    /// `kind`: its child of `kind`'s tag (`<tendon>` for every tendon). `None` if
+    /// this is no default class or it holds no defaults for `kind`.
+    ///
+    /// Time: O(1) (a table made once, where [`ElementKind::child`] compares tags).
+    pub(crate) fn defaults_for(self, kind: ElementKind) -> Option<ElementKind> {
+        static TABLE: std::sync::OnceLock<Vec<Option<Box<[Option<ElementKind>]>>>> =
+            std::sync::OnceLock::new();
+        let table = TABLE.get_or_init(|| {
+            ElementKind::all()
+                .map(|class| {
+                    class.is(Role::DefaultClass).then(|| {
+                        ElementKind::all()
+                            .map(|k| {
+                                class.child(if k.is(Role::Tendon) { "tendon" } else { k.tag() })
+                            })
+                            .collect()
+                    })
+                })
+                .collect()
+        });
+        table.get(usize::from(self.0))?.as_ref()?.get(usize::from(kind.0)).copied().flatten()
+    }
+
     /// The child kind with this role, if the schema allows one (`<body>` of the
     /// worldbody: [`Role::Body`]).
     ///

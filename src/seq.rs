@@ -225,6 +225,15 @@ impl<T: Clone + Keyed> Seq<T> {
         self.range(0, self.len)
     }
 
+    /// The first item that `pred` accepts. A sequence of one leaf (most elements'
+    /// children) is searched as a slice, without an iterator's bookkeeping.
+    pub(crate) fn find(&self, mut pred: impl FnMut(&T) -> bool) -> Option<&T> {
+        match &self.root {
+            Some(Tree::Leaf(leaf)) => leaf.items.iter().find(|x| pred(x)),
+            _ => self.iter().find(|x| pred(x)),
+        }
+    }
+
     /// The items at positions `start..end` (clamped to the length), found in
     /// O(log n) rather than by stepping over the ones before.
     pub(crate) fn range(&self, start: usize, end: usize) -> Iter<'_, T> {

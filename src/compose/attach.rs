@@ -291,9 +291,15 @@ impl Model {
     ) -> Result<Attachment, EditError> {
         // The child in the conventions (angle unit, euler sequence) in force for the
         // whole composition, which every model in it shares (`compose::angles`).
-        let ours = settings::merged(self).map_err(|k| EditError::new(k, String::new()))?;
-        let converted =
-            angles::into_conventions(&ours, child).map_err(|k| EditError::new(k, String::new()))?;
+        let err = |k: ErrorKind| EditError::new(k, String::new());
+        let ours = settings::merged(self).map_err(err)?;
+        // Settings whose fold into ours changed nothing (the last attach of the same
+        // model did so) hold no convention other than ours: nothing to convert.
+        let converted = if self.index.merged.absorbs(&settings::merged(child).map_err(err)?) {
+            None
+        } else {
+            angles::into_conventions(&ours, child).map_err(err)?
+        };
         let child = converted.as_ref().unwrap_or(child);
         if at.scope().is_empty() {
             // In place: every check comes first, then the edit copies only what other

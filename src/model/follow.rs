@@ -19,7 +19,7 @@
 
 use std::collections::HashMap;
 
-use crate::schema::Role;
+use crate::schema::{ElementKind, Role};
 use crate::value::Value;
 
 use super::layout::Layout;
@@ -94,21 +94,21 @@ pub(crate) fn moves_layout(node: &Node) -> bool {
 
 /// The model's own keys that hold an array, if any.
 fn keys_with_arrays(m: &Model) -> Vec<&Node> {
-    let Some(section) = m.root.children().iter().find(|c| c.kind().is(Role::Keyframe)) else {
-        return Vec::new();
-    };
-    section
-        .children()
-        .iter()
-        .filter(|k| {
-            k.kind().is(Role::Key) && k.attrs().iter().any(|(_, v)| v.as_floats().is_some())
-        })
-        .collect()
+    keys_holding_arrays(m).collect()
+}
+
+/// [`keys_with_arrays`], as they are found: the keyframe section looked for from the
+/// end of the root's children, where the schema's order puts it.
+fn keys_holding_arrays(m: &Model) -> impl Iterator<Item = &Node> {
+    let section = m.root.children().iter().rev().find(|c| c.kind() == ElementKind::KEYFRAME);
+    section.into_iter().flat_map(|s| s.children().iter()).filter(|k| {
+        k.kind().is(Role::Key) && k.attrs().iter().any(|(_, v)| v.as_floats().is_some())
+    })
 }
 
 /// Whether `m` has own keys for an edit to follow.
 pub(crate) fn has_keys(m: &Model) -> bool {
-    !keys_with_arrays(m).is_empty()
+    keys_holding_arrays(m).next().is_some()
 }
 
 impl Model {

@@ -21,83 +21,115 @@ pub(crate) fn frame_settable(name: &str) -> bool {
     name == "mocap" || FRAME_ATTRS.contains(&name)
 }
 
-/// The frame attributes copied from a site, as attributes of `body_kind`.
-pub(crate) fn frame_attrs(site: &Node, body_kind: ElementKind) -> Vec<Attr> {
-    let theirs = frame_attr_indices(site.kind());
-    let ours = frame_attr_indices(body_kind);
-    theirs
-        .iter()
-        .zip(ours)
-        .filter_map(|(s, b)| Some(((*b)?, site.attr(usize::from((*s)?))?.clone())))
-        .collect()
-}
-
 /// The frame attributes of an attachment at `site` (at `path` in `model`), placing
 /// the frame where MuJoCo places the site (decision D15): its own attributes, and where
 /// it sets neither a position nor an orientation, those its default classes give it;
 /// a `fromto` gives both (its middle, and the direction from its end back to its
-/// start as the z axis), as MuJoCo
-/// reads it. dm_control copies the site's own attributes only, which puts the frame
-/// elsewhere than the site when its class or a `fromto` places it.
+/// start as the z axis), as MuJoCo reads it. dm_control copies the site's own
+/// attributes only, which puts the frame elsewhere than the site when its class or a
+/// `fromto` places it.
+///
+/// Each element's attributes are read in one pass (a table per kind gives each
+/// attribute index its part: [`slotted`]), never looked up by name: an attach is a
+/// few thousand instructions, and this is a part of it.
 pub(crate) fn placed_frame_attrs(
     model: &super::Model,
     path: &[usize],
     site: &Node,
     body_kind: ElementKind,
 ) -> Vec<Attr> {
-    use crate::value::Value;
+    use crate::value::{Reference, Value};
     let ours = frame_attr_indices(body_kind);
-    let set = |attrs: &mut Vec<Attr>, name: &str, value: Value| {
-        let Some(i) = FRAME_ATTRS.iter().position(|n| *n == name) else { return };
-        if let Some(b) = ours[i] {
-            attrs.retain(|(j, _)| *j != b);
-            attrs.push((b, value));
-        }
-    };
-    let mut attrs = frame_attrs(site, body_kind);
-    // By the attributes set (a handful), not by a search of the schema's names.
-    fn set_on<'n>(node: &'n Node, name: &str) -> Option<&'n Value> {
-        let kind = node.kind();
-        node.attrs().iter().find(|(i, _)| kind.attr(*i as usize).name == name).map(|(_, v)| v)
-    }
-    let own = |name: &str| set_on(site, name);
-    if let Some(ft) = own("fromto").and_then(Value::as_floats).filter(|f| f.len() == 6) {
+    let own = slotted(site);
+    let mut attrs: Vec<Attr> = Vec::with_capacity(FRAME_ATTRS.len());
+    if let Some(ft) = own[FROMTO].and_then(Value::as_floats).filter(|f| f.len() == 6) {
+        // MuJoCo's z axis points from `to` back to `from`; the site's own orientation
+        // attributes give way to it.
         let mid: Vec<f64> = (0..3).map(|i| (ft[i] + ft[i + 3]) / 2.0).collect();
-        // MuJoCo's z axis points from `to` back to `from`.
         let dir: Vec<f64> = (0..3).map(|i| ft[i] - ft[i + 3]).collect();
-        let placing: Vec<u16> = ORIENTATIONS
-            .iter()
-            .filter_map(|n| ours[FRAME_ATTRS.iter().position(|f| f == n)?])
-            .collect();
-        attrs.retain(|(j, _)| !placing.contains(j));
-        set(&mut attrs, "pos", Value::Floats(mid.into()));
-        set(&mut attrs, "zaxis", Value::Floats(dir.into()));
+        let placed = [(POS, Value::Floats(mid.into())), (ZAXIS, Value::Floats(dir.into()))];
+        let rest = (0..FRAME_ATTRS.len()).filter(|i| !PLACING.contains(i));
+        let rest = rest.filter_map(|i| Some((i, own[i]?.clone())));
+        attrs.extend(placed.into_iter().chain(rest).filter_map(|(i, v)| Some((ours[i]?, v))));
         attrs.sort_by_key(|(i, _)| *i);
         return attrs;
     }
-    // The class in force: the site's own, else the nearest `childclass` above it, else
-    // the model's root class.
-    let class = super::layout::class_of(site).or_else(|| nearest_childclass(model, path));
-    let class = class.or_else(|| super::layout::root_class(model));
-    let need_pos = own("pos").is_none();
-    let need_orientation = ORIENTATIONS.iter().all(|n| own(n).is_none());
-    if need_pos || need_orientation {
-        // The class chain walked once (each step finds a node by its id), not once
-        // per attribute asked of it.
-        let defaults: Vec<&Node> =
-            super::layout::class_defaults(model, site.kind(), class).collect();
-        let given = |name: &str| defaults.iter().find_map(|d| set_on(d, name));
-        if let Some(v) = given("pos").filter(|_| need_pos) {
-            set(&mut attrs, "pos", v.clone());
+    for (i, b) in ours.iter().enumerate() {
+        if let (Some(b), Some(v)) = (b, own[i]) {
+            attrs.push((*b, v.clone()));
         }
-        if let Some((name, v)) =
-            ORIENTATIONS.iter().find_map(|n| Some((*n, given(n)?))).filter(|_| need_orientation)
-        {
-            set(&mut attrs, name, v.clone());
+    }
+    let need_pos = own[POS].is_none();
+    let need_orientation = ORIENTATION.iter().all(|&i| own[i].is_none());
+    if !(need_pos || need_orientation) {
+        return attrs;
+    }
+    // The class in force: the site's own, else the nearest `childclass` above it, else
+    // the model's root class. Its chain is walked once, nearest class first, keeping
+    // the nearest value of each attribute.
+    let class = match own[CLASS] {
+        Some(Value::Reference(Reference::Element(id))) => Some(*id),
+        _ => nearest_childclass(model, path),
+    };
+    let mut given: [Option<&Value>; SLOTS] = [None; SLOTS];
+    for d in super::layout::class_defaults_in_force(model, site.kind(), class) {
+        for (g, v) in given.iter_mut().zip(slotted(d)) {
+            *g = g.or(v);
+        }
+    }
+    let mut give = |i: usize, v: &Value| {
+        if let Some(b) = ours[i] {
+            attrs.retain(|(j, _)| *j != b);
+            attrs.push((b, v.clone()));
+        }
+    };
+    if let Some(v) = given[POS].filter(|_| need_pos) {
+        give(POS, v);
+    }
+    // The first orientation attribute (in MuJoCo's order) that a class gives.
+    if let Some(&i) = ORIENTATION.iter().find(|&&i| given[i].is_some()).filter(|_| need_orientation)
+    {
+        if let Some(v) = given[i] {
+            give(i, v);
         }
     }
     attrs.sort_by_key(|(i, _)| *i);
     attrs
+}
+
+/// The parts of an element's attributes that place a frame: [`FRAME_ATTRS`] (by their
+/// positions there), then `fromto` and the element's `class`.
+const FROMTO: usize = FRAME_ATTRS.len();
+const CLASS: usize = FROMTO + 1;
+const SLOTS: usize = CLASS + 1;
+
+/// The values `node` sets of each part ([`FROMTO`], [`CLASS`], [`FRAME_ATTRS`]), in
+/// one pass over its attributes, each given its part by a table made once per kind.
+fn slotted(node: &Node) -> [Option<&crate::value::Value>; SLOTS] {
+    static TABLE: std::sync::OnceLock<Vec<Box<[u8]>>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        ElementKind::all()
+            .map(|k| {
+                let mut parts = vec![u8::MAX; k.spec().attrs.len()];
+                let named = FRAME_ATTRS.iter().enumerate().map(|(p, n)| (p, k.attr_index(n)));
+                let more = [(FROMTO, k.attr_index("fromto")), (CLASS, k.class_attr())];
+                for (part, i) in named.chain(more) {
+                    if let Some(slot) = i.and_then(|i| parts.get_mut(i)) {
+                        *slot = part as u8;
+                    }
+                }
+                parts.into_boxed_slice()
+            })
+            .collect()
+    });
+    let mut out = [None; SLOTS];
+    let parts = table.get(node.kind().0 as usize).map_or(&[][..], |p| &p[..]);
+    for (i, v) in node.attrs() {
+        if let Some(slot) = parts.get(usize::from(*i)).and_then(|&p| out.get_mut(usize::from(p))) {
+            *slot = Some(v);
+        }
+    }
+    out
 }
 
 /// The `childclass` nearest above the element at `path` (its ancestors', the root's
@@ -119,8 +151,15 @@ fn nearest_childclass(
     nearest
 }
 
-/// The attributes that orient a site or a frame.
-const ORIENTATIONS: [&str; 5] = ["quat", "axisangle", "xyaxes", "zaxis", "euler"];
+/// The positions in [`FRAME_ATTRS`] of `pos`, of the attributes that orient a site
+/// or a frame (in MuJoCo's order of precedence), and of `zaxis`; `PLACING` is both.
+const POS: usize = 0;
+const ORIENTATION: [usize; 5] = [1, 2, 3, 4, 5];
+const ZAXIS: usize = 4;
+const PLACING: [usize; 6] = [0, 1, 2, 3, 4, 5];
+
+/// The attributes that orient a site or a frame, in [`FRAME_ATTRS`]' order.
+pub(crate) const ORIENTATIONS: [&str; 5] = ["quat", "axisangle", "xyaxes", "zaxis", "euler"];
 
 /// The schema indices of [`FRAME_ATTRS`] in `kind` (`None` where it has no such
 /// attribute), from a table computed once for all kinds: an attach asks for two
@@ -330,4 +369,18 @@ fn has_free_joint(
 
 fn section_of<'m>(model: &'m Model, tag: &str) -> Option<&'m Node> {
     model.root.child_of_kind(ElementKind::ROOT.child(tag)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_placing_positions_name_the_placing_attributes() {
+        assert_eq!(FRAME_ATTRS[POS], "pos");
+        assert_eq!(FRAME_ATTRS[ZAXIS], "zaxis");
+        assert_eq!(ORIENTATION.map(|i| FRAME_ATTRS[i]), ORIENTATIONS);
+        assert!(PLACING.iter().all(|i| *i == POS || ORIENTATION.contains(i)));
+        assert_eq!(PLACING.len(), ORIENTATION.len() + 1);
+    }
 }

@@ -539,8 +539,7 @@ impl Index {
             }
         };
         loop {
-            // Built in place (no `String` for names of up to 23 bytes).
-            let name = smol_str::format_smolstr!("{base}_{n}");
+            let name = suffixed(base, n);
             let hash = name_hash(&name);
             if !taken(&name, hash) {
                 return FreeName { name, suffix: n, hash };
@@ -548,6 +547,25 @@ impl Index {
             n += 1;
         }
     }
+}
+
+/// `base_n`, built in place (no `String` for names of up to 23 bytes, and no
+/// formatting machinery: an attach asks for one).
+fn suffixed(base: &str, n: u64) -> SmolStr {
+    let (mut digits, mut at, mut n) = ([0u8; 20], 20, n);
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    let mut name = smol_str::SmolStrBuilder::new();
+    name.push_str(base);
+    name.push('_');
+    digits[at..].iter().for_each(|d| name.push(char::from(*d)));
+    name.finish()
 }
 
 /// The index of a model being read, built a node at a time as the reader makes the
@@ -691,6 +709,15 @@ pub(crate) struct FreeName {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn suffixed_names_are_what_format_writes() {
+        for (base, n) in [("robot", 0), ("robot", 1), ("r", 10), ("", 907), ("é", u64::MAX)] {
+            assert_eq!(suffixed(base, n), format!("{base}_{n}"));
+        }
+        let long = "a".repeat(40);
+        assert_eq!(suffixed(&long, 12), format!("{long}_12"));
+    }
 
     /// Names of one hash: the later by name, each found, listed and removed.
     #[test]

@@ -371,10 +371,30 @@ pub(crate) fn class_defaults<'m>(
     kind: ElementKind,
     class: Option<ElementId>,
 ) -> impl Iterator<Item = &'m Node> + 'm {
-    let tag = if kind.is(Role::Tendon) { "tendon" } else { kind.tag() };
+    let root = model.root.child_of_kind(ElementKind::DEFAULT);
+    class_chain_defaults(model, kind, class, root)
+}
+
+/// [`class_defaults`] of `class`, else (`None`) of the model's root class: the
+/// defaults of an element whose class in force is `class` or the root class.
+pub(crate) fn class_defaults_in_force<'m>(
+    model: &'m Model,
+    kind: ElementKind,
+    class: Option<ElementId>,
+) -> impl Iterator<Item = &'m Node> + 'm {
+    let root = model.root.child_of_kind(ElementKind::DEFAULT);
+    class_chain_defaults(model, kind, class.or(root.map(Node::id)), root)
+}
+
+/// [`class_defaults`], the model's root class (`root`) given.
+fn class_chain_defaults<'m>(
+    model: &'m Model,
+    kind: ElementKind,
+    class: Option<ElementId>,
+    root: Option<&'m Node>,
+) -> impl Iterator<Item = &'m Node> + 'm {
     // The root class, where most chains end (and most start), is found without a
     // lookup by id (which walks the index up and the tree down).
-    let root = model.root.child_of_kind(ElementKind::DEFAULT);
     let by_id = move |id: ElementId| match root {
         Some(r) if r.id() == id => Some(r),
         _ => model.node_by_id(id),
@@ -390,7 +410,7 @@ pub(crate) fn class_defaults<'m>(
     });
     classes.filter_map(move |id| {
         let class_node = by_id(id)?;
-        class_node.kind().child(tag).and_then(|k| class_node.child_of_kind(k))
+        class_node.kind().defaults_for(kind).and_then(|k| class_node.child_of_kind(k))
     })
 }
 
@@ -410,21 +430,9 @@ pub(crate) fn joint_type(model: &Model, node: &Node, class: Option<ElementId>) -
         return t;
     }
     // The class chain: the element's class, then its ancestors in the default tree.
-    let mut cur = class;
-    while let Some(id) = cur {
-        let Some(class_node) = model.node_by_id(id) else { break };
-        // The class's defaults of the joint's tag.
-        let joint_default =
-            class_node.kind().child(node.kind().tag()).and_then(|k| class_node.child_of_kind(k));
-        if let Some(t) =
-            of(joint_default.and_then(|j| j.kind().attr_index("type").and_then(|i| j.attr(i))))
-        {
-            return t;
-        }
-        cur = model
-            .index
-            .parent(id)
-            .filter(|p| model.node_by_id(*p).is_some_and(|n| n.kind().is(Role::DefaultClass)));
+    let typed = |j: &Node| of(j.kind().attr_index("type").and_then(|i| j.attr(i)));
+    if let Some(t) = class_defaults(model, node.kind(), class).find_map(typed) {
+        return t;
     }
     JointType::Hinge
 }

@@ -213,7 +213,7 @@ impl Node {
 
     /// The first child of this kind.
     pub(crate) fn child_of_kind(&self, kind: ElementKind) -> Option<&Node> {
-        self.0.children.iter().find(|c| c.kind() == kind)
+        self.0.children.find(|c| c.kind() == kind)
     }
 
     /// A copy with different attributes.

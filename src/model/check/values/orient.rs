@@ -8,8 +8,7 @@ use crate::value::Value;
 
 use super::{At, Check, Found, found, found_element, numbers, on};
 
-/// The attributes that orient an element, `quat` first.
-pub(crate) const ORIENTATIONS: [&str; 5] = ["quat", "axisangle", "xyaxes", "zaxis", "euler"];
+pub(crate) use crate::model::frame::ORIENTATIONS;
 
 /// MuJoCo's `mjEPS` (the squared norm below which a vector is zero).
 const EPS: f64 = 1e-14;
