@@ -12,7 +12,9 @@
 //! `floor-chain` (quick-xml events and attributes), `nested N` (W6, N levels),
 //! `attach N` (W7: one more robot onto a fleet of N), `detach` (W4), `names N` (the
 //! name of every element of the W1 fleet of N robots, through handles walked from the
-//! root by `children()`), `walk N` (the preorder walk of that fleet). REPS defaults
+//! root by `children()`), `full-names N` (the same names asked one by one of the
+//! model, `Model::full_name` of each element's locator), `walk N` (the preorder walk
+//! of that fleet). REPS defaults
 //! to 1 (the setup is counted too: compare runs that differ in REPS to subtract it).
 
 mod workloads;
@@ -99,9 +101,25 @@ fn main() {
                 eprintln!("names: {elements} elements, {chars} characters of names");
             }
         }
+        "full-names" => {
+            let n = arg(1, 100);
+            let fleet = build_fleet(&read_arena(n), &robot, n).expect("builds");
+            let locs: Vec<mjcf::Loc> = fleet
+                .walk()
+                .filter_map(|e| match e {
+                    mjcf::Event::Enter(h) => Some(h.loc()),
+                    mjcf::Event::Leave(_) => None,
+                })
+                .collect();
+            for _ in 0..reps {
+                let chars: usize =
+                    locs.iter().filter_map(|l| fleet.full_name(l)).map(|s| s.len()).sum();
+                eprintln!("full-names: {} elements, {chars} characters of names", locs.len());
+            }
+        }
         _ => {
             eprintln!(
-                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach|names|walk [N] [REPS]"
+                "usage: profile build|write|read-tree|read-rtree|read-chain|floor-tree|floor-rtree|floor-chain|nested|attach|detach|names|full-names|walk [N] [REPS]"
             );
             std::process::exit(2);
         }

@@ -25,14 +25,14 @@
 
 use std::cell::OnceCell;
 use std::collections::HashMap;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, Weak};
 
 use crate::id::IdHash;
 use crate::schema::{ElementKind, Namespace, Role};
 
 use super::naming::{ElemCtx, InstNames, Named, Written, first_unnamed_joint};
 use super::settings::is_settings_section;
-use super::tree::{ElementId, Node};
+use super::tree::{ElementId, Node, NodeData};
 use super::{Loc, Model};
 
 /// One model of a composition: the outermost (index 0) or an attachment at any depth.
@@ -53,7 +53,7 @@ pub(crate) struct Inst<'a> {
     counters: Vec<u32>,
     /// Every element's automatic-name position and whether a `<replicate>` of its
     /// model is above it, counted once when a name needs it ([`Insts::name_of_id`]).
-    auto: OnceCell<HashMap<ElementId, (u32, bool), IdHash>>,
+    auto: OnceCell<Arc<AutoPositions>>,
 }
 
 impl<'a> Inst<'a> {
@@ -165,7 +165,7 @@ impl<'a> Insts<'a> {
         let i = &self.list[inst];
         let m = i.model;
         name_in(&i.names, m, i.frame, id, entry, || {
-            let counted = i.auto.get_or_init(|| auto_positions(m));
+            let counted = i.auto.get_or_init(|| m.auto_positions());
             counted.get(&id).copied().unwrap_or((0, false))
         })
     }
@@ -467,10 +467,40 @@ pub(crate) fn name_in<'a>(
     names.name_of(m, Named::of_entry(entry), &ctx, auto)
 }
 
+/// Every element of a model with a namespace: its automatic-name position and
+/// whether a `<replicate>` of the model is above it.
+pub(crate) type AutoPositions = HashMap<ElementId, (u32, bool), IdHash>;
+
+/// A model's [`AutoPositions`], kept for the version they were counted for (by its
+/// root node: every edit makes a new root, [`Node::is`]). The versions made from one
+/// another share one cache, which keeps the last count asked for, so naming unnamed
+/// elements through handles made one by one ([`Model::full_name`], a binding's
+/// handles) counts a model once, not once per name.
+#[derive(Clone, Default)]
+pub(crate) struct AutoCache(Arc<Mutex<Option<(Weak<NodeData>, Arc<AutoPositions>)>>>);
+
+impl Model {
+    /// [`AutoPositions`] of this version: counted ([`auto_positions`], O(n)) unless
+    /// the cache holds this version's.
+    pub(crate) fn auto_positions(&self) -> Arc<AutoPositions> {
+        let cached = |c: &Option<(Weak<NodeData>, Arc<AutoPositions>)>| {
+            c.as_ref().filter(|(root, _)| self.root.is(root)).map(|(_, a)| a.clone())
+        };
+        let lock = || self.auto.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(a) = cached(&lock()) {
+            return a;
+        }
+        // Counted without the lock held: another thread may count the same version.
+        let counted = Arc::new(auto_positions(self));
+        *lock() = Some((self.root.downgrade(), counted.clone()));
+        counted
+    }
+}
+
 /// Every element of `model` with a namespace: its automatic-name position and
 /// whether a `<replicate>` of the model is above it, as the composed walk counts
 /// them ([`Walk::own`]).
-pub(crate) fn auto_positions(model: &Model) -> HashMap<ElementId, (u32, bool), IdHash> {
+fn auto_positions(model: &Model) -> AutoPositions {
     let mut out = HashMap::with_hasher(IdHash);
     for step in Walk::own(model) {
         if let Step::Enter(item) = step {

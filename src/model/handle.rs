@@ -11,18 +11,17 @@
 //! the answer, not a search from the top. The walk's handles share their instances'
 //! contexts but keep no parent (keeping one cost the walk of a fleet about 30% more
 //! instructions per element). A handle made by [`Model::element`] starts a context
-//! of its own, filled the first time it is asked.
+//! of its own, filled the first time it is asked; the automatic-name positions it
+//! needs are its model's, counted once per version of the model and kept with it.
 
-use std::collections::HashMap;
 use std::fmt;
 use std::sync::{Arc, OnceLock};
 
 use crate::error::{EditError, ErrorKind};
-use crate::id::IdHash;
 use crate::schema::{ElementKind, Role};
 use crate::value::{Reference, Value};
 
-use super::cursor::{Item, Step, Walk, auto_positions, in_replicate, name_in, section};
+use super::cursor::{AutoPositions, Item, Step, Walk, in_replicate, name_in, section};
 use super::layout::{self, JointType};
 use super::naming::InstNames;
 use super::tree::{ElementId, Node};
@@ -40,7 +39,7 @@ pub(super) struct Shared<'a> {
     /// The model the handles were taken from (the outermost).
     top: &'a Model,
     /// The model of the instance.
-    model: &'a Model,
+    pub(super) model: &'a Model,
     /// The frames from the outermost model down to the instance (empty for it).
     frames: Arc<[ElementId]>,
     /// The context of the instance it is attached in and its attachment frame there,
@@ -52,7 +51,7 @@ pub(super) struct Shared<'a> {
     naming: OnceLock<Option<Naming<'a>>>,
     /// Every element's automatic-name position in the model, counted the first time
     /// an unnamed element's name is asked.
-    pub(super) auto: OnceLock<HashMap<ElementId, (u32, bool), IdHash>>,
+    pub(super) auto: OnceLock<Arc<AutoPositions>>,
 }
 
 impl<'a> Shared<'a> {
@@ -351,7 +350,9 @@ impl<'a> ElementRef<'a> {
     /// prefix's length) from the instance above it; O(levels · depth · log n) from
     /// the outermost model for a handle made by [`Model::element`]) and, for an
     /// unnamed element, whose number is its position, the positions of its model's
-    /// elements (O(n), n of the element's model).
+    /// elements (O(n), n of the element's model, once per version of that model: the
+    /// model keeps the last count, so handles made one by one by [`Model::element`]
+    /// share it too).
     ///
     /// # Examples
     /// ```
@@ -377,7 +378,7 @@ impl<'a> ElementRef<'a> {
         let entry = m.index.elems.get(&id)?;
         let naming = s.naming()?;
         let name = name_in(&naming.names, m, naming.frame, id, entry, || {
-            let counted = s.auto.get_or_init(|| auto_positions(m));
+            let counted = s.auto.get_or_init(|| m.auto_positions());
             counted.get(&id).copied().unwrap_or((0, false))
         })?;
         Some(name.to_string_in(&naming.names.prefix))

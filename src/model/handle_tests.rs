@@ -199,15 +199,59 @@ fn handles_of_one_instance_share_one_context_counted_once() {
     assert!(plane.shared.auto.get().is_none());
     assert_eq!(plane.full_name().as_deref(), Some("//unnamed_geom_0"));
     let counted = plane.shared.auto.get().expect("counted once named");
-    let before = std::ptr::from_ref(counted);
+    let before = counted;
     for c in &children {
         c.full_name();
     }
-    assert!(std::ptr::eq(before, frame.shared.auto.get().expect("the same count")));
+    assert!(std::sync::Arc::ptr_eq(before, frame.shared.auto.get().expect("the same count")));
     let inside: Vec<ElementRef<'_>> =
         frame.children().filter(|c| !std::sync::Arc::ptr_eq(&c.shared, &frame.shared)).collect();
     assert!(!inside.is_empty());
     assert!(inside.iter().all(|c| std::sync::Arc::ptr_eq(&c.shared, &inside[0].shared)));
     let outer = inside[0].shared.outer.as_ref().map(|(o, _)| o);
     assert!(outer.is_some_and(|o| std::sync::Arc::ptr_eq(o, &frame.shared)));
+}
+
+/// The name of the element at `loc` counted afresh: by a walk from the root of a
+/// copy of `m` that shares no count with it.
+fn oracle_name(m: &Model, loc: &Loc) -> Option<String> {
+    let fresh = Model { auto: Default::default(), ..m.clone() };
+    walked_full_name(&fresh, loc)
+}
+
+/// A model keeps the automatic-name positions of the version last counted: handles
+/// made one by one by [`Model::element`] (`Model::full_name`, a binding's handles)
+/// count a model once, and every edit, in place or not, is counted anew, so names
+/// follow it (checked against a walk of the composition from the root).
+#[test]
+fn a_model_counts_its_unnamed_elements_once_per_version() {
+    let mut m = composed();
+    let geoms = m.find_all(Namespace::Geom);
+    let first = m.element(&geoms[0]).expect("geom");
+    assert_eq!(first.full_name(), oracle_name(&m, &geoms[0]));
+    let counted = first.shared.auto.get().expect("counted").clone();
+    for g in &geoms {
+        let h = m.element(g).expect("geom");
+        assert_eq!(h.full_name(), oracle_name(&m, g));
+        if let Some(a) = h.shared.auto.get() {
+            if std::ptr::eq(h.shared.model, first.shared.model) {
+                assert!(std::sync::Arc::ptr_eq(a, &counted), "one count per model version");
+            }
+        }
+    }
+    // An unnamed geom added first in place: every automatic number after it moves.
+    let old = m.clone();
+    let wb = m.worldbody();
+    m.insert_mut(&wb, 0, element!("geom", size = [0.5])).expect("inserts");
+    for g in &m.find_all(Namespace::Geom) {
+        assert_eq!(m.full_name(g), oracle_name(&m, g));
+    }
+    // The older version, asked again, still names by its own count.
+    for g in &geoms {
+        assert_eq!(old.full_name(g), oracle_name(&old, g));
+    }
+    let removed = m.remove(&geoms[0]).expect("removes");
+    for g in &removed.find_all(Namespace::Geom) {
+        assert_eq!(removed.full_name(g), oracle_name(&removed, g));
+    }
 }

@@ -83,6 +83,9 @@ pub struct Model {
     pub(crate) files: Arc<FileContext>,
     /// The text read (`xml::source`); `None` for a model built through the API.
     pub(crate) source: Option<Arc<source::Source>>,
+    /// The automatic-name positions of the last version counted, shared by the
+    /// versions made from one another.
+    pub(crate) auto: cursor::AutoCache,
 }
 
 /// Points at one element of a model, across versions.
@@ -206,7 +209,8 @@ impl Model {
     /// ```
     pub fn new(name: &str) -> Model {
         let (root, index) = template().clone();
-        let m = Model { root, index, files: Arc::new(FileContext::default()), source: None };
+        let (files, auto) = (Arc::new(FileContext::default()), cursor::AutoCache::default());
+        let m = Model { root, index, files, source: None, auto };
         m.with_name(name)
     }
 
@@ -231,7 +235,7 @@ impl Model {
     }
 
     pub(crate) fn from_parts(root: Node, index: Index, files: FileContext) -> Model {
-        Model { root, index, files: Arc::new(files), source: None }
+        Model { root, index, files: Arc::new(files), source: None, auto: Default::default() }
     }
 
     /// The same model with the source `source` (the reader's).
@@ -258,7 +262,8 @@ impl Model {
         if !(settings_same && memo_same && index.scopes.same(&self.index.scopes)) {
             index.merged = MergedCache::default();
         }
-        Model { root, index, files: self.files.clone(), source: self.source.clone() }
+        let (files, source, auto) = (self.files.clone(), self.source.clone(), self.auto.clone());
+        Model { root, index, files, source, auto }
     }
 
     /// The model's name: its `model` attribute (`unnamed_model` if it has none, as in

@@ -194,6 +194,19 @@ impl Node {
         Arc::make_mut(&mut self.0)
     }
 
+    /// A weak handle on the node's allocation, which keeps the address from being
+    /// reused while it is held: [`Node::is`] then tells this very node from any
+    /// later one, even one made by an in-place edit (`Arc::make_mut` moves a node
+    /// that a weak handle points at rather than edit it in place).
+    pub(crate) fn downgrade(&self) -> std::sync::Weak<NodeData> {
+        Arc::downgrade(&self.0)
+    }
+
+    /// Whether `weak` ([`Node::downgrade`]) was taken from this very node.
+    pub(crate) fn is(&self, weak: &std::sync::Weak<NodeData>) -> bool {
+        std::ptr::eq(weak.as_ptr(), Arc::as_ptr(&self.0))
+    }
+
     /// Whether both are the same shared node.
     /// The node's address, for telling shared nodes apart while they are borrowed.
     pub(crate) fn as_ptr(&self) -> *const () {

@@ -443,10 +443,11 @@ impl Model {
     /// namespace. See [`ElementRef::full_name`](crate::ElementRef::full_name).
     ///
     /// Time: as [`ElementRef::full_name`](crate::ElementRef::full_name) of a handle
-    /// made by [`Model::element`], which shares nothing with another call:
-    /// O(levels · depth · log n), and O(n) more for an unnamed element (its model's
-    /// elements counted). To name many elements, name the handles of one walk
-    /// ([`Model::walk`], [`ElementRef::children`](crate::ElementRef::children)).
+    /// made by [`Model::element`]: O(levels · depth · log n), and for an unnamed
+    /// element O(n) the first time a version of its model is asked (its model's
+    /// elements counted, and the count kept with the model). To name many elements,
+    /// name the handles of one walk ([`Model::walk`],
+    /// [`ElementRef::children`](crate::ElementRef::children)), which share the rest.
     pub fn full_name(&self, loc: &Loc) -> Option<String> {
         self.element(loc)?.full_name()
     }

@@ -47,7 +47,13 @@ fn relocate(m: &Model, what: &Loc, to: &Loc, at: usize) -> Model {
             Ok::<_, ()>(p.with_children(children))
         })
         .unwrap();
-    Model { root, index, files: m.files.clone(), source: m.source.clone() }
+    Model {
+        root,
+        index,
+        files: m.files.clone(),
+        source: m.source.clone(),
+        auto: Default::default(),
+    }
 }
 
 fn site(m: &Model, name: &str) -> Loc {
