@@ -60,15 +60,31 @@ impl Model {
     /// a worldbody, and returns the new model and a locator of the attachment frame.
     /// ([`Model::attach_in`] attaches at a body or a MuJoCo `<frame>`.)
     ///
-    /// The frame copies `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`, `euler` and
-    /// `user` from the site (placed where MuJoCo places the site), and sits right after
-    /// it (after frames attached there before), or at the end of the worldbody. The
-    /// child's names get the scope prefix
-    /// `name/` when written, where `name` is the child's model name, or `name_1`,
-    /// `name_2`, ... if the model that receives it already has an attachment of that
-    /// name, or a literal name read from MJCF that starts with `name/` (a composed
-    /// model read back holds `robot/torso`). The child value is shared, not copied, whatever its size, and one value
-    /// can be attached any number of times.
+    /// The frame sits right after the site (after frames attached there before), or
+    /// at the end of the worldbody, and takes the site's pose as MuJoCo reads it: its
+    /// `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis` and `euler`, its classes' where it
+    /// sets none, and for `fromto` its middle and direction
+    /// ([D15](crate::decisions#d15-an-attachment-frame-sits-where-mujoco-places-its-site));
+    /// it copies the site's `user` too. It is written as a `<body>` named with the
+    /// scope (`robot/`), or as MuJoCo's `<frame>` when it lies in the world, the child
+    /// has a free body at its top level, and the frame has no joints, no inertial, no
+    /// `user` and no `mocap`, so that those bodies stay at the top level
+    /// ([D10](crate::decisions#d10-free-bodies-attached-in-the-world-stay-at-the-top-level)).
+    ///
+    /// The child's names get the scope prefix `name/` when written (all the names:
+    /// [Names](crate::guide#names)), where `name` is the child's model name, or
+    /// `name_1`, `name_2`, ... if the model that receives it already has an
+    /// attachment of that name, or a literal name read from MJCF that starts with
+    /// `name/` (a composed model read back holds `robot/torso`). The scope lives in
+    /// the attachment: the child value is never renamed
+    /// ([D2](crate::decisions#d2-the-scope-name-lives-in-the-attachment)). The child
+    /// value is shared, not copied, whatever its size, and one value can be attached
+    /// any number of times
+    /// ([D1](crate::decisions#d1-a-model-value-can-be-attached-any-number-of-times)).
+    /// Global settings (`<compiler>`, `<option>`, `<size>`, `<visual>`,
+    /// `<statistic>`) are merged when the model is written, never stored, so
+    /// [`Model::detach`] gives back exactly the model before the attach
+    /// ([D3](crate::decisions#d3-detach-gives-back-exactly-the-parent-it-was-attached-to)).
     ///
     /// Time: O(levels · depth · (log n + √width)), independent of the size of `child`
     /// (plus one step per frame already attached at the same site). Two parts can
@@ -94,9 +110,11 @@ impl Model {
     /// the attachment is the child converted into this model's conventions (its
     /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
     /// ball's `range` and a hinge's `ref` and `springref`, set on each joint), so
-    /// MuJoCo compiles every element as in the child's own file (decision D17).
+    /// MuJoCo compiles every element as in the child's own file
+    /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused)).
     /// Where one side leaves the attribute unset, the merged settings take the other
-    /// side's value and nothing is converted. Each such attach converts anew
+    /// side's value and nothing is converted; the merged settings keep this model's
+    /// values. Each such attach converts anew
     /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
     /// the first attach holds ([`Model::attached`]), which is then shared.
     ///

@@ -336,17 +336,33 @@ impl Model {
     /// name: out-of-range numbers, degenerate orientations, attributes that exclude
     /// each other, actuators, sensors, tendons, equalities, assets, settings, MuJoCo's
     /// own `<attach>`). Each is said once, naming its element as the writer writes
-    /// it, with MuJoCo's own words and what to do. Empty when none is found; this is
-    /// not a full MuJoCo compile: the content of files (meshes, textures, height
-    /// fields, skins) and plugins are MuJoCo's to judge ([`Model::advice`] names the
-    /// plugins).
+    /// it ([the names](crate::guide#names)), with MuJoCo's own words and what to do;
+    /// a reference to a `<replicate>`'s copies (`j0`) or into an `<attach>`ed part
+    /// (`p-j`) names what MuJoCo makes. Empty when none is found; this is not a full
+    /// MuJoCo compile: the content of files (meshes, textures, height fields, skins),
+    /// meshes whose hull MuJoCo computes only for colliding geoms, and plugins are
+    /// MuJoCo's to judge ([`Model::advice`] names the plugins).
     ///
-    /// How far it reaches is measured against MuJoCo 4.0.0's own refusals (the
-    /// binding's `refusals` catalog: 760 distinct messages of its compiler and XML
-    /// reader, 455 reachable from MJCF text, 90 needing a file's content, 215
-    /// unreachable; 337 pairs of a refused model and its compiled twin for 327 of the
-    /// 455): the reader or `check()` objects to all 337 refused models with MuJoCo's
-    /// message and to none of the twins.
+    /// Composition never turns a model refused silently: an edit either refuses with
+    /// a typed error (a `<freejoint>` on an attachment frame below a body, conflicting
+    /// settings) or `check()` reports what it made (a model with free bodies attached
+    /// at a site inside a body: [`Model::attach_welded`] is the remedy). MuJoCo judges
+    /// that `check()` finds a problem exactly when it refuses the model, over
+    /// generated scenes and what composition makes of them (`mjcf-mujoco/tests/check.rs`:
+    /// mutants of generated scenes, and 2,000 scenes of the wide generators, which
+    /// attach models with free bodies and planes at sites inside moving bodies,
+    /// `<frame>`s and other attached models).
+    ///
+    /// How far it reaches is measured against MuJoCo 4.0.0's own refusals:
+    /// `mjcf-mujoco/refusals/catalog.tsv` lists 760 distinct messages of its compiler
+    /// and XML reader (455 reachable from MJCF text, 90 needing a file's content, 215
+    /// unreachable: C API only, internal checks, plugins, or another refusal comes
+    /// first), with 337 pairs of a model MuJoCo refuses with that message and a near
+    /// twin it compiles (327 of the 455). `mjcf-mujoco/tests/refusals.rs` has MuJoCo
+    /// judge every pair: the reader or `check()` objects to all 337 refused models
+    /// with MuJoCo's message (a [`ProblemKind`] of that class, or
+    /// [`ProblemKind::Refused`] in MuJoCo's words), to none of the twins, and no two
+    /// rules say one message.
     ///
     /// Time: O(N) for a composed model of N elements, plus, for dangling references,
     /// O(n log n) per model and namespace they name into (ranking its `n` names
@@ -439,8 +455,9 @@ impl Model {
 
     /// The name MuJoCo will give the element at `loc` (`robot_1/torso`, a frame's
     /// `robot_1/`, an unnamed geom's `//unnamed_geom_0`): the name to pass to
-    /// `mj_name2id`. `None` if `loc` is not in this model or the element has no
-    /// namespace. See [`ElementRef::full_name`](crate::ElementRef::full_name).
+    /// `mj_name2id`, by the [naming rules](crate::guide#names). `None` if `loc` is not
+    /// in this model or the element has no namespace. See
+    /// [`ElementRef::full_name`](crate::ElementRef::full_name).
     ///
     /// Time: as [`ElementRef::full_name`](crate::ElementRef::full_name) of a handle
     /// made by [`Model::element`], which shares nothing with another call:

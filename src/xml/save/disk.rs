@@ -44,8 +44,10 @@ impl Model {
     /// is indented like its siblings, on lines ending as the file's do (`\n`, `\r\n`
     /// or `\r`); a removed element goes with the comments
     /// directly before it; nothing is renamed, no class or automatic name is added,
-    /// file attributes and compiler folders stay as written. An edit inside an
-    /// included file is saved into that file. A confined model
+    /// file attributes and compiler folders stay as written (meshes keep their paths,
+    /// `meshdir` stays); a byte-order mark, an XML declaration, a DOCTYPE and whatever
+    /// else precedes the root stay as they are. An edit inside an included file is
+    /// saved into that file. A confined model
     /// ([`ReadOptions::confine_to_base_dir`](crate::ReadOptions::confine_to_base_dir))
     /// writes no file outside its folder. Returns the files written.
     ///
@@ -64,15 +66,16 @@ impl Model {
     /// `<model file=...>` as written, wherever its file lies, and nothing written for
     /// it), one added in code as a new `<body name="s/">` holding an `<attach>`, with
     /// a new asset `<model>`; a detached one goes with its asset `<model>` when nothing
-    /// else uses it. Each attached model read from a file in the model's folder (or
+    /// else uses it; a renamed scope or a moved frame changes its name, prefix and pose
+    /// in place. Each attached model read from a file in the model's folder (or
     /// below it) is saved losslessly into its own files (an edit through
     /// [`Model::edit_attached`] goes there); one built in code, an edited one read from
     /// outside the model's folder (its file there is never changed), or a second
     /// version of a file another attachment uses is written with the plain writer as
     /// [`Model::save_scene`] writes a part, into a new file beside the model's (named
     /// after the model; a file already there with other bytes is never replaced), and
-    /// its `<model file=...>` names that file. The rules are in the `xml::save::scene`
-    /// module documentation.
+    /// its `<model file=...>` names that file. How a scene is written and reopened:
+    /// [Scenes](crate::guide#scenes).
     ///
     /// Time: as [`Model::to_source_files`], plus reading each file to write on disk
     /// (to compare) and writing the changed ones.

@@ -288,10 +288,10 @@ impl Model {
     /// temporary name and renamed into place, the scene's own file last; nothing is
     /// written before every part was written to text and every name checked.
     ///
-    /// What compiles differently from the composed text ([`Model::to_xml_string`]) is
-    /// listed in the `xml::scene` module documentation and the README (each file's
-    /// own compiler settings; the layout of attached models' keys; attached sections
-    /// in document order).
+    /// What MuJoCo compiles differently from the composed text
+    /// ([`Model::to_xml_string`]: each file's own compiler settings, the layout of
+    /// attached models' keys, attached sections in document order) and what reopens
+    /// as an attachment are the [scene rules](crate::guide#scenes).
     ///
     /// Time: as [`Model::to_scene`], plus writing every file (as [`Model::export`]).
     ///
