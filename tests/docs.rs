@@ -14,7 +14,9 @@
 //!   three user programs are what `rustfmt` with its default settings gives;
 //! - every link to a section of the manual (`crate::guide#names`, `#scenes`,
 //!   `src/guide.md#versioning`) names a heading of that page, which neither rustdoc
-//!   nor GitHub checks.
+//!   nor GitHub checks;
+//! - each rule of the manual is stated once, in its authority (`RULES`), and only
+//!   summarized and linked elsewhere.
 
 use std::path::{Path, PathBuf};
 
@@ -544,4 +546,91 @@ fn every_link_to_a_section_names_a_heading() {
     }
     assert!(broken.is_empty(), "links to no section:\n{}", broken.join("\n"));
     assert!(checked >= 20, "{checked} section links found");
+}
+
+/// The text of the manual in `file`, its lines joined by single spaces: a Markdown
+/// page whole; of a source file, its doc comments (`///`, and the `//!` of the
+/// public modules: the crate's and `generate`'s; a private module's documentation is
+/// for maintainers, not part of the manual).
+fn manual_text(file: &str, text: &str) -> String {
+    let public_module = matches!(file, "src/lib.rs" | "src/generate/mod.rs");
+    let lines: Vec<&str> = if file.ends_with(".md") {
+        text.lines().collect()
+    } else {
+        text.lines()
+            .filter_map(|l| {
+                let l = l.trim_start();
+                l.strip_prefix("///").or_else(|| l.strip_prefix("//!").filter(|_| public_module))
+            })
+            .collect()
+    };
+    lines.join(" ").split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[test]
+fn manual_text_keeps_doc_comments_of_public_modules_only() {
+    let source = "//! module\n/// item\n///   docs\nfn f() {} // code";
+    assert_eq!(manual_text("src/lib.rs", source), "module item docs");
+    assert_eq!(manual_text("src/model/naming.rs", source), "item docs");
+    assert_eq!(manual_text("README.md", "a\n  b"), "a b");
+}
+
+/// Each rule of the manual is stated in one place, its authority, and linked from
+/// the others: a phrase that only a full statement of the rule holds, and where it is
+/// stated. A second full statement (the rule written out again in the guide, the
+/// README or a decision, instead of a summary and a link) repeats the phrase.
+const RULES: [(&str, &str, &str); 20] = [
+    // Attaching: Model::attach.
+    ("attach frame pose", "for `fromto` its middle and direction", "src/compose/attach.rs"),
+    ("attach frame as <frame>", "no `user` and no `mocap`", "src/compose/attach.rs"),
+    (
+        "scope suffix",
+        "a literal name read from MJCF that starts with `name/`",
+        "src/compose/attach.rs",
+    ),
+    ("angle conversion", "a limited hinge's or ball's `range`", "src/compose/attach.rs"),
+    // Names: the guide's Names section.
+    ("automatic names", "`P/unnamed_<namespace>_<i>`", "src/guide.md"),
+    ("names made unique", "the generated one gives way", "src/guide.md"),
+    ("root class names", "or as `/1` when attached models' root classes follow", "src/guide.md"),
+    // The lossless save: Model::save.
+    ("lossless: outside the root", "a byte-order mark, an XML declaration", "src/xml/save/disk.rs"),
+    (
+        "lossless: changed on disk",
+        "A file changed on disk since it was read is not overwritten",
+        "src/xml/save/disk.rs",
+    ),
+    ("lossless: attachments", "changes its name, prefix and pose in place", "src/xml/save/disk.rs"),
+    // Scenes: the guide's Scenes section.
+    ("scene reopen", "exactly when it has the saved shape", "src/guide.md"),
+    ("scene compile", "MuJoCo 4.0.0 compiles the saved scene to what it compiles", "src/guide.md"),
+    // check(): Model::check.
+    ("check judged", "finds a problem exactly when it refuses the model", "src/model/check/mod.rs"),
+    ("check reach", "760 distinct messages", "src/model/check/mod.rs"),
+    ("composition refused", "Composition never turns a model refused", "src/model/check/mod.rs"),
+    // Keys, costs, generators, guarantees, versioning, simulating.
+    ("keys follow", "keeps every value with its element", "src/guide.md"),
+    ("costs", "`levels`: the models on the way to that element", "src/lib.rs"),
+    ("generators", "skips (or repairs) any step that would make it invalid", "src/generate/mod.rs"),
+    ("guarantees", "No panic, no stack overflow, no hang.", "src/guide.md"),
+    ("versioning", "a release that breaks anything below raises the minor", "src/guide.md"),
+];
+
+#[test]
+fn each_rule_is_stated_in_one_place() {
+    // The changelog says what changed in each release, not what holds now.
+    let files = manual_files().into_iter().filter(|f| f != "CHANGELOG.md");
+    let texts: Vec<(String, String)> = files.map(|f| (manual_text(&f, &read(&f)), f)).collect();
+    assert!(texts.iter().any(|(_, f)| f == "src/guide.md"), "the guide is not scanned");
+    let mut wrong = Vec::new();
+    for (rule, phrase, authority) in RULES {
+        let places: Vec<&str> = texts
+            .iter()
+            .flat_map(|(text, file)| text.matches(phrase).map(move |_| file.as_str()))
+            .collect();
+        if places != [authority] {
+            wrong.push(format!("{rule}: `{phrase}` is in {places:?}, not once in {authority}"));
+        }
+    }
+    assert!(wrong.is_empty(), "rules not stated once where they belong:\n{}", wrong.join("\n"));
 }
