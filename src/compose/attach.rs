@@ -230,9 +230,8 @@ impl Model {
 
     /// [`Model::attach`] under a scope name of the caller's choice instead of the
     /// child's model name (MjSpec's `attach(child, prefix="gripper/")`): the child's
-    /// names are written `gripper/...`. The uniqueness rule is [`Model::attach`]'s: if
-    /// the model that receives it already has an attachment named `scope`, the scope
-    /// is `scope_1`, `scope_2`, ... ([`Attachment::scope`] tells which).
+    /// names are written `gripper/...`, the scope made unique as [`Model::attach`]
+    /// makes a model name unique (`gripper_1`, ...; [`Attachment::scope`] tells which).
     ///
     /// Time: as [`Model::attach`].
     ///
