@@ -579,7 +579,7 @@ fn manual_text_keeps_doc_comments_of_public_modules_only() {
 /// the others: a phrase that only a full statement of the rule holds, and where it is
 /// stated. A second full statement (the rule written out again in the guide, the
 /// README or a decision, instead of a summary and a link) repeats the phrase.
-const RULES: [(&str, &str, &str); 20] = [
+const RULES: [(&str, &str, &str); 22] = [
     // Attaching: Model::attach.
     ("attach frame pose", "for `fromto` its middle and direction", "src/compose/attach.rs"),
     ("attach frame as <frame>", "no `user` and no `mocap`", "src/compose/attach.rs"),
@@ -604,6 +604,9 @@ const RULES: [(&str, &str, &str); 20] = [
     // Scenes: the guide's Scenes section.
     ("scene reopen", "exactly when it has the saved shape", "src/guide.md"),
     ("scene compile", "MuJoCo 4.0.0 compiles the saved scene to what it compiles", "src/guide.md"),
+    ("flat files", "changes the model silently", "src/guide.md"),
+    // Copying: Model::include_copy.
+    ("include_copy source", "A source with attachments is refused", "src/compose/include.rs"),
     // check(): Model::check.
     ("check judged", "finds a problem exactly when it refuses the model", "src/model/check/mod.rs"),
     ("check reach", "760 distinct messages", "src/model/check/mod.rs"),
