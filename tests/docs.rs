@@ -579,7 +579,7 @@ fn manual_text_keeps_doc_comments_of_public_modules_only() {
 /// the others: a phrase that only a full statement of the rule holds, and where it is
 /// stated. A second full statement (the rule written out again in the guide, the
 /// README or a decision, instead of a summary and a link) repeats the phrase.
-const RULES: [(&str, &str, &str); 22] = [
+const RULES: [(&str, &str, &str); 23] = [
     // Attaching: Model::attach.
     ("attach frame pose", "for `fromto` its middle and direction", "src/compose/attach.rs"),
     ("attach frame as <frame>", "no `user` and no `mocap`", "src/compose/attach.rs"),
@@ -611,6 +611,7 @@ const RULES: [(&str, &str, &str); 22] = [
     ("check judged", "finds a problem exactly when it refuses the model", "src/model/check/mod.rs"),
     ("check reach", "760 distinct messages", "src/model/check/mod.rs"),
     ("composition refused", "Composition never turns a model refused", "src/model/check/mod.rs"),
+    ("composition remedies", "a user may attach first and fix after", "src/model/check/mod.rs"),
     // Keys, costs, generators, guarantees, versioning, simulating.
     ("keys follow", "keeps every value with its element", "src/guide.md"),
     ("costs", "`levels`: the models on the way to that element", "src/lib.rs"),

@@ -8,30 +8,9 @@
 //! names) is derived by the writer, so detaching is removing that node: the parent
 //! comes back exactly as it was before the attach.
 //!
-//! # What composition can make that MuJoCo refuses
-//!
-//! Attaching, adding and removing never turn a model MuJoCo refuses silently: for
-//! each such shape the edit refuses with a typed error that says what and how to
-//! fix it, or the edit is allowed (a user may attach first and fix after) and
-//! [`Model::check`] reports it, in MuJoCo's words, with the remedy:
-//!
-//! | shape | where decided | remedy |
-//! |---|---|---|
-//! | a model with free top-level bodies attached at a site inside a body (moving or not): below a body there is no top level | `check()`: `FreeJointNotTopLevel` | [`Model::attach_welded`], or a site of the world (the frame is then written as MuJoCo's `<frame>`, keeping the bodies top level) |
-//! | a `<freejoint>` added to an attachment frame not directly in the worldbody | `add` refuses: `ErrorKind::FreejointNotTopLevel` | attach at a site of the worldbody |
-//! | a `<joint type="free">` (or free by its class) added to a body or attachment frame below a body | `check()`: `FreeJointNotTopLevel` | remove it, or move the body to the world |
-//! | a model with mocap top-level bodies attached anywhere (the attachment frame is written as a body) | `check()`: `MocapNotFixedChildOfWorld` | [`Model::attach_welded`] (they become plain bodies fixed to the site's body) |
-//! | a model with a plane attached in or below a moving body, or a joint added above a plane | `check()`: `PlaneInMovingBody` | attach at a site of a static body or the world |
-//! | joints added to an attachment frame beyond 6 degrees of freedom, or a rotation after a ball joint | `check()`: `TooManyDofs`, `RotationAfterBall` (the frame is a body) | fewer joints, the ball joint last |
-//! | a joint added to an attachment frame without mass | `check()`: `MasslessMovingBody` | an `<inertial>` on the frame |
-//! | a key longer than the model (an attached model's key held to its own model with `merge_keyframes`, or a joint removed) | `check_with(&options)`: `KeyLength` | shorten the key |
-//! | a removed element still referred to | `check()`: `RemovedReference`, `MissingRequired` | [`Model::references_to`] before removing |
-//! | a global setting that disagrees between the models | `attach` refuses: `ErrorKind::AttributeConflict` | make the settings agree |
-//! | the compiler's `angle` (degrees or radians) or `eulerseq` set differently in both models | `attach` converts the child's orientations and joint values into the parent's conventions (decision D17, `compose::angles`); only a `<replicate>` turning about several axes whose sequence changes, or a sequence that is not three of `xyzXYZ`, is refused (`ErrorKind::AttributeConflict`) | give the replicate one axis, or both models one sequence |
-//! | names: each attached model's names get a unique scope prefix | never a clash (`robot`, `robot_1`, ...) | — |
-//!
-//! What MuJoCo compiles but likely not as meant (an attached model's key written
-//! without `merge_keyframes`) is [`Model::advice`], not `check()`.
+//! What composition can make that MuJoCo refuses, and where each shape is decided
+//! (an edit's refusal or a [`Model::check`] problem), is stated in
+//! [`Model::check`].
 
 use super::angles;
 use crate::error::ValueError;
