@@ -38,16 +38,25 @@ impl Model {
     /// never written (same bytes, same modification time), even when their file on
     /// disk differs from the text read (another program's edit is kept; a save of an
     /// earlier version undoes what a save of this process wrote there). What is
-    /// kept: an element no edit touched is written byte for byte; an edited element
-    /// keeps its untouched attributes' text, quoting and order, with changed values in
-    /// place, new ones appended and removed ones gone with their spacing; a new element
-    /// is indented like its siblings, on lines ending as the file's do (`\n`, `\r\n`
-    /// or `\r`); a removed element goes with the comments
-    /// directly before it; nothing is renamed, no class or automatic name is added,
-    /// file attributes and compiler folders stay as written (meshes keep their paths,
-    /// `meshdir` stays); a byte-order mark, an XML declaration, a DOCTYPE and whatever
-    /// else precedes the root stay as they are. An edit inside an included file is
-    /// saved into that file. A confined model
+    /// kept:
+    /// - an element no edit touched (nor renamed or removed anything it names) is
+    ///   written byte for byte, its content and all;
+    /// - an edited element keeps its untouched attributes' text, quoting and order; a
+    ///   changed value is replaced in place (formatted as [`Model::to_xml_string`]
+    ///   formats values; a value given twice, in a singleton given twice, is changed
+    ///   where it wins: its last mention), a new attribute is appended, a removed one
+    ///   goes with its spacing;
+    /// - children read keep their text and the whitespace and comments before them; a
+    ///   removed element goes with the comments directly before it; a child moved from
+    ///   elsewhere keeps its text; a new element is indented like its siblings, on
+    ///   lines ending as the file's do (its first line break: `\n`, `\r\n` or `\r`),
+    ///   with no class or automatic name added and files named `stem.ext`; an empty
+    ///   singleton is not written;
+    /// - nothing is renamed, file attributes and compiler folders stay as written
+    ///   (meshes keep their paths, `meshdir` stays); a byte-order mark, an XML
+    ///   declaration, a DOCTYPE and whatever else precedes the root stay as they are.
+    ///
+    /// An edit inside an included file is saved into that file. A confined model
     /// ([`ReadOptions::confine_to_base_dir`](crate::ReadOptions::confine_to_base_dir))
     /// writes no file outside its folder. Returns the files written.
     ///
