@@ -503,15 +503,18 @@ fn anchor_links_resolve_rustdoc_and_relative_targets() {
     );
 }
 
-/// The files of the manual: the crate's sources (their doc comments, the guide and
-/// the decisions) and the repository's Markdown pages.
+/// The files of the manual: the sources of the crate and of the binding (their doc
+/// comments, the guide and the decisions) and the repository's Markdown pages.
 fn manual_files() -> Vec<String> {
     let mut files = Vec::new();
     text_files(root(), &mut files);
     files
         .iter()
         .map(|p| p.strip_prefix(root()).unwrap().display().to_string())
-        .filter(|f| f.ends_with(".md") || (f.starts_with("src/") && f.ends_with(".rs")))
+        .filter(|f| {
+            let source = f.starts_with("src/") || f.starts_with("mjcf-mujoco/src/");
+            f.ends_with(".md") || (source && f.ends_with(".rs"))
+        })
         .collect()
 }
 
@@ -550,10 +553,11 @@ fn every_link_to_a_section_names_a_heading() {
 
 /// The text of the manual in `file`, its lines joined by single spaces: a Markdown
 /// page whole; of a source file, its doc comments (`///`, and the `//!` of the
-/// public modules: the crate's and `generate`'s; a private module's documentation is
-/// for maintainers, not part of the manual).
+/// public modules: the crate's, `generate`'s and the binding's; a private module's
+/// documentation is for maintainers, not part of the manual).
 fn manual_text(file: &str, text: &str) -> String {
-    let public_module = matches!(file, "src/lib.rs" | "src/generate/mod.rs");
+    let public_module =
+        matches!(file, "src/lib.rs" | "src/generate/mod.rs" | "mjcf-mujoco/src/lib.rs");
     let lines: Vec<&str> = if file.ends_with(".md") {
         text.lines().collect()
     } else {
@@ -579,7 +583,7 @@ fn manual_text_keeps_doc_comments_of_public_modules_only() {
 /// the others: a phrase that only a full statement of the rule holds, and where it is
 /// stated. A second full statement (the rule written out again in the guide, the
 /// README or a decision, instead of a summary and a link) repeats the phrase.
-const RULES: [(&str, &str, &str); 23] = [
+const RULES: [(&str, &str, &str); 24] = [
     // Attaching: Model::attach.
     ("attach frame pose", "for `fromto` its middle and direction", "src/compose/attach.rs"),
     ("attach frame as <frame>", "no `user` and no `mocap`", "src/compose/attach.rs"),
@@ -612,7 +616,9 @@ const RULES: [(&str, &str, &str); 23] = [
     ("check reach", "760 distinct messages", "src/model/check/mod.rs"),
     ("composition refused", "Composition never turns a model refused", "src/model/check/mod.rs"),
     ("composition remedies", "a user may attach first and fix after", "src/model/check/mod.rs"),
-    // Keys, costs, generators, guarantees, versioning, simulating.
+    // Simulating: the binding's crate documentation.
+    ("MuJoCo's fatal errors", "through a small C guard", "mjcf-mujoco/src/lib.rs"),
+    // Keys, costs, generators, guarantees, versioning.
     ("keys follow", "keeps every value with its element", "src/guide.md"),
     ("costs", "`levels`: the models on the way to that element", "src/lib.rs"),
     ("generators", "skips (or repairs) any step that would make it invalid", "src/generate/mod.rs"),

@@ -88,7 +88,9 @@ impl Model {
     /// model's (merged, over everything attached) is not refused: the model held by
     /// the attachment is the child converted into this model's conventions (its
     /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
-    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint), so
+    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint; MuJoCo
+    /// reads no other number by these settings: a key's `qpos`, a tendon's range, an
+    /// actuator's `ctrlrange` and a camera's `fovy` are in fixed units), so
     /// MuJoCo compiles every element as in the child's own file
     /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused)).
     /// Where one side leaves the attribute unset, the merged settings take the other
