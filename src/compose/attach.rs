@@ -65,6 +65,21 @@ impl Model {
     /// [`Model::detach`] gives back exactly the model before the attach
     /// ([D3](crate::decisions#d3-detach-gives-back-exactly-the-parent-it-was-attached-to)).
     ///
+    /// A child whose compiler `angle` or `eulerseq` is set and differs from this
+    /// model's (merged, over everything attached) is not refused: the model held by
+    /// the attachment is the child converted into this model's conventions (its
+    /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
+    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint; MuJoCo
+    /// reads no other number by these settings: a key's `qpos`, a tendon's range, an
+    /// actuator's `ctrlrange` and a camera's `fovy` are in fixed units), so
+    /// MuJoCo compiles every element as in the child's own file
+    /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused)).
+    /// Where one side leaves the attribute unset, the merged settings take the other
+    /// side's value and nothing is converted; the merged settings keep this model's
+    /// values. Each such attach converts anew
+    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
+    /// the first attach holds ([`Model::attached`]), which is then shared.
+    ///
     /// Time: O(levels · depth · (log n + √width)), independent of the size of `child`
     /// (plus one step per frame already attached at the same site). Two parts can
     /// cost more: the merged global settings are folded anew, O(a · depth · log n),
@@ -83,21 +98,6 @@ impl Model {
     ///   is attached to it) disagrees with this model's merged settings; or the
     ///   child's `eulerseq` cannot be converted (a `<replicate>` turning about several
     ///   axes, a sequence that is not three of `xyzXYZ`).
-    ///
-    /// A child whose compiler `angle` or `eulerseq` is set and differs from this
-    /// model's (merged, over everything attached) is not refused: the model held by
-    /// the attachment is the child converted into this model's conventions (its
-    /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
-    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint; MuJoCo
-    /// reads no other number by these settings: a key's `qpos`, a tendon's range, an
-    /// actuator's `ctrlrange` and a camera's `fovy` are in fixed units), so
-    /// MuJoCo compiles every element as in the child's own file
-    /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused)).
-    /// Where one side leaves the attribute unset, the merged settings take the other
-    /// side's value and nothing is converted; the merged settings keep this model's
-    /// values. Each such attach converts anew
-    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
-    /// the first attach holds ([`Model::attached`]), which is then shared.
     ///
     /// # Examples
     /// ```
