@@ -26,8 +26,9 @@
 //!
 //! Every edit comes twice: `add(&self, ..) -> Result<(Model, Loc)>` returns the new
 //! version for functional code, and `add_mut(&mut self, ..) -> Result<Loc>` replaces
-//! the model in place (atomically: on error it is unchanged). Either way, values taken
-//! before the edit keep their content.
+//! the model in place (atomically: on error it is unchanged, as every operation
+//! promises: [Guarantees and limits](crate::guide#guarantees-and-limits)). Either way,
+//! values taken before the edit keep their content. The [`guide`] is the manual.
 //!
 //! # What is shared, and what an edit costs
 //! - Nodes are `Arc`-shared and hold no parent pointers; the children of an element
@@ -39,8 +40,8 @@
 //! - Each model keeps a persistent identifier index (O(log n) `find` of an existing
 //!   name, and duplicate checks), updated by every edit.
 //! - Everything that depends on where an element sits (scope prefixes, auto names,
-//!   default-class names, merged settings) is computed when the model is written or
-//!   walked, never stored.
+//!   default-class names: [Names](crate::guide#names); merged settings) is computed
+//!   when the model is written or walked, never stored.
 //!
 //! # Costs
 //! Every function states its time as `Time: O(..)`, in these terms:

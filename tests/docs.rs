@@ -11,7 +11,12 @@
 //! - no comment or document cites a line of code by number (a file name, a colon and
 //!   the number, or a `#L` anchor), which goes stale as soon as the code above moves;
 //! - the README's quickstart is `examples/quickstart.rs`, and its line counts of the
-//!   three user programs are what `rustfmt` with its default settings gives.
+//!   three user programs are what `rustfmt` with its default settings gives;
+//! - every link to a section of the manual (`crate::guide#names`, `#scenes`,
+//!   `src/guide.md#versioning`) names a heading of that page, which neither rustdoc
+//!   nor GitHub checks;
+//! - each rule of the manual is stated once, in its authority (`RULES`), and only
+//!   summarized and linked elsewhere.
 
 use std::path::{Path, PathBuf};
 
@@ -383,17 +388,259 @@ fn every_test_a_decision_names_exists() {
 }
 
 /// The README is the overview a newcomer reads to the end (the manual is the crate's
-/// docs, `src/guide.md`): at most 200 non-blank lines, and every file it links exists.
+/// docs, `src/guide.md`): at most 200 non-blank lines, and every file it links exists
+/// (the sections it links are checked with every other link to a section).
 #[test]
 fn the_readme_is_short_and_its_links_resolve() {
     let readme = read("README.md");
     let lines = readme.lines().filter(|l| !l.trim().is_empty()).count();
     assert!(lines <= 200, "the README has {lines} non-blank lines");
     for (at, _) in readme.match_indices("](") {
-        let target: String = readme[at + 2..].chars().take_while(|c| *c != ')').collect();
-        if target.starts_with("http") || target.starts_with('#') {
+        let link: String = readme[at + 2..].chars().take_while(|c| *c != ')').collect();
+        let target = link.split('#').next().unwrap_or_default();
+        if target.starts_with("http") || target.is_empty() {
             continue;
         }
-        assert!(root().join(&target).exists(), "the README links {target}, which does not exist");
+        assert!(root().join(target).exists(), "the README links {target}, which does not exist");
     }
+}
+
+/// The anchor rustdoc and GitHub give a Markdown heading: lower case, spaces as `-`,
+/// every other character but letters, digits, `-` and `_` left out
+/// (`D13: a `/` in a name` is `d13-a--in-a-name`).
+fn heading_anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .chars()
+        .filter_map(|c| match c {
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c.to_ascii_lowercase()),
+            c if c.is_whitespace() => Some('-'),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The anchors of the headings of a Markdown text, outside code blocks.
+fn heading_anchors(text: &str) -> Vec<String> {
+    let mut anchors = Vec::new();
+    let mut in_code = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            in_code = !in_code;
+        } else if !in_code && line.starts_with('#') {
+            let title = line.trim_start_matches('#');
+            if title.starts_with(' ') {
+                anchors.push(heading_anchor(title));
+            }
+        }
+    }
+    anchors
+}
+
+#[test]
+fn heading_anchor_is_rustdocs() {
+    // As rustdoc renders this repository's headings (`target/doc/mjcf/decisions`).
+    assert_eq!(heading_anchor(" Simulate (MuJoCo from Rust)"), "simulate-mujoco-from-rust");
+    assert_eq!(
+        heading_anchor(" D13: a `/` in a name read from MJCF is part of one literal name"),
+        "d13-a--in-a-name-read-from-mjcf-is-part-of-one-literal-name"
+    );
+    assert_eq!(
+        heading_anchor(" D12: MuJoCo 4.0's elements are read, edited and written"),
+        "d12-mujoco-40s-elements-are-read-edited-and-written"
+    );
+    assert_eq!(heading_anchors("# A\n```sh\n# not a heading\n```\n## B c\n#no"), ["a", "b-c"]);
+}
+
+/// Every link `(target#anchor)` of `text`, read from `file`: the link's target
+/// resolved to a Markdown file of the repository (a rustdoc path `crate::guide` or
+/// `crate::decisions`, a path relative to `file`, or `file` itself for `#anchor`),
+/// and the anchor. Links to other pages (`http`, an item's own page) are left out.
+fn anchor_links(file: &str, text: &str) -> Vec<(String, String, String)> {
+    let mut links = Vec::new();
+    for (at, _) in text.match_indices("](") {
+        let target: String = text[at + 2..].chars().take_while(|c| *c != ')').collect();
+        let Some((page, anchor)) = target.split_once('#') else { continue };
+        let doc = match page {
+            "crate::guide" | "mjcf::guide" => "src/guide.md".to_string(),
+            "crate::decisions" | "mjcf::decisions" => "src/decisions.md".to_string(),
+            "" if file.ends_with(".md") => file.to_string(),
+            p if p.ends_with(".md") && !p.starts_with("http") => {
+                let base = Path::new(file).parent().unwrap_or(Path::new(""));
+                let joined = base.join(p);
+                let mut parts: Vec<&std::ffi::OsStr> = Vec::new();
+                for c in joined.components() {
+                    match c {
+                        std::path::Component::ParentDir => {
+                            parts.pop();
+                        }
+                        std::path::Component::CurDir => {}
+                        c => parts.push(c.as_os_str()),
+                    }
+                }
+                parts.iter().collect::<PathBuf>().display().to_string()
+            }
+            _ => continue,
+        };
+        links.push((doc, anchor.to_string(), target.clone()));
+    }
+    links
+}
+
+#[test]
+fn anchor_links_resolve_rustdoc_and_relative_targets() {
+    let text = "[a](crate::guide#names), [b](#scenes), [c](../../src/decisions.md#d1-x), \
+                [d](crate::Model::attach), [e](https://x.org/a.md#y)";
+    let links = anchor_links("tests/conformance/README.md", text);
+    let docs: Vec<(&str, &str)> = links.iter().map(|(d, a, _)| (d.as_str(), a.as_str())).collect();
+    assert_eq!(
+        docs,
+        [
+            ("src/guide.md", "names"),
+            ("tests/conformance/README.md", "scenes"),
+            ("src/decisions.md", "d1-x")
+        ]
+    );
+}
+
+/// The files of the manual: the sources of the crate and of the binding (their doc
+/// comments, the guide and the decisions) and the repository's Markdown pages.
+fn manual_files() -> Vec<String> {
+    let mut files = Vec::new();
+    text_files(root(), &mut files);
+    files
+        .iter()
+        .map(|p| p.strip_prefix(root()).unwrap().display().to_string())
+        .filter(|f| {
+            let source = f.starts_with("src/") || f.starts_with("mjcf-mujoco/src/");
+            f.ends_with(".md") || (source && f.ends_with(".rs"))
+        })
+        .collect()
+}
+
+/// Every link to a section of the manual (`[Names](crate::guide#names)` in a doc
+/// comment, `[D15](crate::decisions#d15-...)`, `[Scenes](#scenes)` in the guide,
+/// `[versioning](src/guide.md#versioning)` in the README) names a heading of the
+/// page it links: rustdoc checks the page of an intra-doc link but not its anchor, and
+/// GitHub checks neither. The guide's and the decisions' headings are unique, so
+/// rustdoc gives each the anchor written.
+#[test]
+fn every_link_to_a_section_names_a_heading() {
+    for doc in ["src/guide.md", "src/decisions.md"] {
+        let anchors = heading_anchors(&read(doc));
+        let mut unique = anchors.clone();
+        unique.sort();
+        unique.dedup();
+        assert_eq!(unique.len(), anchors.len(), "{doc} repeats a heading: {anchors:?}");
+    }
+    let mut checked = 0;
+    let mut broken = Vec::new();
+    for file in manual_files() {
+        for (doc, anchor, target) in anchor_links(&file, &read(&file)) {
+            let Ok(text) = std::fs::read_to_string(root().join(&doc)) else {
+                broken.push(format!("{file}: ({target}): no file {doc}"));
+                continue;
+            };
+            if !heading_anchors(&text).contains(&anchor) {
+                broken.push(format!("{file}: ({target}): {doc} has no heading #{anchor}"));
+            }
+            checked += 1;
+        }
+    }
+    assert!(broken.is_empty(), "links to no section:\n{}", broken.join("\n"));
+    assert!(checked >= 20, "{checked} section links found");
+}
+
+/// The text of the manual in `file`, its lines joined by single spaces: a Markdown
+/// page whole; of a source file, its doc comments (`///`, and the `//!` of the
+/// public modules: the crate's, `generate`'s and the binding's; a private module's
+/// documentation is for maintainers, not part of the manual).
+fn manual_text(file: &str, text: &str) -> String {
+    let public_module =
+        matches!(file, "src/lib.rs" | "src/generate/mod.rs" | "mjcf-mujoco/src/lib.rs");
+    let lines: Vec<&str> = if file.ends_with(".md") {
+        text.lines().collect()
+    } else {
+        text.lines()
+            .filter_map(|l| {
+                let l = l.trim_start();
+                l.strip_prefix("///").or_else(|| l.strip_prefix("//!").filter(|_| public_module))
+            })
+            .collect()
+    };
+    lines.join(" ").split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[test]
+fn manual_text_keeps_doc_comments_of_public_modules_only() {
+    let source = "//! module\n/// item\n///   docs\nfn f() {} // code";
+    assert_eq!(manual_text("src/lib.rs", source), "module item docs");
+    assert_eq!(manual_text("src/model/naming.rs", source), "item docs");
+    assert_eq!(manual_text("README.md", "a\n  b"), "a b");
+}
+
+/// Each rule of the manual is stated in one place, its authority, and linked from
+/// the others: a phrase that only a full statement of the rule holds, and where it is
+/// stated. A second full statement (the rule written out again in the guide, the
+/// README or a decision, instead of a summary and a link) repeats the phrase.
+const RULES: [(&str, &str, &str); 24] = [
+    // Attaching: Model::attach.
+    ("attach frame pose", "for `fromto` its middle and direction", "src/compose/attach.rs"),
+    ("attach frame as <frame>", "no `user` and no `mocap`", "src/compose/attach.rs"),
+    (
+        "scope suffix",
+        "a literal name read from MJCF that starts with `name/`",
+        "src/compose/attach.rs",
+    ),
+    ("angle conversion", "a limited hinge's or ball's `range`", "src/compose/attach.rs"),
+    // Names: the guide's Names section.
+    ("automatic names", "`P/unnamed_<namespace>_<i>`", "src/guide.md"),
+    ("names made unique", "the generated one gives way", "src/guide.md"),
+    ("root class names", "or as `/1` when attached models' root classes follow", "src/guide.md"),
+    // The lossless save: Model::save.
+    ("lossless: outside the root", "a byte-order mark, an XML declaration", "src/xml/save/disk.rs"),
+    (
+        "lossless: changed on disk",
+        "A file changed on disk since it was read is not overwritten",
+        "src/xml/save/disk.rs",
+    ),
+    ("lossless: attachments", "changes its name, prefix and pose in place", "src/xml/save/disk.rs"),
+    // Scenes: the guide's Scenes section.
+    ("scene reopen", "exactly when it has the saved shape", "src/guide.md"),
+    ("scene compile", "MuJoCo 4.0.0 compiles the saved scene to what it compiles", "src/guide.md"),
+    ("flat files", "changes the model silently", "src/guide.md"),
+    // Copying: Model::include_copy.
+    ("include_copy source", "A source with attachments is refused", "src/compose/include.rs"),
+    // check(): Model::check.
+    ("check judged", "finds a problem exactly when it refuses the model", "src/model/check/mod.rs"),
+    ("check reach", "760 distinct messages", "src/model/check/mod.rs"),
+    ("composition refused", "Composition never turns a model refused", "src/model/check/mod.rs"),
+    ("composition remedies", "a user may attach first and fix after", "src/model/check/mod.rs"),
+    // Simulating: the binding's crate documentation.
+    ("MuJoCo's fatal errors", "through a small C guard", "mjcf-mujoco/src/lib.rs"),
+    // Keys, costs, generators, guarantees, versioning.
+    ("keys follow", "keeps every value with its element", "src/guide.md"),
+    ("costs", "`levels`: the models on the way to that element", "src/lib.rs"),
+    ("generators", "skips (or repairs) any step that would make it invalid", "src/generate/mod.rs"),
+    ("guarantees", "No panic, no stack overflow, no hang.", "src/guide.md"),
+    ("versioning", "a release that breaks anything below raises the minor", "src/guide.md"),
+];
+
+#[test]
+fn each_rule_is_stated_in_one_place() {
+    // The changelog says what changed in each release, not what holds now.
+    let files = manual_files().into_iter().filter(|f| f != "CHANGELOG.md");
+    let texts: Vec<(String, String)> = files.map(|f| (manual_text(&f, &read(&f)), f)).collect();
+    assert!(texts.iter().any(|(_, f)| f == "src/guide.md"), "the guide is not scanned");
+    let mut wrong = Vec::new();
+    for (rule, phrase, authority) in RULES {
+        let places: Vec<&str> = texts
+            .iter()
+            .flat_map(|(text, file)| text.matches(phrase).map(move |_| file.as_str()))
+            .collect();
+        if places != [authority] {
+            wrong.push(format!("{rule}: `{phrase}` is in {places:?}, not once in {authority}"));
+        }
+    }
+    assert!(wrong.is_empty(), "rules not stated once where they belong:\n{}", wrong.join("\n"));
 }

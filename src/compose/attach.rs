@@ -8,30 +8,9 @@
 //! names) is derived by the writer, so detaching is removing that node: the parent
 //! comes back exactly as it was before the attach.
 //!
-//! # What composition can make that MuJoCo refuses
-//!
-//! Attaching, adding and removing never turn a model MuJoCo refuses silently: for
-//! each such shape the edit refuses with a typed error that says what and how to
-//! fix it, or the edit is allowed (a user may attach first and fix after) and
-//! [`Model::check`] reports it, in MuJoCo's words, with the remedy:
-//!
-//! | shape | where decided | remedy |
-//! |---|---|---|
-//! | a model with free top-level bodies attached at a site inside a body (moving or not): below a body there is no top level | `check()`: `FreeJointNotTopLevel` | [`Model::attach_welded`], or a site of the world (the frame is then written as MuJoCo's `<frame>`, keeping the bodies top level) |
-//! | a `<freejoint>` added to an attachment frame not directly in the worldbody | `add` refuses: `ErrorKind::FreejointNotTopLevel` | attach at a site of the worldbody |
-//! | a `<joint type="free">` (or free by its class) added to a body or attachment frame below a body | `check()`: `FreeJointNotTopLevel` | remove it, or move the body to the world |
-//! | a model with mocap top-level bodies attached anywhere (the attachment frame is written as a body) | `check()`: `MocapNotFixedChildOfWorld` | [`Model::attach_welded`] (they become plain bodies fixed to the site's body) |
-//! | a model with a plane attached in or below a moving body, or a joint added above a plane | `check()`: `PlaneInMovingBody` | attach at a site of a static body or the world |
-//! | joints added to an attachment frame beyond 6 degrees of freedom, or a rotation after a ball joint | `check()`: `TooManyDofs`, `RotationAfterBall` (the frame is a body) | fewer joints, the ball joint last |
-//! | a joint added to an attachment frame without mass | `check()`: `MasslessMovingBody` | an `<inertial>` on the frame |
-//! | a key longer than the model (an attached model's key held to its own model with `merge_keyframes`, or a joint removed) | `check_with(&options)`: `KeyLength` | shorten the key |
-//! | a removed element still referred to | `check()`: `RemovedReference`, `MissingRequired` | [`Model::references_to`] before removing |
-//! | a global setting that disagrees between the models | `attach` refuses: `ErrorKind::AttributeConflict` | make the settings agree |
-//! | the compiler's `angle` (degrees or radians) or `eulerseq` set differently in both models | `attach` converts the child's orientations and joint values into the parent's conventions (decision D17, `compose::angles`); only a `<replicate>` turning about several axes whose sequence changes, or a sequence that is not three of `xyzXYZ`, is refused (`ErrorKind::AttributeConflict`) | give the replicate one axis, or both models one sequence |
-//! | names: each attached model's names get a unique scope prefix | never a clash (`robot`, `robot_1`, ...) | — |
-//!
-//! What MuJoCo compiles but likely not as meant (an attached model's key written
-//! without `merge_keyframes`) is [`Model::advice`], not `check()`.
+//! What composition can make that MuJoCo refuses, and where each shape is decided
+//! (an edit's refusal or a [`Model::check`] problem), is stated in
+//! [`Model::check`].
 
 use super::angles;
 use crate::error::ValueError;
@@ -60,15 +39,46 @@ impl Model {
     /// a worldbody, and returns the new model and a locator of the attachment frame.
     /// ([`Model::attach_in`] attaches at a body or a MuJoCo `<frame>`.)
     ///
-    /// The frame copies `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`, `euler` and
-    /// `user` from the site (placed where MuJoCo places the site), and sits right after
-    /// it (after frames attached there before), or at the end of the worldbody. The
-    /// child's names get the scope prefix
-    /// `name/` when written, where `name` is the child's model name, or `name_1`,
-    /// `name_2`, ... if the model that receives it already has an attachment of that
-    /// name, or a literal name read from MJCF that starts with `name/` (a composed
-    /// model read back holds `robot/torso`). The child value is shared, not copied, whatever its size, and one value
-    /// can be attached any number of times.
+    /// The frame sits right after the site (after frames attached there before), or
+    /// at the end of the worldbody, and takes the site's pose as MuJoCo reads it: its
+    /// `pos`, `quat`, `axisangle`, `xyaxes`, `zaxis` and `euler`, its classes' where it
+    /// sets none, and for `fromto` its middle and direction
+    /// ([D15](crate::decisions#d15-an-attachment-frame-sits-where-mujoco-places-its-site));
+    /// it copies the site's `user` too. It is written as a `<body>` named with the
+    /// scope (`robot/`), or as MuJoCo's `<frame>` when it lies in the world, the child
+    /// has a free body at its top level, and the frame has no joints, no inertial, no
+    /// `user` and no `mocap`, so that those bodies stay at the top level
+    /// ([D10](crate::decisions#d10-free-bodies-attached-in-the-world-stay-at-the-top-level)).
+    ///
+    /// The child's names get the scope prefix `name/` when written (all the names:
+    /// [Names](crate::guide#names)), where `name` is the child's model name, or
+    /// `name_1`, `name_2`, ... if the model that receives it already has an
+    /// attachment of that name, or a literal name read from MJCF that starts with
+    /// `name/` (a composed model read back holds `robot/torso`). The scope lives in
+    /// the attachment: the child value is never renamed
+    /// ([D2](crate::decisions#d2-the-scope-name-lives-in-the-attachment)). The child
+    /// value is shared, not copied, whatever its size, and one value can be attached
+    /// any number of times
+    /// ([D1](crate::decisions#d1-a-model-value-can-be-attached-any-number-of-times)).
+    /// Global settings (`<compiler>`, `<option>`, `<size>`, `<visual>`,
+    /// `<statistic>`) are merged when the model is written, never stored, so
+    /// [`Model::detach`] gives back exactly the model before the attach
+    /// ([D3](crate::decisions#d3-detach-gives-back-exactly-the-parent-it-was-attached-to)).
+    ///
+    /// A child whose compiler `angle` or `eulerseq` is set and differs from this
+    /// model's (merged, over everything attached) is not refused: the model held by
+    /// the attachment is the child converted into this model's conventions (its
+    /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
+    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint; MuJoCo
+    /// reads no other number by these settings: a key's `qpos`, a tendon's range, an
+    /// actuator's `ctrlrange` and a camera's `fovy` are in fixed units), so
+    /// MuJoCo compiles every element as in the child's own file
+    /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused)).
+    /// Where one side leaves the attribute unset, the merged settings take the other
+    /// side's value and nothing is converted; the merged settings keep this model's
+    /// values. Each such attach converts anew
+    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
+    /// the first attach holds ([`Model::attached`]), which is then shared.
     ///
     /// Time: O(levels · depth · (log n + √width)), independent of the size of `child`
     /// (plus one step per frame already attached at the same site). Two parts can
@@ -88,17 +98,6 @@ impl Model {
     ///   is attached to it) disagrees with this model's merged settings; or the
     ///   child's `eulerseq` cannot be converted (a `<replicate>` turning about several
     ///   axes, a sequence that is not three of `xyzXYZ`).
-    ///
-    /// A child whose compiler `angle` or `eulerseq` is set and differs from this
-    /// model's (merged, over everything attached) is not refused: the model held by
-    /// the attachment is the child converted into this model's conventions (its
-    /// `euler`s and `axisangle`s, a `<replicate>`'s `euler`, a limited hinge's or
-    /// ball's `range` and a hinge's `ref` and `springref`, set on each joint), so
-    /// MuJoCo compiles every element as in the child's own file (decision D17).
-    /// Where one side leaves the attribute unset, the merged settings take the other
-    /// side's value and nothing is converted. Each such attach converts anew
-    /// (O(size of the child)) and holds its own copy: for a fleet, attach the copy
-    /// the first attach holds ([`Model::attached`]), which is then shared.
     ///
     /// # Examples
     /// ```
@@ -212,9 +211,8 @@ impl Model {
 
     /// [`Model::attach`] under a scope name of the caller's choice instead of the
     /// child's model name (MjSpec's `attach(child, prefix="gripper/")`): the child's
-    /// names are written `gripper/...`. The uniqueness rule is [`Model::attach`]'s: if
-    /// the model that receives it already has an attachment named `scope`, the scope
-    /// is `scope_1`, `scope_2`, ... ([`Attachment::scope`] tells which).
+    /// names are written `gripper/...`, the scope made unique as [`Model::attach`]
+    /// makes a model name unique (`gripper_1`, ...; [`Attachment::scope`] tells which).
     ///
     /// Time: as [`Model::attach`].
     ///

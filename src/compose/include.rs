@@ -32,9 +32,9 @@ impl Model {
     ///
     /// Global settings merge by the schema's rules and a conflicting value is an error,
     /// except the compiler's `angle` and `eulerseq`: where both models set one and the
-    /// values differ, `other`'s orientations and joint values are converted into this
-    /// model's conventions (see decision D17), so each element compiles as it did in
-    /// its own file;
+    /// values differ, `other` is converted into this model's conventions as
+    /// [`Model::attach`] converts a child
+    /// ([decision D17](crate::decisions#d17-models-in-other-angle-conventions-are-converted-not-refused));
     /// every repeated element of `other` is copied (fresh ids) after this model's own;
     /// references between copied elements point at the copies. With
     /// `override_attributes`, root attributes and settings are overwritten instead of

@@ -336,7 +336,7 @@ impl<'a> ElementRef<'a> {
     }
 
     /// The name MuJoCo will give the element in the written model, exactly as the
-    /// writer writes it (both follow one set of rules: README "Names"): the
+    /// writer writes it (both follow one set of rules: [Names](crate::guide#names)): the
     /// identifier with its scope prefix (`robot_1/torso`), an attachment frame's scope
     /// (`robot_1/`), a frame joint's (`robot_1/root/`), or the automatic name of an
     /// unnamed element (`//unnamed_geom_0`, `robot//unnamed_geom_2`, `//unnamed_geom_1_`

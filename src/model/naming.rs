@@ -9,36 +9,11 @@
 //! [`Model::from_full_name`], [`Model::check`] and the diff all read names through
 //! here, so they cannot disagree.
 //!
-//! The rules (`P` is the instance's prefix: `""` for the outermost model, `robot/`,
-//! `arena/robot_1/` for attached ones):
-//! - a named element: `P` + its name;
-//! - an attachment frame (a body): `P` + scope + `/`;
-//! - a joint of an attachment frame: named `j`, `P` + scope + `/j/`; the first
-//!   unnamed one, `P` + scope + `/` (both as dm_control writes them);
-//! - an unnamed element: `P/unnamed_<namespace>_<i>` (`//unnamed_geom_0` in the
-//!   outermost model), `i` its position among its model's elements of that namespace
-//!   in document order (attachment frames count as bodies, frame joints as joints),
-//!   with `_` after it inside a `<replicate>` (MuJoCo appends the copy's number:
-//!   `//unnamed_geom_1` + `0` must not make `//unnamed_geom_10`);
-//! - the root default class: `P` for an attached model (`robot/`); for the outermost
-//!   model `/` (dm_control's name), see [`RootClass`] for the cases where that name
-//!   cannot be used.
-//!
-//! Every name written is unique in its namespace (decision D14). Literal names of
-//! different instances cannot meet: every name an instance writes starts with its
-//! prefix, and a model may not hold a literal name that starts with one of its own
-//! scopes and a `/` (`Index` refuses one, and a new scope skips such names). What is
-//! left is told apart here, always in favour of the name that is not generated:
-//! - an unnamed frame joint other than the first of its frame, and an unnamed frame
-//!   joint of scope `s` whose model is attached at a frame with a joint named `s`
-//!   (that joint is written `P/s/` too), is written with its automatic name;
-//! - a named frame joint `j` whose attached model holds a literal joint `j/` (read
-//!   from MJCF) is written with its automatic name;
-//! - an automatic name that a literal name of the model holds (read from a composed
-//!   file) gets `~1` (or the first free `~k`) before its replicate `_`.
-//!
-//! Automatic names hold `/unnamed_`, which no name given through the API can (a `/`
-//! is refused there), so only literal names read from MJCF can meet them.
+//! The rules are the manual's ([Names](crate::guide#names)), `P` there being the
+//! instance's prefix ([`InstNames::prefix`]); the outermost root class's cases are
+//! [`RootClass`]'s. What the manual calls giving way is decided here, always in
+//! favour of the name that is not generated: an automatic name's `~k` is the first
+//! free one, and [`Written::write`] places it before the replicate `_`.
 
 use std::fmt::Write as _;
 

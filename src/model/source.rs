@@ -189,7 +189,8 @@ impl Source {
 mod tests {
     use super::*;
 
-    /// The README states the cost per tag: a record and a by-element entry.
+    /// The manual (`src/guide.md`, saving) states the cost per tag: a record and a
+    /// by-element entry.
     #[test]
     fn a_tag_costs_64_bytes() {
         assert_eq!(std::mem::size_of::<Record>() + std::mem::size_of::<(ElementId, u32)>(), 64);

@@ -127,7 +127,9 @@ impl Model {
     }
 
     /// Reads a model from a file with default [`ReadOptions`]; relative paths in it
-    /// (files, includes) resolve against its folder.
+    /// (files, includes) resolve against its folder. A scene saved by
+    /// [`Model::save_scene`] (or [`Model::save`]) reopens with its attachments as
+    /// attachments, as the [scene rules](crate::guide#scenes) say.
     ///
     /// Time: as [`ReadOptions::read_path`].
     ///

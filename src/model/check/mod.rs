@@ -336,17 +336,50 @@ impl Model {
     /// name: out-of-range numbers, degenerate orientations, attributes that exclude
     /// each other, actuators, sensors, tendons, equalities, assets, settings, MuJoCo's
     /// own `<attach>`). Each is said once, naming its element as the writer writes
-    /// it, with MuJoCo's own words and what to do. Empty when none is found; this is
-    /// not a full MuJoCo compile: the content of files (meshes, textures, height
-    /// fields, skins) and plugins are MuJoCo's to judge ([`Model::advice`] names the
-    /// plugins).
+    /// it ([the names](crate::guide#names)), with MuJoCo's own words and what to do;
+    /// a reference to a `<replicate>`'s copies (`j0`) or into an `<attach>`ed part
+    /// (`p-j`) names what MuJoCo makes. Empty when none is found; this is not a full
+    /// MuJoCo compile: the content of files (meshes, textures, height fields, skins),
+    /// meshes whose hull MuJoCo computes only for colliding geoms, and plugins are
+    /// MuJoCo's to judge ([`Model::advice`] names the plugins).
     ///
-    /// How far it reaches is measured against MuJoCo 4.0.0's own refusals (the
-    /// binding's `refusals` catalog: 760 distinct messages of its compiler and XML
-    /// reader, 455 reachable from MJCF text, 90 needing a file's content, 215
-    /// unreachable; 337 pairs of a refused model and its compiled twin for 327 of the
-    /// 455): the reader or `check()` objects to all 337 refused models with MuJoCo's
-    /// message and to none of the twins.
+    /// Composition never turns a model refused silently: for each shape that
+    /// attaching, adding or removing can make and MuJoCo refuses, the edit refuses
+    /// with a typed error that says what and how to fix it, or the edit is allowed (a
+    /// user may attach first and fix after) and `check()` reports it, in MuJoCo's
+    /// words, with the remedy:
+    ///
+    /// | shape | where decided | remedy |
+    /// |---|---|---|
+    /// | a model with free top-level bodies attached at a site inside a body (moving or not): below a body there is no top level | `check()`: [`FreeJointNotTopLevel`](ProblemKind::FreeJointNotTopLevel) | [`Model::attach_welded`], or a site of the world (the frame is then written as MuJoCo's `<frame>`, keeping the bodies top level) |
+    /// | a `<freejoint>` added to an attachment frame not directly in the worldbody | `add` refuses: [`ErrorKind::FreejointNotTopLevel`](crate::ErrorKind::FreejointNotTopLevel) | attach at a site of the worldbody |
+    /// | a `<joint type="free">` (or free by its class) added to a body or attachment frame below a body | `check()`: [`FreeJointNotTopLevel`](ProblemKind::FreeJointNotTopLevel) | remove it, or move the body to the world |
+    /// | a model with mocap top-level bodies attached anywhere (the attachment frame is written as a body) | `check()`: [`MocapNotFixedChildOfWorld`](ProblemKind::MocapNotFixedChildOfWorld) | [`Model::attach_welded`] (they become plain bodies fixed to the site's body) |
+    /// | a model with a plane attached in or below a moving body, or a joint added above a plane | `check()`: [`PlaneInMovingBody`](ProblemKind::PlaneInMovingBody) | attach at a site of a static body or the world |
+    /// | joints added to an attachment frame beyond 6 degrees of freedom, or a rotation after a ball joint | `check()`: [`TooManyDofs`](ProblemKind::TooManyDofs), [`RotationAfterBall`](ProblemKind::RotationAfterBall) (the frame is a body) | fewer joints, the ball joint last |
+    /// | a joint added to an attachment frame without mass | `check()`: [`MasslessMovingBody`](ProblemKind::MasslessMovingBody) | an `<inertial>` on the frame |
+    /// | a key longer than the model (an attached model's key held to its own model with `merge_keyframes`, or a joint removed) | `check_with(&options)`: [`KeyLength`](ProblemKind::KeyLength) | shorten the key |
+    /// | a removed element still referred to | `check()`: [`RemovedReference`](ProblemKind::RemovedReference), [`MissingRequired`](ProblemKind::MissingRequired) | [`Model::references_to`] before removing |
+    /// | a global setting that disagrees between the models | `attach` refuses: [`ErrorKind::AttributeConflict`](crate::ErrorKind::AttributeConflict) | make the settings agree |
+    /// | the compiler's `angle` (degrees or radians) or `eulerseq` set differently in both models | `attach` converts the child's orientations and joint values into the parent's conventions (as [`Model::attach`] says); only a `<replicate>` turning about several axes whose sequence changes, or a sequence that is not three of `xyzXYZ`, is refused ([`ErrorKind::AttributeConflict`](crate::ErrorKind::AttributeConflict)) | give the replicate one axis, or both models one sequence |
+    /// | names: each attached model's names get a unique scope prefix | never a clash (`robot`, `robot_1`, ...) | — |
+    ///
+    /// MuJoCo judges that `check()` finds a problem exactly when it refuses the
+    /// model, over generated scenes and what composition makes of them
+    /// (`mjcf-mujoco/tests/check.rs`: mutants of generated scenes, and 2,000 scenes of
+    /// the wide generators, which attach models with free bodies and planes at sites
+    /// inside moving bodies, `<frame>`s and other attached models).
+    ///
+    /// How far it reaches is measured against MuJoCo 4.0.0's own refusals:
+    /// `mjcf-mujoco/refusals/catalog.tsv` lists 760 distinct messages of its compiler
+    /// and XML reader (455 reachable from MJCF text, 90 needing a file's content, 215
+    /// unreachable: C API only, internal checks, plugins, or another refusal comes
+    /// first), with 337 pairs of a model MuJoCo refuses with that message and a near
+    /// twin it compiles (327 of the 455). `mjcf-mujoco/tests/refusals.rs` has MuJoCo
+    /// judge every pair: the reader or `check()` objects to all 337 refused models
+    /// with MuJoCo's message (a [`ProblemKind`] of that class, or
+    /// [`ProblemKind::Refused`] in MuJoCo's words), to none of the twins, and no two
+    /// rules say one message.
     ///
     /// Time: O(N) for a composed model of N elements, plus, for dangling references,
     /// O(n log n) per model and namespace they name into (ranking its `n` names
@@ -439,8 +472,9 @@ impl Model {
 
     /// The name MuJoCo will give the element at `loc` (`robot_1/torso`, a frame's
     /// `robot_1/`, an unnamed geom's `//unnamed_geom_0`): the name to pass to
-    /// `mj_name2id`. `None` if `loc` is not in this model or the element has no
-    /// namespace. See [`ElementRef::full_name`](crate::ElementRef::full_name).
+    /// `mj_name2id`, by the [naming rules](crate::guide#names). `None` if `loc` is not
+    /// in this model or the element has no namespace. See
+    /// [`ElementRef::full_name`](crate::ElementRef::full_name).
     ///
     /// Time: as [`ElementRef::full_name`](crate::ElementRef::full_name) of a handle
     /// made by [`Model::element`]: O(levels · depth · log n), and for an unnamed

@@ -38,14 +38,25 @@ impl Model {
     /// never written (same bytes, same modification time), even when their file on
     /// disk differs from the text read (another program's edit is kept; a save of an
     /// earlier version undoes what a save of this process wrote there). What is
-    /// kept: an element no edit touched is written byte for byte; an edited element
-    /// keeps its untouched attributes' text, quoting and order, with changed values in
-    /// place, new ones appended and removed ones gone with their spacing; a new element
-    /// is indented like its siblings, on lines ending as the file's do (`\n`, `\r\n`
-    /// or `\r`); a removed element goes with the comments
-    /// directly before it; nothing is renamed, no class or automatic name is added,
-    /// file attributes and compiler folders stay as written. An edit inside an
-    /// included file is saved into that file. A confined model
+    /// kept:
+    /// - an element no edit touched (nor renamed or removed anything it names) is
+    ///   written byte for byte, its content and all;
+    /// - an edited element keeps its untouched attributes' text, quoting and order; a
+    ///   changed value is replaced in place (formatted as [`Model::to_xml_string`]
+    ///   formats values; a value given twice, in a singleton given twice, is changed
+    ///   where it wins: its last mention), a new attribute is appended, a removed one
+    ///   goes with its spacing;
+    /// - children read keep their text and the whitespace and comments before them; a
+    ///   removed element goes with the comments directly before it; a child moved from
+    ///   elsewhere keeps its text; a new element is indented like its siblings, on
+    ///   lines ending as the file's do (its first line break: `\n`, `\r\n` or `\r`),
+    ///   with no class or automatic name added and files named `stem.ext`; an empty
+    ///   singleton is not written;
+    /// - nothing is renamed, file attributes and compiler folders stay as written
+    ///   (meshes keep their paths, `meshdir` stays); a byte-order mark, an XML
+    ///   declaration, a DOCTYPE and whatever else precedes the root stay as they are.
+    ///
+    /// An edit inside an included file is saved into that file. A confined model
     /// ([`ReadOptions::confine_to_base_dir`](crate::ReadOptions::confine_to_base_dir))
     /// writes no file outside its folder. Returns the files written.
     ///
@@ -64,15 +75,16 @@ impl Model {
     /// `<model file=...>` as written, wherever its file lies, and nothing written for
     /// it), one added in code as a new `<body name="s/">` holding an `<attach>`, with
     /// a new asset `<model>`; a detached one goes with its asset `<model>` when nothing
-    /// else uses it. Each attached model read from a file in the model's folder (or
+    /// else uses it; a renamed scope or a moved frame changes its name, prefix and pose
+    /// in place. Each attached model read from a file in the model's folder (or
     /// below it) is saved losslessly into its own files (an edit through
     /// [`Model::edit_attached`] goes there); one built in code, an edited one read from
     /// outside the model's folder (its file there is never changed), or a second
     /// version of a file another attachment uses is written with the plain writer as
     /// [`Model::save_scene`] writes a part, into a new file beside the model's (named
     /// after the model; a file already there with other bytes is never replaced), and
-    /// its `<model file=...>` names that file. The rules are in the `xml::save::scene`
-    /// module documentation.
+    /// its `<model file=...>` names that file. How a scene is written and reopened:
+    /// [Scenes](crate::guide#scenes).
     ///
     /// Time: as [`Model::to_source_files`], plus reading each file to write on disk
     /// (to compare) and writing the changed ones.

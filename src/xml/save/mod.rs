@@ -1,25 +1,10 @@
 //! The lossless writer: a model read from MJCF written back into its own files, with
 //! every part no edit touched byte for byte as it was read.
 //!
-//! The rules, per element of each file's tag tree (`xml::source`):
-//! - untouched (its node still the node read, and no element it names renamed or
-//!   removed): its text, tags, content and all, as read;
-//! - edited: untouched attributes keep their text, quoting and order; a changed value
-//!   is replaced in place (formatted as the plain writer formats values; a value
-//!   given twice, in a singleton given twice, is changed where it wins: its last
-//!   mention in document order); a new attribute is appended; a removed one goes
-//!   with the whitespace before it;
-//! - children: those read keep their text and the whitespace and comments before
-//!   them, in the model's order; a removed child goes with the whitespace and
-//!   comments before it (comments stay with what they annotate); a new child is
-//!   written under the element's first tag, indented like its siblings (its lines
-//!   ending with the file's first line break), in the plain writer's attribute style without the plain writer's additions (no `class="/"`,
-//!   no automatic names, files named as `stem.ext`); a child moved from elsewhere
-//!   keeps its text; empty singletons are not written;
-//! - nothing is renamed, compiler folders and file attributes stay as written, and
-//!   whatever lies outside the root (byte-order mark, declaration, comments, DOCTYPE)
-//!   stays. The spans of the tags are byte offsets into the whole text as read, a
-//!   byte-order mark included (`xml::read` reads through one place that counts it).
+//! What is kept is stated in [`Model::save`]; here it is applied per element of each
+//! file's tag tree (`xml::source`). The spans of the tags are byte offsets into the
+//! whole text as read, a byte-order mark included (`xml::read` reads through one place
+//! that counts it).
 //!
 //! A model with attachments saves as a scene (`scene`): its own files written
 //! against the text they were read from, each attached model in files of its own.

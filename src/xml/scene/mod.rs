@@ -5,21 +5,10 @@
 //! # The transformation ([`Model::to_scene`])
 //! A composed model becomes a parent model plus one part per distinct attached model
 //! value (values that are `ptr_eq` share one part), recursively; nested attachments
-//! nest the same way (a part is itself a parent of its own attachments):
-//! - each attachment frame becomes a `<body>` at the frame's place, with the frame's
-//!   pose, `user`, `mocap`, joints, freejoint and inertial, named as the composed
-//!   writer names the frame (`robot/`) and its joints (`robot/`, `robot/slide/`),
-//!   holding `<attach model="M" prefix="robot/"/>`; where the composed writer writes
-//!   the frame as MuJoCo's `<frame>` (decision D10: the attached model's top-level
-//!   bodies carry free joints), a `<frame>` of that name holds the `<attach>`;
-//! - the parent's `<asset>` gets one `<model name="M" file="M.xml"/>` per distinct
-//!   model attached to it (after its own assets), the file named after the model
-//!   (`robot.xml`, `robot_1.xml` for a second distinct value of that name, ...);
-//! - the parent's global settings sections (`compiler`, `option`, `size`, `visual`,
-//!   `statistic`) are the merged ones: MuJoCo's `<attach>` keeps the parent's
-//!   settings (warning `Attach conflict ... keeping parent value` where a child
-//!   differs), so the parent carries what the composition merged, and each part keeps
-//!   its own, which then never conflict.
+//! nest the same way (a part is itself a parent of its own attachments). What each
+//! attachment frame, the parent's assets and its settings become is the manual's
+//! ("Saved", under [Scenes](crate::guide#scenes)); [`transform`] makes a parent,
+//! [`frame_as_body`] a frame's element.
 //!
 //! Every part is written by one function, [`write_part`]; the files a part names
 //! (meshes, textures, the part files of its own attachments) are its model file's
@@ -28,34 +17,10 @@
 //! read from a file ([`Model::save`], `xml::save::scene`) writes its parts built in
 //! code with the same [`Model::to_scene`] and [`write_part`].
 //!
-//! # What compiles differently from `to_xml_string()`
-//! MuJoCo compiles the saved scene to the model MuJoCo compiles from the composed text,
-//! with the same names, counts, numbers and options, except:
-//! - **compiler settings**: each file is compiled with its own `<compiler>`; the
-//!   composed text has one, the merged one, for every element (a child that sets
-//!   `angle="radian"` under a parent that sets no `angle` makes the whole composed
-//!   text radians, the parent's and other children's elements included; in the scene
-//!   only that child's file is. Where both set it differently, the child was
-//!   converted when attached (decision D17) and both compile the same);
-//! - **keys of attached models**: MuJoCo lays out a part's keys over the whole
-//!   model at its own joints (`qpos0` elsewhere); the composed text (without
-//!   `merge_keyframes`) writes them as they are, which MuJoCo pads at the end. The
-//!   keys' names and number are the same, the parent's own keys the same;
-//! - **order of attached sections**: MuJoCo attaches in document order, so the
-//!   actuators, sensors, keys, ... of the parts follow the parent's own in the order
-//!   of the `<attach>` elements in the document; the composed text takes attach order.
-//!   The two agree where models were attached in document order (a fleet attached
-//!   site by site, at the end of the worldbody);
-//! - **automatic names**: an unnamed element of a part is written with its automatic
-//!   name in its file (`//unnamed_geom_0`), which MuJoCo prefixes
-//!   (`robot///unnamed_geom_0`, where the composed text has `robot//unnamed_geom_0`);
-//! - **a default class named `main`** below a part's root class: MuJoCo refuses the
-//!   part's file, as it refuses such a model written alone (the composed text prefixes
-//!   the class: `robot/main`).
-//!
-//! With the plain writer, a part whose root default class has a name of its own reads
-//! back as that class inside an unnamed root class (MuJoCo compiles it the same).
-//! The README's "Scenes" gives the figures (`mjcf-mujoco/tests/scenes.rs`).
+//! What MuJoCo compiles differently from `to_xml_string()` (each file's own compiler
+//! settings, the keys of attached models, the order of attached sections, automatic
+//! names, a class named `main` below a part's root class), with the figures, is the
+//! manual's ([Scenes](crate::guide#scenes)).
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -76,8 +41,8 @@ pub(crate) mod reopen;
 mod tests;
 
 /// A composed model as a scene: a root model whose attachments are MuJoCo
-/// `<attach>`es of asset `<model>`s, and the parts those name (see the module's
-/// documentation: `Model::to_scene`).
+/// `<attach>`es of asset `<model>`s, and the parts those name ([`Model::to_scene`];
+/// the [scene rules](crate::guide#scenes)).
 #[derive(Clone, Debug)]
 pub struct Scene {
     root: Model,
@@ -288,10 +253,10 @@ impl Model {
     /// temporary name and renamed into place, the scene's own file last; nothing is
     /// written before every part was written to text and every name checked.
     ///
-    /// What compiles differently from the composed text ([`Model::to_xml_string`]) is
-    /// listed in the `xml::scene` module documentation and the README (each file's
-    /// own compiler settings; the layout of attached models' keys; attached sections
-    /// in document order).
+    /// What MuJoCo compiles differently from the composed text
+    /// ([`Model::to_xml_string`]: each file's own compiler settings, the layout of
+    /// attached models' keys, attached sections in document order) and what reopens
+    /// as an attachment are the [scene rules](crate::guide#scenes).
     ///
     /// Time: as [`Model::to_scene`], plus writing every file (as [`Model::export`]).
     ///

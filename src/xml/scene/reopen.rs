@@ -1,58 +1,9 @@
 //! Reading a scene back composed: MuJoCo's `<attach>` of an asset `<model>`, at a
 //! frame-shaped body, becomes an attachment of that model again.
 //!
-//! # What reopens
-//! A body (or, in the world, a MuJoCo `<frame>`) reopens as the attachment frame of
-//! scope `s` when it has exactly the shape [`Model::save_scene`] writes:
-//! - it is named `s/`, with `s` a scope name (not empty, no `/`), and sets nothing
-//!   but a frame's attributes (`pos`, `quat`, `axisangle`, `xyaxes`, `zaxis`,
-//!   `euler`, and on a body `user` and `mocap`);
-//! - its children are joints (a freejoint only in the world), at most one inertial
-//!   (a body's), and last one `<attach model="M" prefix="s/"/>` with no `body` or
-//!   `frame`; `M` names an asset `<model name="M" file="...">` of the file itself
-//!   (not of an include), with no `content_type`, whose file reads as a model (and
-//!   reopens in turn: nested scenes nest);
-//! - its joints are named as the composed writer names frame joints: `s/` (the first
-//!   unnamed one), `s/j/` (a joint named `j`), or unnamed (written with its automatic
-//!   name); after reopening, each is written with exactly the name it had;
-//! - it is a `<frame>` exactly where the composed writer writes the attachment as one
-//!   (decision D10: in the world, no joints, and the model's top-level bodies carry
-//!   free joints), a body everywhere else; it is not inside a `<replicate>`;
-//! - the file's own global settings already hold the model's (MuJoCo keeps the
-//!   parent's settings; merging the model's into them must change nothing), and no
-//!   other name of the file starts with `s/` (nor does another attachment use `s`).
-//!
-//! Each body that reopens becomes a frame holding the model read from `M`'s file (one
-//! value per asset, shared by all its attachments), in document order (which becomes
-//! the attach order); an asset `<model>` that only reopened attachments used is
-//! removed. So `detach`, `rename_scope`, `edit_attached` and the diff work after
-//! reopening, and the reopened model writes the same composed MJCF as the model that
-//! was saved.
-//!
-//! # What stays as it is
-//! Every other `<attach>` stays an element, as the file holds it (and MuJoCo reads
-//! it): one with `body=` or `frame=` (a subtree of the model, which an attachment
-//! cannot hold), a prefix that is not `<scope>/` or that differs from the name of the
-//! body holding it, a body holding other content (a geom, a site, a child body, a
-//! second `<attach>`) or other attributes (`childclass`, `gravcomp`, ...), an
-//! `<attach>` directly in the worldbody or in a `<frame>` that is not the D10 shape,
-//! a model whose settings the file does not already hold (MuJoCo keeps the file's;
-//! a composition would merge the model's), a model file that cannot be read. Never
-//! an error: the file reads as before, literally.
-//!
-//! # Flat files
-//! A composed model written as one flat file ([`Model::to_xml_string`], or
-//! dm_control's `export_with_assets`) does not reopen composed: it reads as one model
-//! with literal names (`robot/torso`, decision D13). What separated the attached models
-//! is gone from such a file: their sections (actuators, sensors, keys, assets,
-//! default classes) are merged into one list each, told apart only by name prefixes
-//! that a literal name may hold too; their global settings are merged, with no trace
-//! of which model set what; and N attachments of one model are N copies, whose
-//! sharing (one value) could only be guessed from equal content. A guess that is
-//! wrong once changes the model silently (a detach that removes the parent's own
-//! `robot/`-named geom, a rename that renames a literal name), so none is made: save
-//! with [`Model::save_scene`] (or, for a model read from a file, [`Model::save`]) to
-//! reopen composed.
+//! What reopens as an attachment, what stays an element and why a flat file never
+//! reopens composed are the manual's rules ([Scenes](crate::guide#scenes)); this
+//! module applies them.
 
 use std::collections::HashMap;
 use std::path::PathBuf;
