@@ -229,6 +229,22 @@ impl ElementKind {
         self.spec().children.iter().copied().find(|c| c.tag() == tag)
     }
 
+    /// The indices of this kind's required attributes (most kinds have none).
+    ///
+    /// Time: O(1) (a table made once, where a scan of the attributes is O(attributes)).
+    pub(crate) fn required_attrs(self) -> &'static [u16] {
+        static TABLE: std::sync::OnceLock<Vec<Box<[u16]>>> = std::sync::OnceLock::new();
+        let table = TABLE.get_or_init(|| {
+            ElementKind::all()
+                .map(|k| {
+                    let attrs = k.spec().attrs.iter().enumerate();
+                    attrs.filter(|(_, a)| a.required).map(|(i, _)| i as u16).collect()
+                })
+                .collect()
+        });
+        table.get(usize::from(self.0)).map_or(&[], |r| &r[..])
+    }
+
     /// The kind of the defaults a default class of this kind holds for elements of
     /// `kind`: its child of `kind`'s tag (`<tendon>` for every tendon). `None` if
     /// this is no default class or it holds no defaults for `kind`.

@@ -114,7 +114,8 @@ impl Model {
         // References anywhere (in copied and in merged elements, such as an included
         // default class naming an included material) follow the copies.
         let root = remap_refs(&root, &c.ids, &HashSet::from([root.id()]));
-        let own_name = (self.name() != other_name(&root)).then(|| SmolStr::from(self.name()));
+        let own_name =
+            (self.name() != other_name(&root)).then(|| Box::new(SmolStr::from(self.name())));
         let mut index = Index { scopes: self.index.scopes.clone(), own_name, ..Index::default() };
         let failed = index.insert_subtree(None, &root, 0);
         let m = self.next(root, index);

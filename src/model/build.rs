@@ -394,9 +394,10 @@ pub(crate) fn apply_attrs(
 
 /// Checks that every required attribute is set.
 pub(crate) fn check_required(kind: ElementKind, attrs: &[Attr]) -> Result<(), ErrorKind> {
-    for (i, spec) in kind.spec().attrs.iter().enumerate() {
-        if spec.required && attrs.binary_search_by_key(&(i as u16), |(k, _)| *k).is_err() {
-            return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute: spec.name });
+    for &i in kind.required_attrs() {
+        if attrs.binary_search_by_key(&i, |(k, _)| *k).is_err() {
+            let attribute = kind.attr(usize::from(i)).name;
+            return Err(ErrorKind::MissingRequired { tag: kind.tag(), attribute });
         }
     }
     Ok(())

@@ -476,8 +476,7 @@ pub(crate) type AutoPositions = HashMap<ElementId, (u32, bool), IdHash>;
 /// another share one cache, which keeps the last count asked for, so naming unnamed
 /// elements through handles made one by one ([`Model::full_name`], a binding's
 /// handles) counts a model once, not once per name.
-#[derive(Clone, Default)]
-pub(crate) struct AutoCache(Arc<Mutex<Option<(Weak<NodeData>, Arc<AutoPositions>)>>>);
+pub(crate) type AutoCache = Mutex<Option<(Weak<NodeData>, Arc<AutoPositions>)>>;
 
 impl Model {
     /// [`AutoPositions`] of this version: counted ([`auto_positions`], O(n)) unless
@@ -486,7 +485,7 @@ impl Model {
         let cached = |c: &Option<(Weak<NodeData>, Arc<AutoPositions>)>| {
             c.as_ref().filter(|(root, _)| self.root.is(root)).map(|(_, a)| a.clone())
         };
-        let lock = || self.auto.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let lock = || self.side.auto.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some(a) = cached(&lock()) {
             return a;
         }

@@ -215,7 +215,7 @@ fn handles_of_one_instance_share_one_context_counted_once() {
 /// The name of the element at `loc` counted afresh: by a walk from the root of a
 /// copy of `m` that shares no count with it.
 fn oracle_name(m: &Model, loc: &Loc) -> Option<String> {
-    let fresh = Model { auto: Default::default(), ..m.clone() };
+    let fresh = m.with_source(m.side.source.clone());
     walked_full_name(&fresh, loc)
 }
 

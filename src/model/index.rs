@@ -65,7 +65,7 @@ pub(crate) struct Index {
     /// The model's name where it differs from its `model` attribute: `include_copy`
     /// replaces the attribute (as the reference does) but not the name that scopes
     /// the model when it is attached.
-    pub(crate) own_name: Option<SmolStr>,
+    pub(crate) own_name: Option<Box<SmolStr>>,
     /// The merged global settings of the model with its attachments, once known.
     /// Shared by the versions whose settings and attachments are the same; every
     /// edit that can change them starts a new, empty one.
@@ -77,7 +77,49 @@ pub(crate) struct Index {
     /// scope), so that the names an attachment writes (`robot/...`) meet no literal
     /// name (`model::naming`). Empty for models built through the API, which refuses
     /// `/` in names.
-    pub(crate) slashed: HashMap<SmolStr, u32>,
+    pub(crate) slashed: Slashed,
+}
+
+/// [`Index::slashed`]: a map kept behind one pointer, shared until changed, so that a
+/// model (held by value in each of its attachments) stays small; `None` rather than
+/// empty.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Slashed(Option<Arc<HashMap<SmolStr, u32>>>);
+
+impl Slashed {
+    /// The literal names counted with `segment` before their first `/`.
+    pub(crate) fn from_counts(counts: HashMap<SmolStr, u32>) -> Slashed {
+        Slashed((!counts.is_empty()).then(|| Arc::new(counts)))
+    }
+
+    pub(crate) fn contains_key(&self, segment: &str) -> bool {
+        self.0.as_ref().is_some_and(|m| m.contains_key(segment))
+    }
+
+    /// One more name with `segment` before its first `/`.
+    fn add(&mut self, segment: &str) {
+        let counts = Arc::make_mut(self.0.get_or_insert_with(Default::default));
+        *counts.entry(segment.into()).or_insert(0) += 1;
+    }
+
+    /// One name fewer with `segment`; whether it was the last one.
+    fn take(&mut self, segment: &str) -> bool {
+        let Some(counts) = self.0.as_mut() else { return false };
+        match counts.get(segment).copied() {
+            Some(c) if c > 1 => {
+                Arc::make_mut(counts).insert(segment.into(), c - 1);
+                false
+            }
+            Some(_) => {
+                Arc::make_mut(counts).remove(segment);
+                if counts.is_empty() {
+                    self.0 = None;
+                }
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 /// The part of a name before its first `/`, if it has one.
@@ -270,7 +312,7 @@ impl Index {
                 return Err(duplicate());
             }
             if let Some(s) = segment {
-                *self.slashed.entry(s.into()).or_insert(0) += 1;
+                self.slashed.add(s);
             }
         }
         // A frame's entry holds its scope name (the node's own, which attach and
@@ -319,7 +361,7 @@ impl Index {
             }
             if let Some(new) = &new {
                 if let Some(s) = slashed_segment(new) {
-                    *self.slashed.entry(s.into()).or_insert(0) += 1;
+                    self.slashed.add(s);
                 }
                 self.names.insert((ns, new.clone()), id);
             }
@@ -331,22 +373,14 @@ impl Index {
     /// may free a scope name: the suffix hints start afresh.
     fn unslash(&mut self, name: &str) {
         let Some(s) = slashed_segment(name) else { return };
-        let key = SmolStr::from(s);
-        match self.slashed.get(&key).copied() {
-            Some(c) if c > 1 => {
-                self.slashed.insert(key, c - 1);
-            }
-            Some(_) => {
-                self.slashed.remove(&key);
-                self.scopes.free_from = OrdMap::new();
-            }
-            None => {}
+        if self.slashed.take(s) {
+            self.scopes.free_from = OrdMap::new();
         }
     }
 
     /// Whether a literal name of the model starts with `segment` and a `/`.
     pub(crate) fn has_slashed_segment(&self, segment: &str) -> bool {
-        !self.slashed.is_empty() && self.slashed.contains_key(segment)
+        self.slashed.contains_key(segment)
     }
 
     /// The scope name of the attachment whose frame is `frame`: the frame's entry
@@ -660,7 +694,7 @@ impl ReadIndex {
             names,
             elems: ElemMap::from_entries(self.entries),
             runs: self.runs,
-            slashed,
+            slashed: Slashed::from_counts(slashed),
             ..Index::default()
         }
     }

@@ -81,10 +81,19 @@ pub struct Model {
     pub(crate) root: Node,
     pub(crate) index: Index,
     pub(crate) files: Arc<FileContext>,
+    /// The text read and the automatic-name count, shared by the versions made from
+    /// one another.
+    pub(crate) side: Arc<Side>,
+}
+
+/// What a model value carries beside its tree and index, kept behind one pointer so
+/// that a model (held by value in each of its attachments) stays small.
+#[derive(Default)]
+pub(crate) struct Side {
     /// The text read (`xml::source`); `None` for a model built through the API.
     pub(crate) source: Option<Arc<source::Source>>,
-    /// The automatic-name positions of the last version counted, shared by the
-    /// versions made from one another.
+    /// The automatic-name positions of the last version counted
+    /// ([`Model::auto_positions`]).
     pub(crate) auto: cursor::AutoCache,
 }
 
@@ -209,8 +218,8 @@ impl Model {
     /// ```
     pub fn new(name: &str) -> Model {
         let (root, index) = template().clone();
-        let (files, auto) = (Arc::new(FileContext::default()), cursor::AutoCache::default());
-        let m = Model { root, index, files, source: None, auto };
+        let (files, side) = (Arc::new(FileContext::default()), Arc::default());
+        let m = Model { root, index, files, side };
         m.with_name(name)
     }
 
@@ -235,12 +244,13 @@ impl Model {
     }
 
     pub(crate) fn from_parts(root: Node, index: Index, files: FileContext) -> Model {
-        Model { root, index, files: Arc::new(files), source: None, auto: Default::default() }
+        Model { root, index, files: Arc::new(files), side: Arc::default() }
     }
 
     /// The same model with the source `source` (the reader's).
     pub(crate) fn with_source(&self, source: Option<Arc<source::Source>>) -> Model {
-        Model { source, ..self.clone() }
+        let side = Arc::new(Side { source, auto: Default::default() });
+        Model { side, ..self.clone() }
     }
 
     /// The next version of this model: `root` and `index` after an edit (`index`
@@ -262,8 +272,8 @@ impl Model {
         if !(settings_same && memo_same && index.scopes.same(&self.index.scopes)) {
             index.merged = MergedCache::default();
         }
-        let (files, source, auto) = (self.files.clone(), self.source.clone(), self.auto.clone());
-        Model { root, index, files, source, auto }
+        let (files, side) = (self.files.clone(), self.side.clone());
+        Model { root, index, files, side }
     }
 
     /// The model's name: its `model` attribute (`unnamed_model` if it has none, as in
@@ -272,7 +282,7 @@ impl Model {
     ///
     /// Time: O(1).
     pub fn name(&self) -> &str {
-        match &self.index.own_name {
+        match self.index.own_name.as_deref() {
             Some(n) => n,
             None => self
                 .root_attr("model")

@@ -47,13 +47,7 @@ fn relocate(m: &Model, what: &Loc, to: &Loc, at: usize) -> Model {
             Ok::<_, ()>(p.with_children(children))
         })
         .unwrap();
-    Model {
-        root,
-        index,
-        files: m.files.clone(),
-        source: m.source.clone(),
-        auto: Default::default(),
-    }
+    Model { root, index, files: m.files.clone(), side: m.side.clone() }
 }
 
 fn site(m: &Model, name: &str) -> Loc {

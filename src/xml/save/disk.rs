@@ -130,7 +130,7 @@ impl Model {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn save_with(&self, options: &SaveOptions) -> Result<Vec<PathBuf>, SaveError> {
-        let src = self.source.as_deref().ok_or(SaveError::NoSource)?;
+        let src = self.side.source.as_deref().ok_or(SaveError::NoSource)?;
         let out = outputs(self, false)?;
         let folder = src.files.first().and_then(|f| f.disk.as_deref()).and_then(Path::parent);
         // What to write, every check made first: nothing is written if one fails.

@@ -161,7 +161,7 @@ impl Model {
     ///
     /// Time: O(files).
     pub fn source_heap_bytes(&self) -> usize {
-        self.source.as_deref().map_or(0, Source::heap_bytes)
+        self.side.source.as_deref().map_or(0, Source::heap_bytes)
     }
 
     /// The asset files the model's elements name, by their path from the model's
@@ -169,7 +169,7 @@ impl Model {
     /// with the path as written in the element's own file; a file set through the
     /// API by its name, as the lossless writer writes it).
     fn asset_files(&self) -> Vec<(PathBuf, std::sync::Arc<[u8]>)> {
-        let Some(src) = self.source.as_deref() else { return Vec::new() };
+        let Some(src) = self.side.source.as_deref() else { return Vec::new() };
         let base = self.basepaths();
         let mut out = Vec::new();
         for n in self.root.descendants() {
@@ -245,7 +245,7 @@ impl Outputs {
 ///
 /// Time: as [`Model::to_source_files`].
 fn outputs(model: &Model, with_assets: bool) -> Result<Outputs, SaveError> {
-    let src = model.source.as_deref().ok_or(SaveError::NoSource)?;
+    let src = model.side.source.as_deref().ok_or(SaveError::NoSource)?;
     let composed = model.index.attachments().next().is_some() || src.literal.is_some();
     let (spelled, mut out) = if composed {
         let s = scene::spell(model, src, with_assets)?;

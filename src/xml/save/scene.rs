@@ -267,7 +267,7 @@ fn save_parts(
 /// The path of `v`'s main file from the scene's folder, if it was read from a file
 /// in that folder (or below it).
 fn own_file(v: &Model, folder: Option<&Path>) -> Option<PathBuf> {
-    let src = v.source.as_deref()?;
+    let src = v.side.source.as_deref()?;
     let disk = src.files.first()?.disk.as_deref()?;
     crate::files::canonical(disk).strip_prefix(folder?).ok().map(Path::to_path_buf)
 }
@@ -279,7 +279,7 @@ fn read_from(
     folder: Option<&Path>,
     read_assets: &HashMap<PathBuf, Node>,
 ) -> Option<PathBuf> {
-    let disk = crate::files::canonical(v.source.as_deref()?.files.first()?.disk.as_deref()?);
+    let disk = crate::files::canonical(v.side.source.as_deref()?.files.first()?.disk.as_deref()?);
     let folder = folder?;
     read_assets.keys().find(|p| crate::files::canonical(&folder.join(p)) == disk).cloned()
 }

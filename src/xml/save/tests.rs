@@ -31,7 +31,7 @@ fn fail(what: &str, e: impl std::fmt::Display, text: &str) -> TestCaseError {
 /// The texts of the largest untouched elements of `m` (clean, under an element that
 /// is not), by the saver's own test of cleanness.
 fn untouched_texts(m: &Model) -> Vec<String> {
-    let Some(src) = m.source.as_deref() else { return Vec::new() };
+    let Some(src) = m.side.source.as_deref() else { return Vec::new() };
     let saver = Saver { model: m, read: &src.read, src, dirty: dirty(m, &src.read) };
     let mut out = Vec::new();
     for (i, rec) in src.records.iter().enumerate() {

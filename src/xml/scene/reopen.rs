@@ -39,18 +39,22 @@ pub(crate) struct PartFile {
 }
 
 /// The asset model files of `model` (read literally from `text`) that an `<attach>`
-/// of a saved scene's shape may use: nothing when `text` has no `<attach`.
+/// of a saved scene's shape may use: nothing when the model has no asset `<model>` or
+/// `text` has no `<attach`.
 ///
-/// Time: O(L) to look for `<attach` in the `L` bytes of text; where there is one,
-/// O(L) more for the asset models' paths.
+/// Time: O(assets); with an asset `<model>`, O(L) to look for `<attach` in the `L`
+/// bytes of text, and where there is one, O(L) more for the asset models' paths.
 pub(crate) fn parts_to_read(model: &Model, text: &str) -> Vec<PartFile> {
-    if !text.contains("<attach") {
-        return Vec::new();
-    }
-    let paths = asset_model_paths(text);
+    // A scene's `<attach>` names an asset `<model>`: without one (most files), the
+    // text is not searched.
     let Some(asset) = model.root.child_of_kind(ElementKind::ASSET) else {
         return Vec::new();
     };
+    let is_model = |c: &Node| c.kind().is(Role::AssetModel);
+    if !asset.children().iter().any(is_model) || !text.contains("<attach") {
+        return Vec::new();
+    }
+    let paths = asset_model_paths(text);
     let mut out = Vec::new();
     for node in asset.children().iter().filter(|c| c.kind().is(Role::AssetModel)) {
         let kind = node.kind();
