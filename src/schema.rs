@@ -251,8 +251,9 @@ impl ElementKind {
     ///
     /// Time: O(1) (a table made once, where [`ElementKind::child`] compares tags).
     pub(crate) fn defaults_for(self, kind: ElementKind) -> Option<ElementKind> {
-        static TABLE: std::sync::OnceLock<Vec<Option<Box<[Option<ElementKind>]>>>> =
-            std::sync::OnceLock::new();
+        /// Per default-class kind, per element kind.
+        type Table = Vec<Option<Box<[Option<ElementKind>]>>>;
+        static TABLE: std::sync::OnceLock<Table> = std::sync::OnceLock::new();
         let table = TABLE.get_or_init(|| {
             ElementKind::all()
                 .map(|class| {
