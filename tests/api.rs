@@ -3,8 +3,7 @@
 
 use mjcf::{EditError, Element, ErrorKind, Event, Loc, Model, Namespace, element};
 
-#[path = "support/robot.rs"]
-mod robot;
+use crate::robot;
 use robot::robot;
 
 /// An arena with two sites, a robot attached at each (`robot`, `robot_1`) and a

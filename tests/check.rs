@@ -3,8 +3,7 @@
 
 use mjcf::{AdviceKind, EditError, Model, Namespace, ProblemKind, WriteOptions, element};
 
-#[path = "support/robot.rs"]
-mod robot;
+use crate::robot;
 use robot::robot;
 
 #[test]

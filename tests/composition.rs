@@ -10,8 +10,7 @@ use mjcf::{Element, ErrorKind, Loc, Model, Namespace};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 
-#[path = "support/robot.rs"]
-mod robot;
+use crate::robot;
 use robot::robot;
 
 #[test]

@@ -2,8 +2,3 @@
 //! `tests/support/compare.rs`, the `#[cfg(test)]` modules in them). They live in
 //! their own target because `tests/conformance.rs`, which replays the cases, has its
 //! own runner (`harness = false`) and so does not build them.
-
-#[path = "support/case.rs"]
-mod case;
-#[path = "support/compare.rs"]
-mod compare;

@@ -29,8 +29,7 @@
 //! that lost files, or a walk that no longer finds them, fails the test; adding cases
 //! does not.
 
-#[path = "support/text.rs"]
-mod text;
+use crate::text;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

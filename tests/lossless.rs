@@ -7,8 +7,7 @@ use std::path::{Path, PathBuf};
 
 use mjcf::{Attrs, Element, Model, Namespace, SaveError};
 
-#[path = "support/dirs.rs"]
-mod dirs;
+use crate::dirs;
 use dirs::{temp_dir, write};
 
 /// The model files the conformance cases load (`"op": "load"`), by case folder.

@@ -12,17 +12,10 @@
 //! saying so, without them), and the generated models and scenes
 //! (`src/generate/tests.rs`, through the same `support/names.rs`).
 
-#[path = "support/case.rs"]
-mod case;
-#[path = "support/compare.rs"]
-mod compare;
-#[path = "support/names.rs"]
-mod names;
+use crate::case;
+use crate::names;
 #[allow(dead_code)]
-#[path = "support/replay.rs"]
-mod replay;
-#[path = "support/text.rs"]
-mod text;
+use crate::replay;
 
 use std::path::{Path, PathBuf};
 

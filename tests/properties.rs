@@ -13,8 +13,7 @@
 //! differential check: reading that text gives the same output as building the model
 //! through the API.
 
-#[path = "support/text.rs"]
-mod text;
+use crate::text;
 
 use std::collections::{HashMap, HashSet};
 

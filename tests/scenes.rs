@@ -3,17 +3,8 @@
 //! flat files that stay literal, and the round trip over every conformance output
 //! with attachments. (Generated scenes with edits: `src/xml/scene/tests.rs`.)
 
-#[path = "support/case.rs"]
-mod case;
-#[path = "support/compare.rs"]
-mod compare;
-#[path = "support/names.rs"]
-mod names;
-#[path = "support/replay.rs"]
-#[allow(dead_code)]
-mod replay;
-#[path = "support/text.rs"]
-mod text;
+use crate::case;
+use crate::replay;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -10,8 +10,7 @@
 
 use mjcf::{Element, Model, Namespace, ReadOptions, attrs};
 
-#[path = "support/dirs.rs"]
-mod dirs;
+use crate::dirs;
 use dirs::{temp_dir, write};
 
 /// A model text with one geom to edit, under the worldbody.

@@ -6,8 +6,7 @@ use std::thread;
 
 use mjcf::{Element, Model, Namespace};
 
-#[path = "support/robot.rs"]
-mod robot;
+use crate::robot;
 use robot::robot;
 
 const VARIANTS: usize = 1000;

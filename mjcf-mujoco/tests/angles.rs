@@ -8,7 +8,7 @@
 //! axes, fixed axes, mixed, repeated axes), orientations and joint values in default
 //! classes, joint types from classes, a `<flexcomp>` and a `<replicate>`.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

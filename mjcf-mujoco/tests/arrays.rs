@@ -5,7 +5,7 @@
 //! have enough data"). The table must be exactly that; with `MJCF_WRITE_MINIMUMS=1`
 //! the test writes it instead.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

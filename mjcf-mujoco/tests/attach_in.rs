@@ -3,7 +3,7 @@
 //! written by hand inside that body (or frame) puts it, for turned and shifted
 //! bodies and frames, at the world's level and inside an attached model.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

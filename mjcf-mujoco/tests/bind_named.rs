@@ -2,7 +2,7 @@
 //! too, with suggestions for a missing name), by id, and by locator; fields by
 //! MuJoCo's names with their true widths.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

@@ -2,7 +2,7 @@
 //! simulating, binding fields. Tests that need MuJoCo are ignored in a plain
 //! `cargo test`; `.ci/run` runs them with `MUJOCO_LIB` set (`--include-ignored`).
 
-mod support;
+use crate::support;
 
 use std::io::Write as _;
 

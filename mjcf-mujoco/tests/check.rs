@@ -11,7 +11,7 @@
 //! with free bodies and planes; frames with mixed joints and freejoints anywhere),
 //! the same verdict for every scene as it is generated.
 
-mod support;
+use crate::support;
 
 use mjcf::{AttrType, Event, Model, ProblemKind, Value, element};
 use mjcf_mujoco::{Error, MuJoCo};

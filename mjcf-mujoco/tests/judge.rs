@@ -17,18 +17,9 @@
 //! Each test prints its counts; a model MuJoCo refuses is counted apart (the corpus
 //! holds a few whose reference output does not compile either) and never as passed.
 
-#[path = "../../tests/support/case.rs"]
-mod case;
-#[path = "../../tests/support/compare.rs"]
-mod compare;
-#[path = "../../tests/support/names.rs"]
-mod names;
-#[path = "../../tests/support/replay.rs"]
-#[allow(dead_code)]
-mod replay;
-mod support;
-#[path = "../../tests/support/text.rs"]
-mod text;
+use crate::case;
+use crate::replay;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

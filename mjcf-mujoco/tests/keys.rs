@@ -4,7 +4,7 @@
 //! puts it, for sites oriented in every form MJCF allows; the fleet then steps without
 //! a warning.
 
-mod support;
+use crate::support;
 
 use mjcf::{Model, Namespace, ReadOptions, WriteOptions, element};
 use mjcf_mujoco::Physics;

@@ -5,7 +5,7 @@
 //! `qpos0` for every joint new to the model; and the crate's fixture, edited as its
 //! tests edit it, compiles to the values they expect.
 
-mod support;
+use crate::support;
 
 use std::collections::HashMap;
 

@@ -5,7 +5,7 @@
 //! frictions, joint ranges, damping and armature, actuator gains, the root's own
 //! pose relative to where it is attached.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

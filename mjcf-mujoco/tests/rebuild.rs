@@ -2,9 +2,8 @@
 //! in place, compiles, renames, detach and undo), keeping MuJoCo's integration state
 //! by element identity, else by full name; MuJoCo judges each continuation.
 
-#[path = "support/state.rs"]
-mod state;
-mod support;
+use crate::state;
+use crate::support;
 
 use mjcf::{History, Model, Namespace, WriteOptions, element};
 use mjcf_mujoco::{DefaultedWhy, Error, ObjKind, Physics, RebuildMode};

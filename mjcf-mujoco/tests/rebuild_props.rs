@@ -9,11 +9,9 @@
 //! model given the same state, bit for bit. Scenes: `MJCF_REBUILD_SCENES` (default
 //! 120).
 
-#[path = "support/augment.rs"]
-mod augment;
-#[path = "support/state.rs"]
-mod state;
-mod support;
+use crate::augment;
+use crate::state;
+use crate::support;
 
 use std::collections::{BTreeMap, HashMap};
 

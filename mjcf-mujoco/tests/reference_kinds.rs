@@ -14,7 +14,7 @@
 //! this test cannot build (a plugin library, skin or flex data, MuJoCo's own `<attach>`
 //! of another model) are listed with the reason and the test that covers them, if any.
 
-mod support;
+use crate::support;
 
 use mjcf::{Attrs, Model, Namespace, ProblemKind, Referrers};
 use support::mujoco;

@@ -5,7 +5,7 @@
 //! MuJoCo's message, or of the kind that stands for it), and on the twin does neither
 //! object (a false alarm).
 
-mod support;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! geoms, tendons, materials), and any element of generated scenes, leaves a model
 //! that `check()` finds nothing dangling in and MuJoCo 4.0.0 compiles.
 
-mod support;
+use crate::support;
 
 use mjcf::{Model, Namespace, ProblemKind, Referrers};
 use support::mujoco;

@@ -9,18 +9,9 @@
 //! written `//unnamed_geom_0` in its file, which MuJoCo prefixes `robot///...`; the
 //! composed text writes `robot//unnamed_geom_0`).
 
-#[path = "../../tests/support/case.rs"]
-mod case;
-#[path = "../../tests/support/compare.rs"]
-mod compare;
-#[path = "../../tests/support/names.rs"]
-mod names;
-#[path = "../../tests/support/replay.rs"]
-#[allow(dead_code)]
-mod replay;
-mod support;
-#[path = "../../tests/support/text.rs"]
-mod text;
+use crate::case;
+use crate::replay;
+use crate::support;
 
 use std::path::{Path, PathBuf};
 

@@ -8,7 +8,7 @@
 //! full 10,000 is `MJCF_SIM_SCENES=10000`. `MJCF_SIM_DUMP=DIR` writes every scene to
 //! `DIR/scene_I.xml`, to study one in MuJoCo.
 
-mod support;
+use crate::support;
 
 use std::collections::BTreeMap;
 

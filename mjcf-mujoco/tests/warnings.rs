@@ -2,7 +2,7 @@
 //! degree of freedom or position, the actuator of a control) with its full name and
 //! scope, and can be made errors.
 
-mod support;
+use crate::support;
 
 use mjcf::{Model, element};
 use mjcf_mujoco::{Error, ObjKind, Physics, WarningKind};

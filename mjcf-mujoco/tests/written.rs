@@ -12,11 +12,9 @@
 //! bit for bit; a difference within 1e-12 relative is counted apart, with its field.
 //! Scenes: `MJCF_WRITTEN_SCENES` (default 200).
 
-#[path = "support/augment.rs"]
-mod augment;
-#[path = "support/state.rs"]
-mod state;
-mod support;
+use crate::augment;
+use crate::state;
+use crate::support;
 
 use std::collections::BTreeMap;
 

@@ -5,12 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// A fresh, empty folder under the system's temp folder, named after the test binary,
+/// A fresh, empty folder under the system's temp folder, named after the module using it,
 /// `tag`, the process and a counter (so that tests running at once never share one).
 pub(crate) fn temp_dir(tag: &str) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);
     let n = N.fetch_add(1, Ordering::Relaxed);
-    let test = env!("CARGO_CRATE_NAME");
+    // The including module (`lossless::dirs`), unique within one test binary.
+    let test = module_path!().replace("::", "-");
     let d = std::env::temp_dir().join(format!("mjcf-{test}-{tag}-{}-{n}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
