@@ -35,6 +35,7 @@ WORKLOADS = [
     ("read the plain 10k-body tree", ["read-tree", "{r}"], 1, 3),
     ("name the N=100 fleet by handles", ["names", "100", "{r}"], 1, 2),
     ("walk the N=100 fleet", ["walk", "100", "{r}"], 1, 2),
+    ("name the N=10 fleet by locators", ["full-names", "10", "{r}"], 1, 2),
 ]
 SLOWER = 1.10
 
