@@ -50,7 +50,7 @@ pub(crate) struct Inst<'a> {
     root_class: Written<'a>,
     /// Per namespace (`ns as usize`), how many of the model's elements of it the walk
     /// has entered.
-    counters: Vec<u32>,
+    counters: [u32; Namespace::ALL.len()],
     /// Every element's automatic-name position and whether a `<replicate>` of its
     /// model is above it, counted once when a name needs it ([`Insts::name_of_id`]).
     auto: OnceCell<Arc<AutoPositions>>,
@@ -68,18 +68,17 @@ impl<'a> Inst<'a> {
                 names.name_of(model, Named::of_node(r), &ElemCtx::default(), || (0, false))
             })
             .unwrap_or(Written::RootClass);
-        let (counters, auto) = (Vec::new(), OnceCell::new());
+        let (counters, auto) = ([0; Namespace::ALL.len()], OnceCell::new());
         Inst { model, frames, frame, names, root_class, counters, auto }
     }
 
     /// The position of the next element of `ns` (counted).
     fn count(&mut self, ns: Namespace) -> u32 {
-        let k = ns as usize;
-        if self.counters.len() <= k {
-            self.counters.resize(k + 1, 0);
-        }
-        self.counters[k] += 1;
-        self.counters[k] - 1
+        // In the instance itself (no list to grow, nothing to follow): the walk counts
+        // every element it enters.
+        let Some(c) = self.counters.get_mut(ns as usize) else { return 0 };
+        *c += 1;
+        *c - 1
     }
 }
 
