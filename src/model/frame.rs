@@ -111,7 +111,7 @@ fn slotted(node: &Node) -> [Option<&crate::value::Value>; SLOTS] {
         ElementKind::all()
             .map(|k| {
                 let mut parts = vec![u8::MAX; k.spec().attrs.len()];
-                let named = FRAME_ATTRS.iter().enumerate().map(|(p, n)| (p, k.attr_index(n)));
+                let named = frame_attr_indices(k).iter().map(|i| i.map(usize::from)).enumerate();
                 let more = [(FROMTO, k.attr_index("fromto")), (CLASS, k.class_attr())];
                 for (part, i) in named.chain(more) {
                     if let Some(slot) = i.and_then(|i| parts.get_mut(i)) {

@@ -87,7 +87,7 @@ pub(crate) struct Index {
 pub(crate) struct Slashed(Option<Arc<HashMap<SmolStr, u32>>>);
 
 impl Slashed {
-    /// The literal names counted with `segment` before their first `/`.
+    /// The map of `counts` (the literal names holding a `/`, by the part before it).
     pub(crate) fn from_counts(counts: HashMap<SmolStr, u32>) -> Slashed {
         Slashed((!counts.is_empty()).then(|| Arc::new(counts)))
     }
