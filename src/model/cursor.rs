@@ -128,7 +128,7 @@ impl<'a> Insts<'a> {
 
     /// The name `item` (entered by the walk) is written with, `None` for elements
     /// without a namespace.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn name_of_item(&self, item: &Item<'a>) -> Option<Written<'a>> {
         let inst = &self.list[item.inst];
         // A frame's joint: its frame (the walk keeps items small: this is rare).
@@ -387,16 +387,20 @@ impl<'a> Walk<'a> {
 impl<'a> Iterator for Walk<'a> {
     type Item = Step<'a>;
 
+    #[inline(always)]
     fn next(&mut self) -> Option<Step<'a>> {
         self.entered = None;
-        let mut step = self.stack.pop()?;
-        if let Step::Enter(item) = &mut step {
-            // Counted as it is entered: its model's elements are entered in document
-            // order.
-            if let Some(ns) = item.node.kind().namespace() {
-                item.auto = self.insts.list[item.inst].count(ns);
-            }
-            let item = *item;
+        let step = self.stack.pop()?;
+        let Step::Enter(item) = step else { return Some(step) };
+        // Counted as it is entered: its model's elements are entered in document
+        // order. (The item is made anew, not patched where it lies: a field written
+        // and the whole item read back at once stalls the load.)
+        let auto = match item.node.kind().namespace() {
+            Some(ns) => self.insts.list[item.inst].count(ns),
+            None => 0,
+        };
+        let item = Item { auto, ..item };
+        {
             self.entered = Some(self.stack.len());
             self.stack.push(Step::Leave(item));
             let Item { inst, node, depth, .. } = item;
@@ -424,7 +428,7 @@ impl<'a> Iterator for Walk<'a> {
                 self.stack.extend(children.into_iter().rev().map(Step::Enter));
             }
         }
-        Some(step)
+        Some(Step::Enter(item))
     }
 }
 

@@ -340,8 +340,7 @@ pub(crate) fn is_clean(s: &[u8]) -> bool {
     fn zero_byte(x: u64) -> u64 {
         x.wrapping_sub(ONES) & !x & HIGH
     }
-    fn clean8(w: [u8; 8]) -> bool {
-        let x = u64::from_le_bytes(w);
+    fn clean8(x: u64) -> bool {
         // A byte below 0x20; a byte of 0x7f or more (the +1 carries out of a byte
         // only from 0xff, itself caught by `x & HIGH`); one of the four to escape.
         let special = (x.wrapping_sub(ONES * 0x20) & !x & HIGH)
@@ -352,21 +351,29 @@ pub(crate) fn is_clean(s: &[u8]) -> bool {
             | zero_byte(x ^ (ONES * u64::from(b'"')));
         special == 0
     }
+    let word = |c: &[u8]| c.try_into().map(u64::from_le_bytes);
     let mut chunks = s.chunks_exact(8);
     for c in &mut chunks {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(c);
-        if !clean8(w) {
+        if !word(c).is_ok_and(clean8) {
             return false;
         }
     }
-    // The last 1 to 7 bytes, padded with clean ones.
+    // The last 1 to 7 bytes: the last eight bytes again where there are eight (read
+    // at once: a tail copied to a padded buffer byte by byte and read back as a word
+    // stalls the read), else the bytes shifted into a word of clean ones.
     let rest = chunks.remainder();
-    let mut w = [b'a'; 8];
-    for (d, &b) in w.iter_mut().zip(rest) {
-        *d = b;
+    if rest.is_empty() {
+        return true;
     }
-    clean8(w)
+    if let Some(tail) = s.len().checked_sub(8) {
+        return word(&s[tail..]).is_ok_and(clean8);
+    }
+    let mut x = ONES * u64::from(b'a');
+    for (k, &b) in rest.iter().enumerate() {
+        let shift = 8 * k;
+        x = (x & !(0xff << shift)) | (u64::from(b) << shift);
+    }
+    clean8(x)
 }
 
 /// Refuses text that XML cannot hold, so that every value can be written and read back.

@@ -30,16 +30,15 @@ impl<'a> Writer<'a> {
         let (inst, node) = (item.inst, item.node);
         let kind = node.kind();
         // The name slot is always written from the naming rules.
-        let name = match kind.identifier() {
-            Some(i) => insts.name_of_item(item).map(|w| (i, w)),
-            None => None,
-        };
+        // (Kept apart from its slot: a name repacked with it is copied through memory.)
+        let name = kind.identifier().and_then(|_| insts.name_of_item(item));
+        let name_slot = kind.identifier().filter(|_| name.is_some());
         let implicit_class =
             rules::implicit_class(kind, childclass_above, |c| self.has_live(insts, inst, node, c));
         // The stored attributes, merged in schema order with the two slots written
         // from the rules (each replacing a stored value at its slot).
         let mut set = node.attrs().iter().peekable();
-        let mut virtuals: [Option<usize>; 2] = [name.map(|a| a.0), implicit_class];
+        let mut virtuals: [Option<usize>; 2] = [name_slot, implicit_class];
         virtuals.sort_by_key(|v| v.unwrap_or(usize::MAX));
         let mut virt = virtuals.iter().flatten().copied().peekable();
         loop {
@@ -59,7 +58,7 @@ impl<'a> Writer<'a> {
                 }
                 let attr = kind.attr(i).name;
                 let written = match name {
-                    Some((slot, written)) if slot == i => written,
+                    Some(written) if name_slot == Some(i) => written,
                     // The implicit class: the model's root class.
                     _ => insts.root_class_name(inst),
                 };
@@ -73,6 +72,7 @@ impl<'a> Writer<'a> {
 
     /// Appends ` attr="…"` for a name in instance `inst`: an element's own name as
     /// prefix and name, each escaped with no copy between; any other spelt first.
+    #[inline(always)]
     pub(super) fn emit_written(
         &mut self,
         insts: &Insts<'a>,
