@@ -290,13 +290,15 @@ impl Model {
         // The child in the conventions (angle unit, euler sequence) in force for the
         // whole composition, which every model in it shares (`compose::angles`).
         let err = |k: ErrorKind| EditError::new(k, String::new());
-        let ours = settings::merged(self).map_err(err)?;
         // Settings whose fold into ours changed nothing (the last attach of the same
-        // model did so) hold no convention other than ours: nothing to convert.
-        let converted = if self.index.merged.absorbs(&settings::merged(child).map_err(err)?) {
+        // model did so) hold no convention other than ours: nothing to convert. (Asked
+        // of the caches as they are, without taking a share of either: a child whose
+        // settings are not counted yet was not absorbed.)
+        let absorbed = child.index.merged.get().is_some_and(|t| self.index.merged.absorbs(t));
+        let converted = if absorbed {
             None
         } else {
-            angles::into_conventions(&ours, child).map_err(err)?
+            angles::into_conventions(&settings::merged(self).map_err(err)?, child).map_err(err)?
         };
         let child = converted.as_ref().unwrap_or(child);
         if at.scope().is_empty() {

@@ -105,6 +105,7 @@ const SLOTS: usize = CLASS + 1;
 
 /// The values `node` sets of each part ([`FROMTO`], [`CLASS`], [`FRAME_ATTRS`]), in
 /// one pass over its attributes, each given its part by a table made once per kind.
+#[inline(always)]
 fn slotted(node: &Node) -> [Option<&crate::value::Value>; SLOTS] {
     static TABLE: std::sync::OnceLock<Vec<Box<[u8]>>> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| {

@@ -404,19 +404,26 @@ impl Index {
         self.scopes.rename(old.as_ref(), frame, to);
     }
 
-    /// The ids from the root down to `id`, inclusive, each with its position hint
-    /// and slot.
-    pub(crate) fn ancestry(&self, id: ElementId) -> Option<Vec<(ElementId, usize, u64)>> {
-        let mut cur = self.entry(id)?;
-        // Room for most depths at once (one allocation, no regrowth).
-        let mut chain = Vec::with_capacity(16);
-        chain.push((id, cur.pos, cur.ord));
-        while let Some(p) = cur.parent {
-            cur = self.entry(p)?;
-            chain.push((p, cur.pos, cur.ord));
+    /// `id` and its ancestors up to the root, nearest first, each given to `each`
+    /// with its position hint and slot; `None` if one is not indexed.
+    pub(crate) fn ancestry(
+        &self,
+        id: ElementId,
+        mut each: impl FnMut(ElementId, usize, u64),
+    ) -> Option<()> {
+        // Read in place where the element has an entry of its own (all but members of
+        // runs): an entry returned by value is copied through memory at every level.
+        let step = |id: ElementId| match self.elems.get(&id) {
+            Some(e) => Some((e.parent, e.pos, e.ord)),
+            None => self.entry(id).map(|e| (e.parent, e.pos, e.ord)),
+        };
+        let mut cur = Some(id);
+        while let Some(id) = cur {
+            let (parent, pos, ord) = step(id)?;
+            each(id, pos, ord);
+            cur = parent;
         }
-        chain.reverse();
-        Some(chain)
+        Some(())
     }
 }
 

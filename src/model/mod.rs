@@ -545,15 +545,27 @@ impl Model {
 
     /// Child indices from the root to the element, or `None` if it does not exist.
     pub(crate) fn path_of(&self, id: ElementId) -> Option<Vec<usize>> {
-        let ids = self.index.ancestry(id)?;
+        // The ancestry, nearest first: the nearest `NEAR` on the stack (most paths
+        // entirely: no allocation but the path's), any farther in a list.
+        const NEAR: usize = 24;
+        let mut near = [None; NEAR];
+        let (mut far, mut depth) = (Vec::new(), 0);
+        self.index.ancestry(id, |id, hint, ord| {
+            match near.get_mut(depth) {
+                Some(slot) => *slot = Some((id, hint, ord)),
+                None => far.push((id, hint, ord)),
+            }
+            depth += 1;
+        })?;
+        let near = near.iter().take(depth).flatten();
+        let mut down = far.iter().rev().chain(near.rev());
         let mut node = &self.root;
-        let (first, rest) = ids.split_first()?;
-        if first.0 != node.id() {
+        if down.next()?.0 != node.id() {
             return None;
         }
-        let mut path = Vec::with_capacity(ids.len());
-        for (id, hint, ord) in rest {
-            let i = node.child_position(*id, *ord, *hint)?;
+        let mut path = Vec::with_capacity(depth - 1);
+        for &(id, hint, ord) in down {
+            let i = node.child_position(id, ord, hint)?;
             path.push(i);
             node = node.children().get(i)?;
         }

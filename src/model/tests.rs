@@ -108,3 +108,22 @@ fn read_models_are_indexed_exactly() {
 fn a_model_value_stays_at_its_size() {
     assert!(std::mem::size_of::<Model>() <= 208, "{}", std::mem::size_of::<Model>());
 }
+
+#[test]
+fn elements_deeper_than_the_ancestry_kept_on_the_stack_are_found() {
+    // `path_of` keeps the nearest 24 ancestors on the stack and any farther in a
+    // list: every depth on both sides of that, and the element itself, is found.
+    let depth = 40;
+    let mut xml = String::from("<mujoco><worldbody>");
+    for i in 0..depth {
+        xml.push_str(&format!("<body name=\"b{i}\"><geom size=\"0.1\"/>"));
+    }
+    xml.push_str(&"</body>".repeat(depth));
+    xml.push_str("</worldbody></mujoco>");
+    let m = Model::from_xml_str(&xml).unwrap();
+    assert_index_exact(&m);
+    let key = (Namespace::Body, SmolStr::from(format!("b{}", depth - 1)));
+    let path = m.path_of(m.index.names[&key]).unwrap();
+    // worldbody, then one body per level.
+    assert_eq!(path.len(), depth + 1);
+}
