@@ -98,7 +98,9 @@ impl<T> Leaf<T> {
     /// call before changing `items`).
     fn ords_mut(&mut self) -> &mut Vec<u64> {
         if self.is_fresh() {
-            self.ords = (self.first..self.first + self.items.len()).map(fresh_ord).collect();
+            // With room for the item an edit is about to add.
+            self.ords = Vec::with_capacity(self.items.capacity().max(self.items.len() + 1));
+            self.ords.extend((self.first..self.first + self.items.len()).map(fresh_ord));
         }
         &mut self.ords
     }
@@ -525,14 +527,25 @@ fn insert_into<T: Clone>(t: &mut Tree<T>, i: usize, ord: u64, value: T) -> Split
     match t {
         Tree::Leaf(l) => {
             let l = leaf_to_grow(l);
-            l.ords_mut().insert(i, ord);
-            l.items.insert(i, value);
-            if l.items.len() <= LEAF {
+            if l.items.len() < LEAF {
+                l.ords_mut().insert(i, ord);
+                l.items.insert(i, value);
                 return None;
             }
-            let half = l.items.len() / 2;
-            let ords = l.ords_mut().split_off(half);
-            let right = Leaf::listed(ords, l.items.split_off(half));
+            // Full: split in halves first, the right one made with room for a full
+            // leaf, then insert into the half that holds position `i`. (Inserted
+            // first, the full leaf grew to twice its size to be halved, and the right
+            // half grew again as it filled.)
+            let half = LEAF / 2;
+            let mut ords = Vec::with_capacity(LEAF);
+            ords.extend(l.ords_mut().drain(half..));
+            let mut items = Vec::with_capacity(LEAF);
+            items.extend(l.items.drain(half..));
+            let mut right = Leaf::listed(ords, items);
+            let at = if i <= half { &mut *l } else { &mut right };
+            let j = if i <= half { i } else { i - half };
+            at.ords_mut().insert(j, ord);
+            at.items.insert(j, value);
             let n = right.items.len();
             Some((Tree::Leaf(Arc::new(right)), n))
         }
