@@ -277,7 +277,9 @@ impl ValueCtx<'_> {
     }
 
     /// [`ValueCtx::assign`] to the attribute at `index` of `kind` (the reader finds the
-    /// index itself, once).
+    /// index itself, once). Inlined: its input and its value, passed through memory,
+    /// were copied in parts and read back whole.
+    #[inline]
     pub(crate) fn assign_at(
         &self,
         kind: ElementKind,
