@@ -247,6 +247,17 @@ fn main() {
             let mut l = line(&format!("w1_build_{n}"), &format!("W1 build N={n}"), &b);
             // The fleet's own structure (`live_bytes`) plus the arena and robot it shares.
             l["live_bytes_with_inputs"] = json!(b.live_bytes + (arena_live + robot_live) as isize);
+            // The same with inputs read without their source (`keep_source(false)`): the
+            // text and tag records a lossless save needs are what the two differ by.
+            let bare = mjcf::ReadOptions::default().keep_source(false);
+            let l1 = live_bytes();
+            let inputs = (bare.read_str(&arena_xml(n)), bare.read_path(robot_path()));
+            let bare_live = live_bytes() - l1;
+            if inputs.0.is_ok() && inputs.1.is_ok() {
+                l["live_bytes_with_inputs_without_source"] =
+                    json!(b.live_bytes + bare_live as isize);
+            }
+            drop(inputs);
             emit(l);
             let w = measure(2, 50, budget, || fleet.to_xml_string());
             match &w.value {

@@ -65,8 +65,12 @@ pub(crate) fn models_dir() -> PathBuf {
 
 /// The quadruped, read from `benches/models/quadruped_robot.xml` (with its includes).
 pub(crate) fn read_robot() -> Model {
-    Model::from_path(models_dir().join("quadruped_robot.xml"))
-        .expect("benches/models/quadruped_robot.xml reads")
+    Model::from_path(robot_path()).expect("benches/models/quadruped_robot.xml reads")
+}
+
+/// The robot's file.
+pub(crate) fn robot_path() -> std::path::PathBuf {
+    models_dir().join("quadruped_robot.xml")
 }
 
 /// The arena with `n` spawn sites: `benches/models/arena_{100,1000}.xml`, or generated
