@@ -1120,3 +1120,20 @@ fn check_answers_every_element_with_extreme_numbers() {
     }
     assert!(read > 100, "{read} models read");
 }
+
+#[test]
+fn a_class_given_twice_in_one_tag_keeps_the_later_or_none() {
+    // `class` and `dclass` are one attribute: the later replaces the earlier, and an
+    // empty later one clears it.
+    let xml = r#"<mujoco><default><default class="a"/><default class="b"/></default>
+      <worldbody>
+        <geom name="g" dclass="a" class="b" size="1"/>
+        <geom name="h" class="a" dclass="" size="1"/>
+        <geom name="k" class="b" size="1"/>
+      </worldbody></mujoco>"#;
+    let m = Model::from_xml_str(xml).unwrap();
+    let class = |g: &str| m.get(&m.find(Namespace::Geom, g).unwrap()).unwrap().attr("class");
+    assert_eq!(class("g"), class("k"));
+    assert!(class("g").is_some());
+    assert_eq!(class("h"), None);
+}

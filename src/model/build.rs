@@ -247,14 +247,12 @@ pub(crate) enum Input<'a> {
     Given(&'a AttrInput),
 }
 
-impl Input<'_> {
-    fn text(&self) -> Option<&str> {
-        match self {
-            Input::Text(t) => Some(t),
-            Input::Given(AttrInput::Text(t)) => Some(t),
-            Input::Given(_) => None,
-        }
-    }
+/// What a text gives before it is parsed ([`ValueCtx::before_parsing`]).
+enum Before {
+    /// Nothing: the attribute is cleared.
+    Clears,
+    /// A file, read.
+    File(FileAsset),
 }
 
 impl ValueCtx<'_> {
@@ -277,68 +275,113 @@ impl ValueCtx<'_> {
     }
 
     /// [`ValueCtx::assign`] to the attribute at `index` of `kind` (the reader finds the
-    /// index itself, once). Inlined: its input and its value, passed through memory,
-    /// were copied in parts and read back whole.
-    #[inline]
+    /// index itself, once).
     pub(crate) fn assign_at(
         &self,
         kind: ElementKind,
         index: usize,
         input: Option<Input<'_>>,
     ) -> Result<Option<Value>, ErrorKind> {
-        let spec = kind.attr(index);
-        let Some(input) = input else { return Ok(None) };
-        let invalid = |error: ValueError| ErrorKind::InvalidValue {
-            tag: kind.tag(),
-            attribute: spec.name,
-            value: match input {
-                Input::Text(t) => cut(t),
-                Input::Given(i) => input_text(i),
-            },
-            error,
-        };
-        if let Some(text) = input.text() {
-            // An empty required name prefix (`<attach prefix="">`) is given, as MuJoCo
-            // reads it: the part's names are taken as they are.
-            let empty_prefix = spec.required && matches!(spec.ty, AttrType::NamePrefix);
-            let clears = text.is_empty()
-                && !empty_prefix
-                && matches!(
-                    spec.ty,
-                    AttrType::Identifier
-                        | AttrType::Reference(_)
-                        | AttrType::String
-                        | AttrType::NamePrefix
-                        | AttrType::Basepath { .. }
-                        | AttrType::File { .. }
-                );
-            if clears {
-                return Ok(None);
+        let given = match input {
+            None => return Ok(None),
+            Some(Input::Text(text)) => {
+                let mut value = Value::Int(0);
+                let set = self.assign_text_into(kind, index, text, &mut value)?;
+                return Ok(set.then_some(value));
             }
-            if let AttrType::File { path_namespace } = spec.ty {
-                let base = self.basepaths.for_namespace(path_namespace);
-                let asset = if kind.is(Role::AssetModel) {
-                    // A model file brings the files it names (exported beside it).
-                    self.model_files.read(self.files, base, text, ElementKind::ROOT, 0)?.0
-                } else {
-                    FileAsset::from_path_and_contents(text, self.files.read(base, text)?.1)
-                };
-                if kind.is(Role::Mesh)
-                    && !matches!(
-                        asset.extension().to_ascii_lowercase().as_str(),
-                        ".stl" | ".msh" | ".obj"
-                    )
-                {
-                    return Err(invalid(ValueError::MeshExtension));
-                }
-                return Ok(Some(Value::File(asset)));
+            Some(Input::Given(given)) => given,
+        };
+        if let AttrInput::Text(text) = given {
+            match self.before_parsing(kind, index, text)? {
+                Some(Before::Clears) => return Ok(None),
+                Some(Before::File(asset)) => return Ok(Some(Value::File(asset))),
+                None => {}
             }
         }
-        let value = match input {
-            Input::Text(t) => value::parse_text(spec, kind.namespace(), t).map(Some),
-            Input::Given(i) => value::from_input(spec, kind.namespace(), i),
+        let spec = kind.attr(index);
+        value::from_input(spec, kind.namespace(), given).map_err(|error| ErrorKind::InvalidValue {
+            tag: kind.tag(),
+            attribute: spec.name,
+            value: input_text(given),
+            error,
+        })
+    }
+
+    /// [`ValueCtx::assign_at`] of a text, into `dst`, where the value is to stay
+    /// ([`value::parse_text_into`] says why); `false` when the text clears the
+    /// attribute (`dst` is then unspecified, as on an error).
+    pub(crate) fn assign_text_into(
+        &self,
+        kind: ElementKind,
+        index: usize,
+        text: &str,
+        dst: &mut Value,
+    ) -> Result<bool, ErrorKind> {
+        match self.before_parsing(kind, index, text)? {
+            Some(Before::Clears) => return Ok(false),
+            Some(Before::File(asset)) => {
+                *dst = Value::File(asset);
+                return Ok(true);
+            }
+            None => {}
+        }
+        let spec = kind.attr(index);
+        value::parse_text_into(spec, kind.namespace(), text, dst).map_err(|error| {
+            ErrorKind::InvalidValue {
+                tag: kind.tag(),
+                attribute: spec.name,
+                value: cut(text),
+                error,
+            }
+        })?;
+        Ok(true)
+    }
+
+    /// What a text gives before it is parsed as the attribute's type, if anything:
+    /// empty, it clears a name, reference, string, folder or file; a file is read.
+    fn before_parsing(
+        &self,
+        kind: ElementKind,
+        index: usize,
+        text: &str,
+    ) -> Result<Option<Before>, ErrorKind> {
+        let spec = kind.attr(index);
+        // An empty required name prefix (`<attach prefix="">`) is given, as MuJoCo
+        // reads it: the part's names are taken as they are.
+        let empty_prefix = spec.required && matches!(spec.ty, AttrType::NamePrefix);
+        let clears = text.is_empty()
+            && !empty_prefix
+            && matches!(
+                spec.ty,
+                AttrType::Identifier
+                    | AttrType::Reference(_)
+                    | AttrType::String
+                    | AttrType::NamePrefix
+                    | AttrType::Basepath { .. }
+                    | AttrType::File { .. }
+            );
+        if clears {
+            return Ok(Some(Before::Clears));
+        }
+        let AttrType::File { path_namespace } = spec.ty else { return Ok(None) };
+        let base = self.basepaths.for_namespace(path_namespace);
+        let asset = if kind.is(Role::AssetModel) {
+            // A model file brings the files it names (exported beside it).
+            self.model_files.read(self.files, base, text, ElementKind::ROOT, 0)?.0
+        } else {
+            FileAsset::from_path_and_contents(text, self.files.read(base, text)?.1)
         };
-        value.map_err(invalid)
+        let ext = asset.extension().to_ascii_lowercase();
+        if kind.is(Role::Mesh) && !matches!(ext.as_str(), ".stl" | ".msh" | ".obj") {
+            let error = ValueError::MeshExtension;
+            return Err(ErrorKind::InvalidValue {
+                tag: kind.tag(),
+                attribute: spec.name,
+                value: cut(text),
+                error,
+            });
+        }
+        Ok(Some(Before::File(asset)))
     }
 }
 

@@ -269,6 +269,20 @@ pub(crate) fn parse_text(
     namespace: Option<Namespace>,
     text: &str,
 ) -> Result<Value, ValueError> {
+    let mut value = Value::Int(0);
+    parse_text_into(spec, namespace, text, &mut value)?;
+    Ok(value)
+}
+
+/// [`parse_text`] into `dst`, where the value is to stay (the reader's list of an
+/// element's attributes): a value returned is written in parts and copied whole,
+/// which stalls the copy, once per attribute read. `dst` is unspecified on an error.
+pub(crate) fn parse_text_into(
+    spec: &AttrSpec,
+    namespace: Option<Namespace>,
+    text: &str,
+    dst: &mut Value,
+) -> Result<(), ValueError> {
     if matches!(
         spec.ty,
         AttrType::String
@@ -280,16 +294,17 @@ pub(crate) fn parse_text(
         check_xml_text(text)?;
     }
     match spec.ty {
-        AttrType::Float => number::parse_float(text).map(Value::Float).ok_or(ValueError::NotFloat),
-        AttrType::Int => number::parse_int(text).map(Value::Int).ok_or(ValueError::NotInt),
-        AttrType::String | AttrType::NamePrefix => Ok(Value::String(text.into())),
-        AttrType::Keyword(valid) => valid
-            .iter()
-            .find(|v| v.eq_ignore_ascii_case(text.trim()))
-            .map(|v| Value::Keyword(v))
-            .ok_or(ValueError::NotKeyword { valid }),
+        AttrType::Float => {
+            *dst = Value::Float(number::parse_float(text).ok_or(ValueError::NotFloat)?)
+        }
+        AttrType::Int => *dst = Value::Int(number::parse_int(text).ok_or(ValueError::NotInt)?),
+        AttrType::String | AttrType::NamePrefix => *dst = Value::String(text.into()),
+        AttrType::Keyword(valid) => {
+            let found = valid.iter().find(|v| v.eq_ignore_ascii_case(text.trim()));
+            *dst = Value::Keyword(found.ok_or(ValueError::NotKeyword { valid })?);
+        }
         AttrType::Array { elem, max_len } => {
-            let value = match elem {
+            *dst = match elem {
                 ArrayType::Float => {
                     Value::Floats(scan::parse_array(text).ok_or(ValueError::NotFloatArray)?)
                 }
@@ -297,14 +312,14 @@ pub(crate) fn parse_text(
                     Value::Ints(scan::parse_array(text).ok_or(ValueError::NotIntArray)?)
                 }
             };
-            check_len(&value, max_len)?;
-            Ok(value)
+            check_len(dst, max_len)?;
         }
-        AttrType::Identifier => identifier(text, namespace),
-        AttrType::Reference(_) => Ok(Value::Reference(Reference::Name(text.into()))),
-        AttrType::Basepath { .. } => Ok(Value::Basepath(text.into())),
-        AttrType::File { .. } => Err(ValueError::FileNeedsLoading),
+        AttrType::Identifier => *dst = identifier(text, namespace)?,
+        AttrType::Reference(_) => *dst = Value::Reference(Reference::Name(text.into())),
+        AttrType::Basepath { .. } => *dst = Value::Basepath(text.into()),
+        AttrType::File { .. } => return Err(ValueError::FileNeedsLoading),
     }
+    Ok(())
 }
 
 fn check_len(value: &Value, max_len: Option<u32>) -> Result<(), ValueError> {

@@ -413,23 +413,38 @@ impl Reader<'_> {
                 basepaths: &self.basepaths,
                 model_files: self.model_files,
             };
-            let value = ctx
-                .assign_at(kind, index, Some(Input::Text(&raw)))
-                .map_err(|k| self.err(k, offset))?;
-            let spec = kind.attr(index);
-            if let AttrType::Basepath { path_namespace } = spec.ty {
-                self.basepaths
-                    .set(path_namespace, value.as_ref().and_then(Value::as_str).map(SmolStr::from));
-            }
+            // The value is parsed into its place at the end of the list (returned, it
+            // was copied in parts and read back whole, a stalled load per attribute).
             let i = index as u16;
             let pos = attrs.iter().position(|(k, _)| *k == i);
-            match (pos, value) {
-                (Some(p), Some(v)) => attrs[p].1 = v,
-                (None, Some(v)) => attrs.push((i, v)),
-                (Some(p), None) => {
+            attrs.push((i, Value::Int(0)));
+            let last = attrs.len() - 1;
+            let set = match ctx.assign_text_into(kind, index, &raw, &mut attrs[last].1) {
+                Ok(set) => set,
+                Err(k) => {
+                    attrs.pop();
+                    return Err(self.err(k, offset));
+                }
+            };
+            if let AttrType::Basepath { path_namespace } = kind.attr(index).ty {
+                let folder = attrs[last].1.as_str().filter(|_| set).map(SmolStr::from);
+                self.basepaths.set(path_namespace, folder);
+            }
+            match (pos, set) {
+                (None, true) => {}
+                (None, false) => {
+                    attrs.pop();
+                }
+                // Given again (`class` and `dclass`): the later value replaces it.
+                (Some(p), true) => {
+                    if let Some((_, v)) = attrs.pop() {
+                        attrs[p].1 = v;
+                    }
+                }
+                (Some(p), false) => {
+                    attrs.pop();
                     attrs.remove(p);
                 }
-                (None, None) => {}
             }
         }
         // Indices are unique here: an unstable sort orders them alike, in place.
