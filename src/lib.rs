@@ -115,7 +115,7 @@ pub use crate::xml::{
 /// `element!("geom", type = "box", size = [0.1, 0.1, 0.1], mass = 1)`.
 ///
 /// Attribute names are written as bare words (`type`, `class` and other keywords
-/// included); values are anything [`Value`](crate::Value) inputs convert from: text,
+/// included); values are anything [`Value`] inputs convert from: text,
 /// numbers, arrays of numbers, booleans. A bracketed list written in the call may mix
 /// integers and floats, as in Python (`size = [2, 2, 0.1]`): each item is converted by
 /// `f64::from`, so any number type that converts to `f64` without loss fits (`i32`,

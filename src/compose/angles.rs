@@ -1,33 +1,11 @@
-//! Converting a model's angles into another model's conventions, so that composing
-//! two models whose `<compiler angle>` or `<compiler eulerseq>` differ compiles every
-//! element as it compiled in its own file.
-//!
-//! MuJoCo 4.0.0 reads these numbers by the compiler's `angle` (degrees, its default,
-//! or radians) and `eulerseq` (`xyz` by default):
-//! - an orientation's `euler` (unit and sequence) and the angle of `axisangle`, on
-//!   `body`, `frame`, `inertial`, `geom`, `site`, `camera`, `flexcomp` and the
-//!   default classes' `geom`, `site` and `camera` (`ResolveOrientation`);
-//! - a `replicate`'s `euler` (unit and sequence);
-//! - a joint's `range` when the joint is limited and a hinge or a ball, its `ref` and
-//!   `springref` when it is a hinge (`mjCJoint::Compile`; an unlimited joint's range
-//!   is kept as written, as is a ball's `ref`).
-//!
-//! Nothing else is: an actuator's `ctrlrange` on a hinge, a tendon's range, a key's
-//! `qpos`, a camera's `fovy` are written in fixed units whatever `angle` says
-//! (checked with the MuJoCo 4.0.0 library).
-//!
-//! # When a model is converted
-//! Where both models set the attribute (explicitly, in their own `<compiler>` or in
-//! one of a model they hold attached) and the values differ, the incoming model
-//! (the attached child, `include_copy`'s source) is rewritten into the receiving
-//! model's convention and its `<compiler>` (and those of the models attached to it)
-//! says the receiving model's value. Where one of them leaves it unset, nothing is
-//! converted: the merged settings take the value that is set, as before.
-//!
-//! Each attach or copy converts anew, in O(size of the incoming model): the held
-//! copies of a fleet attached this way are not shared (nor are the part files a
-//! saved scene writes for them); attaching the converted copy held by the first
-//! attachment shares it, as it needs no conversion.
+//! Converting a model's angles into another model's conventions (`<compiler angle>`
+//! and `eulerseq`), so that composing two models whose conventions differ compiles
+//! every element as it compiled in its own file. What is converted and when, and what
+//! is still refused, is [`Model::attach`](crate::Model::attach)'s rule (decision
+//! D17); the numbers MuJoCo 4.0.0 reads by these settings were found in
+//! `ResolveOrientation` (orientations, a `replicate`'s `euler`) and
+//! `mjCJoint::Compile` (a joint's `range`, `ref`, `springref`), and checked with its
+//! library.
 //!
 //! # How
 //! - a unit change scales: `euler`, the fourth number of `axisangle`, a limited

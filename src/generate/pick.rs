@@ -1,5 +1,5 @@
 //! What steps and edits pick from: the elements of a model as recipes choose them
-//! ([`Pick`](super::Pick) takes one of them modulo their number).
+//! ([`Pick`] takes one of them modulo their number).
 
 use crate::model::{Event, JointType, Loc, Model};
 use crate::schema::{ElementKind, Namespace, Role};

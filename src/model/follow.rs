@@ -1,21 +1,16 @@
-//! Keys that follow their elements: after an edit that adds, removes, reorders or
-//! retypes a model's own joints, actuators or mocap bodies, each of its own keys is
-//! rewritten so that every value stays with its element (by identity, so a renamed
-//! joint keeps its values).
+//! Keys that follow their elements: the rule, and the models it is not applied to,
+//! are the guide's ([What it does](crate::guide#what-it-does)); this is how an edit
+//! that adds, removes, reorders or retypes a model's own joints, actuators or mocap
+//! bodies rewrites each of the model's own keys.
 //!
 //! A key's arrays (`qpos`, `qvel`, `act`, `ctrl`, `mpos`, `mquat`) are read against
-//! the model's own layout (its own joints, actuators and mocap bodies in MuJoCo's
-//! order, as [`WriteOptions::merge_keyframes`](crate::WriteOptions::merge_keyframes)
-//! reads them), short arrays padded as MuJoCo pads them (`qpos` with the joints'
-//! default positions, `mpos`/`mquat` with the mocap bodies' poses, the rest with
-//! zeros). After the edit, an element that stayed (same element, same type and
-//! width) keeps its values; a new one (or one whose type or width changed) gets its
-//! default; a removed one's values leave the key. Only the arrays a key has are
-//! rewritten (a key without `qpos` keeps MuJoCo's `qpos0` for every joint).
-//!
-//! Not followed (the key is left as it is): a model whose layout is not exact
-//! (`<composite>`, `<flexcomp>`, an `<attach>` element) or holds the same element
-//! twice (a `<replicate>`d joint).
+//! the own layout before the edit (`super::layout`, as
+//! [`WriteOptions::merge_keyframes`](crate::WriteOptions::merge_keyframes) reads
+//! them), short arrays padded as MuJoCo pads them (`qpos` with the joints' default
+//! positions, `mpos`/`mquat` with the mocap bodies' poses, the rest with zeros), then
+//! laid out again after it: an element is the same when its id, type and width are,
+//! and only the arrays a key has are rewritten (a key without `qpos` keeps MuJoCo's
+//! `qpos0`).
 
 use std::collections::HashMap;
 

@@ -1,38 +1,18 @@
-//! The lossless save of a model with attachments: its own files written against the
-//! text they were read from, each attached model in a file of its own (MuJoCo's
-//! `<attach>` of an asset `<model>`, as `xml::scene` shapes a scene).
+//! The lossless save of a model with attachments: what is kept, added, removed and
+//! written anew, and where each attached model goes, is [`Model::save`]'s rule (its
+//! scene paragraph); this is how.
 //!
 //! The model is first *spelled*: brought back to the elements its text spells
 //! ([`Source::spelled`]: the model before the reader reopened its `<attach>`es), and
-//! the lossless writer then writes the spelled model against that.
-//! - an attachment frame the reader reopened, still as read (its attributes,
-//!   children and scope; its model saved into the same file), is the body read, so
-//!   its text is kept byte for byte, `<attach>` included;
-//! - any other attachment frame is a body named `<scope>/` holding
-//!   `<attach model="M" prefix="<scope>/"/>`, as `xml::scene` writes it (a MuJoCo
-//!   `<frame>` where the composed writer writes one); one the reader reopened keeps
-//!   its tags (its pose, name and prefix changed in place);
-//! - the asset `<model>`s: those read, for the files still attached, where they were;
-//!   a new one (after the other assets) per file newly attached; one no attachment
-//!   uses any more goes;
-//! - the global settings sections hold the merged ones (MuJoCo keeps the parent's
-//!   settings; a reopened scene already holds them, so only a model attached in code
-//!   with settings of its own changes them).
+//! the lossless writer writes the spelled model against that text. A frame the
+//! reader reopened and no edit touched is the body read (its text kept, `<attach>`
+//! included); any other frame is spelled as `xml::scene` writes one, keeping the
+//! tags of one the reader reopened; the asset `<model>`s are spelled to match the
+//! attachments left; the global settings sections are spelled as the merged ones.
 //!
-//! Each distinct attached model value is a part, saved as follows:
-//! - read from a file in the scene's folder (or below it), and the first value in
-//!   document order to claim that file: losslessly into its own files (its includes
-//!   and its own attachments too, recursively), at their paths;
-//! - read from a file outside the scene's folder and untouched (saving it would write
-//!   nothing): kept where it is, its asset `<model file=...>` as written; nothing is
-//!   written for it (not by a save into another folder, which takes every file);
-//! - otherwise (built in code, read from a string, edited after being read from
-//!   outside the folder (that file is never changed), or a second version of a file
-//!   another value claimed, such as a copy edited with `edit_attached` where another
-//!   attachment shares the original): with the plain
-//!   writer, as [`Model::save_scene`] writes a part (`xml::scene`), into a new file
-//!   named after the model (`robot.xml`, `robot_1.xml` if taken) beside the scene's
-//!   file, with the files it names (meshes with their hash, its own parts).
+//! A part is one distinct attached model value; of the values read from one file,
+//! the first in document order claims it (saved losslessly there), and any other is
+//! a second version, written anew.
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
