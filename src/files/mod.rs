@@ -4,8 +4,8 @@
 //! reading with the size cap and folder confinement, one canonical path, the scan
 //! of the files an MJCF file names ([`scan`]), the asset model files one read or
 //! edit reads ([`model_files`]) and the one writer of every file the crate writes
-//! ([`write`](mod@write)). File attributes are read when they are set, so a model value never
-//! reads files later.
+//! ([`write`](mod@write)). File attributes are read when they are set, so a model
+//! value never reads files later.
 
 use std::collections::HashMap;
 use std::io::Read;

@@ -400,33 +400,31 @@ impl<'a> Iterator for Walk<'a> {
             None => 0,
         };
         let item = Item { auto, ..item };
-        {
-            self.entered = Some(self.stack.len());
-            self.stack.push(Step::Leave(item));
-            let Item { inst, node, depth, .. } = item;
-            let own_only = node.attached().is_none()
-                && (inst != 0
-                    || depth > 1
-                    || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT));
-            if own_only {
-                // Most elements: their own children only (what `expand` gives them),
-                // pushed without a list in between (and most have none).
-                let children = node.children();
-                if !children.is_empty() {
-                    let prune = self.prune.filter(|_| depth >= 1);
-                    let below = item.replicated || node.kind().is(Role::Replicate);
-                    self.stack.reserve(children.len());
-                    for c in children.iter().rev() {
-                        if prune.is_some_and(|p| p(c)) {
-                            continue;
-                        }
-                        self.stack.push(Step::Enter(Item::plain(inst, c, depth + 1, below)));
+        self.entered = Some(self.stack.len());
+        self.stack.push(Step::Leave(item));
+        let Item { inst, node, depth, .. } = item;
+        let own_only = node.attached().is_none()
+            && (inst != 0
+                || depth > 1
+                || node.kind().spec().parent.is_some_and(|p| p != ElementKind::ROOT));
+        if own_only {
+            // Most elements: their own children only (what `expand` gives them),
+            // pushed without a list in between (and most have none).
+            let children = node.children();
+            if !children.is_empty() {
+                let prune = self.prune.filter(|_| depth >= 1);
+                let below = item.replicated || node.kind().is(Role::Replicate);
+                self.stack.reserve(children.len());
+                for c in children.iter().rev() {
+                    if prune.is_some_and(|p| p(c)) {
+                        continue;
                     }
+                    self.stack.push(Step::Enter(Item::plain(inst, c, depth + 1, below)));
                 }
-            } else {
-                let children = self.expand(item);
-                self.stack.extend(children.into_iter().rev().map(Step::Enter));
             }
+        } else {
+            let children = self.expand(item);
+            self.stack.extend(children.into_iter().rev().map(Step::Enter));
         }
         Some(Step::Enter(item))
     }

@@ -5,7 +5,8 @@
 //! (the scope prefix, accumulated once as the walk descends, and how its root default
 //! class is written) and counts automatic names as it enters elements. This module
 //! turns what the walk knows of an element into a [`Written`] name, and
-//! [`Written::write`] spells it. The writer, [`ElementRef::full_name`](crate::ElementRef::full_name),
+//! [`Written::write`] spells it. The writer,
+//! [`ElementRef::full_name`](crate::ElementRef::full_name),
 //! [`Model::from_full_name`], [`Model::check`] and the diff all read names through
 //! here, so they cannot disagree.
 //!
