@@ -1,28 +1,16 @@
 //! Hostile input: each test feeds something an attacker or a fuzzer could produce and
 //! expects a typed error (or the correct result), never a panic, a stack overflow or a
-//! hang. The limits these tests check are listed in README "Guarantees and limits".
+//! hang. The limits these tests check are listed in the guide's "Guarantees and
+//! limits" (`src/guide.md`).
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+
+use crate::dirs::temp_dir;
 
 use mjcf::{
     Element, ErrorKind, MAX_LAYOUT_ENTRIES, Model, Namespace, ProblemKind, ReadOptions, Value,
     WriteError, WriteOptions,
 };
-
-/// A fresh empty folder under the system's temp folder.
-fn temp_dir(tag: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "mjcf-hostile-{}-{}-{}",
-        std::process::id(),
-        tag,
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);

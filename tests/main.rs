@@ -3,7 +3,8 @@
 //! once per file), but `conformance.rs`, which has its own runner (`harness = false`).
 //! Run one file's tests by its module path: `cargo test --test tests hostile::`.
 
-// Shared by several files: loaded once, each file `use`s it.
+// Shared by several files: loaded once, each file `use`s it (and their own unit
+// tests, such as the case reader's and the comparison's, run here).
 #[path = "support/case.rs"]
 mod case;
 #[path = "support/compare.rs"]
@@ -27,7 +28,6 @@ mod attach_in;
 mod check;
 mod check_expansions;
 mod composition;
-mod conformance_support;
 mod corpus;
 mod docs;
 mod export;

@@ -14,7 +14,6 @@
 
 use crate::case;
 use crate::names;
-#[allow(dead_code)]
 use crate::replay;
 
 use std::path::{Path, PathBuf};

@@ -8,7 +8,7 @@
 //! the order the case file lists them (without it they would be sorted by
 //! key).
 //!
-//! Its unit tests run in `tests/conformance_support.rs`.
+//! Its unit tests run in the `tests` binary (`tests/main.rs`).
 //!
 //! Loading is strict: an unknown op kind, an unknown field, a field of the
 //! wrong type, an unknown error category or a `null` attribute value outside

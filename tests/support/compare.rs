@@ -19,7 +19,7 @@
 //!
 //! This file is self-contained (std + `quick-xml` only) because it is shared by
 //! integration tests and an example via `#[path = "..."] mod compare;`. Its unit
-//! tests run in `tests/conformance_support.rs`.
+//! tests run in the `tests` binary (`tests/main.rs`).
 //!
 //! Known differences from Python's ElementTree / compare.py:
 //!   * Parsing and comparing use explicit stacks, so arbitrarily deep documents
